@@ -1,0 +1,85 @@
+/*
+ * edge.c - hal/edge.h on ports 1 and 2 (pins and vectors in hal/pinmap.h).
+ * The ISRs are thin: read and clear the flags of enabled pins, then call the portable handler
+ * of each flagged line, lowest pin first. An edge arriving while handlers run sets its flag
+ * again and the ISR is re-entered after RETI.
+ */
+#include <stddef.h>
+
+#include "f249.h"
+#include "hal/edge.h"
+#include "hal/irq.h"
+#include "hal/pinmap.h"
+
+static struct {
+    hal_edge_cb_t cb;
+    void *arg;
+} slots[HAL_EDGE_COUNT];
+
+int hal_edge_init(hal_edge_line_t line, hal_edge_flank_t flank, hal_edge_cb_t cb, void *arg)
+{
+    if ((unsigned)line >= HAL_EDGE_COUNT || cb == NULL)
+        return -1;
+    uint8_t bit = (uint8_t)(1u << hal_edge_pin(line));
+    hal_irq_state_t s = hal_irq_disable();
+    slots[line].cb = cb;
+    slots[line].arg = arg;
+    if (HAL_EDGE_PORT_OF(line) == 1) {
+        P1DIR &= (uint8_t)~bit;
+        P1SEL &= (uint8_t)~bit;
+        if (flank == HAL_EDGE_FALLING)
+            P1IES |= bit;
+        else
+            P1IES &= (uint8_t)~bit;
+        P1IFG &= (uint8_t)~bit;
+        P1IE |= bit;
+    } else {
+        P2DIR &= (uint8_t)~bit;
+        P2SEL &= (uint8_t)~bit;
+        if (flank == HAL_EDGE_FALLING)
+            P2IES |= bit;
+        else
+            P2IES &= (uint8_t)~bit;
+        P2IFG &= (uint8_t)~bit;
+        P2IE |= bit;
+    }
+    hal_irq_restore(s);
+    return 0;
+}
+
+void hal_edge_enable(hal_edge_line_t line, uint8_t enable)
+{
+    if ((unsigned)line >= HAL_EDGE_COUNT || slots[line].cb == NULL)
+        return;
+    uint8_t bit = (uint8_t)(1u << hal_edge_pin(line));
+    volatile uint8_t *ie = HAL_EDGE_PORT_OF(line) == 1 ? &P1IE : &P2IE;
+    hal_irq_state_t s = hal_irq_disable();
+    if (enable)
+        *ie |= bit;
+    else
+        *ie &= (uint8_t)~bit;
+    hal_irq_restore(s);
+}
+
+/* Lines are enumerated in ascending pin order within each port (hal/edge.h). */
+static inline void dispatch(unsigned port, uint8_t flags)
+{
+    for (unsigned line = 0; line < HAL_EDGE_COUNT; line++) {
+        if (HAL_EDGE_PORT_OF(line) == port && (flags & (1u << hal_edge_pin(line))))
+            slots[line].cb(slots[line].arg);
+    }
+}
+
+CY_ISR(HAL_VEC_PORT1, hal_isr_port1)
+{
+    uint8_t f = P1IFG & P1IE;
+    P1IFG &= (uint8_t)~f;
+    dispatch(1, f);
+}
+
+CY_ISR(HAL_VEC_PORT2, hal_isr_port2)
+{
+    uint8_t f = P2IFG & P2IE;
+    P2IFG &= (uint8_t)~f;
+    dispatch(2, f);
+}

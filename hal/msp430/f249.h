@@ -1,0 +1,161 @@
+/*
+ * f249.h - the MSP430F249 registers this HAL touches (private to hal/msp430 and target
+ * tests). Addresses from the MSP430F24x data sheet (SLAS547) and the 2xx family guide
+ * (SLAU144). Vector numbers are in hal/pinmap.h.
+ */
+#ifndef CY_F249_H
+#define CY_F249_H
+
+#include <stdint.h>
+
+#define CY_REG8(addr)  (*(volatile uint8_t *)(uintptr_t)(addr))
+#define CY_REG16(addr) (*(volatile uint16_t *)(uintptr_t)(addr))
+
+/* Special function registers */
+#define IE1       CY_REG8(0x0000)
+#define IFG1      CY_REG8(0x0002)
+#define IE2       CY_REG8(0x0001)
+#define IFG2      CY_REG8(0x0003)
+#define UCA0TXIFG 0x02u
+#define NMIIE     0x10u
+#define NMIIFG    0x10u
+
+/* Watchdog */
+#define WDTCTL   CY_REG16(0x0120)
+#define WDTPW    0x5A00u
+#define WDTHOLD  0x0080u
+#define WDTNMI   0x0020u
+#define WDTNMIES 0x0040u
+
+/* Basic clock module+ and its calibration data in information memory segment A */
+#define DCOCTL       CY_REG8(0x0056)
+#define BCSCTL1      CY_REG8(0x0057)
+#define BCSCTL2      CY_REG8(0x0058)
+#define BCSCTL3      CY_REG8(0x0053)
+#define CALDCO_16MHZ CY_REG8(0x10F8)
+#define CALBC1_16MHZ CY_REG8(0x10F9)
+
+/* Ports 1 and 2 (with interrupts) */
+#define P1IN  CY_REG8(0x0020)
+#define P1OUT CY_REG8(0x0021)
+#define P1DIR CY_REG8(0x0022)
+#define P1IFG CY_REG8(0x0023)
+#define P1IES CY_REG8(0x0024)
+#define P1IE  CY_REG8(0x0025)
+#define P1SEL CY_REG8(0x0026)
+#define P2IN  CY_REG8(0x0028)
+#define P2OUT CY_REG8(0x0029)
+#define P2DIR CY_REG8(0x002A)
+#define P2IFG CY_REG8(0x002B)
+#define P2IES CY_REG8(0x002C)
+#define P2IE  CY_REG8(0x002D)
+#define P2SEL CY_REG8(0x002E)
+/* Ports 3..6 */
+#define P3OUT CY_REG8(0x0019)
+#define P3DIR CY_REG8(0x001A)
+#define P3SEL CY_REG8(0x001B)
+#define P4IN  CY_REG8(0x001C)
+#define P4OUT CY_REG8(0x001D)
+#define P4DIR CY_REG8(0x001E)
+#define P4SEL CY_REG8(0x001F)
+#define P5IN  CY_REG8(0x0030)
+#define P5OUT CY_REG8(0x0031)
+#define P5DIR CY_REG8(0x0032)
+#define P5SEL CY_REG8(0x0033)
+#define P6OUT CY_REG8(0x0035)
+#define P6DIR CY_REG8(0x0036)
+#define P6SEL CY_REG8(0x0037)
+
+/* USCI_A0 (UART) */
+#define UCA0CTL1  CY_REG8(0x0061)
+#define UCA0BR0   CY_REG8(0x0062)
+#define UCA0BR1   CY_REG8(0x0063)
+#define UCA0MCTL  CY_REG8(0x0064)
+#define UCA0TXBUF CY_REG8(0x0067)
+#define UCSWRST   0x01u
+#define UCSSEL_2  0x80u
+
+/* Timer_A3 */
+#define TACTL   CY_REG16(0x0160)
+#define TACCTL0 CY_REG16(0x0162)
+#define TACCTL1 CY_REG16(0x0164)
+#define TAR     CY_REG16(0x0170)
+#define TACCR0  CY_REG16(0x0172)
+#define TACCR1  CY_REG16(0x0174)
+#define TAIV    CY_REG16(0x012E)
+/* Timer_B7 */
+#define TBCTL   CY_REG16(0x0180)
+#define TBCCTL0 CY_REG16(0x0182)
+#define TBR     CY_REG16(0x0190)
+#define TBCCR0  CY_REG16(0x0192)
+#define TBIV    CY_REG16(0x011E)
+
+/* Timer control bits (same layout for A and B) */
+#define TASSEL_0 0x0000u /* TACLK */
+#define TASSEL_2 0x0200u /* SMCLK */
+#define MC_2     0x0020u /* continuous */
+#define TACLR    0x0004u
+#define TAIFG    0x0001u
+#define CM_1     0x4000u /* capture on rising edge */
+#define CM_3     0xC000u /* capture on both edges */
+#define SCS      0x0800u
+#define CAP      0x0100u
+#define CCIE     0x0010u
+#define CCI      0x0008u
+#define COV      0x0002u
+#define CCIFG    0x0001u
+
+/* Hardware multiplier (16 x 16) */
+#define MPY   CY_REG16(0x0130)
+#define MPYS  CY_REG16(0x0132)
+#define MAC   CY_REG16(0x0134)
+#define OP2   CY_REG16(0x0138)
+#define RESLO CY_REG16(0x013A)
+#define RESHI CY_REG16(0x013C)
+
+/* Status register bits */
+#define SR_GIE    0x0008u
+#define SR_CPUOFF 0x0010u
+#define SR_OSCOFF 0x0020u
+#define SR_SCG0   0x0040u
+#define SR_SCG1   0x0080u
+
+/* Status register access. */
+static inline uint16_t cy_sr_read(void)
+{
+    uint16_t sr;
+    __asm__ volatile("mov r2, %0" : "=r"(sr));
+    return sr;
+}
+
+/* Disable interrupts; the NOP covers the one instruction DINT needs to take effect. */
+static inline void cy_dint(void)
+{
+    __asm__ volatile("dint\n\tnop" ::: "memory");
+}
+
+/* Enable interrupts (NOPs around EINT as the 2xx family guide asks). */
+static inline void cy_eint(void)
+{
+    __asm__ volatile("nop\n\teint\n\tnop" ::: "memory");
+}
+
+/* Set GIE again if @p sr had it. */
+static inline void cy_gie_restore(uint16_t sr)
+{
+    if (sr & SR_GIE)
+        cy_eint();
+}
+
+/*
+ * CY_ISR(vector, name) defines an interrupt service routine for clang's interrupt(N) numbering
+ * (vector N at 0xFFE0 + 2(N-1)) and publishes it as __cy_vector_N for the linker script,
+ * which fills every unused vector with cy_isr_unexpected.
+ */
+#define CY_ISR_(vec, name)                                                                         \
+    __asm__(".global __cy_vector_" #vec "\n.set __cy_vector_" #vec ", " #name "\n");               \
+    void name(void);                                                                               \
+    __attribute__((interrupt(vec), used)) void name(void)
+#define CY_ISR(vec, name) CY_ISR_(vec, name)
+
+#endif

@@ -1,0 +1,379 @@
+/*
+ * harness.c - boards, virtual interrupt controllers, simulated time and the event queue.
+ * See hal_posix/harness.h for the model.
+ */
+#include "hal_posix/harness.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hal/preempt.h"
+#include "harness_internal.h"
+
+typedef struct {
+    bool used;
+    uint8_t vector;
+    uint8_t bit;
+    bool nonmaskable;
+    bool pending;
+    bool enabled;
+    posix_isr_fn fn;
+    void *ctx;
+    uint32_t count;
+} source_t;
+
+typedef struct {
+    bool used;
+    char name[16];
+    bool gie;
+    uint8_t isr_depth;
+    bool in_nmi;
+    uint64_t preempt_points;
+    source_t src[POSIX_MAX_SOURCES];
+    posix_board_state_t hal; /* per-board HAL state (critical sections, lines, captures) */
+} board_t;
+
+typedef struct {
+    uint64_t t;
+    uint64_t seq;
+    uint64_t id;
+    posix_event_fn fn;
+    void *ctx;
+} event_t;
+
+static board_t boards[POSIX_MAX_BOARDS];
+static int current = -1;
+static uint64_t now_ns;
+static uint64_t next_seq;
+static event_t heap[POSIX_MAX_EVENTS];
+static size_t heap_n;
+static posix_preempt_hook_fn preempt_hook;
+static void *preempt_ctx;
+
+static void harness_die(const char *what, int value)
+{
+    fprintf(stderr, "harness: %s (%d)\n", what, value);
+    abort();
+}
+
+static board_t *board_at(int b)
+{
+    if (b < 0 || b >= POSIX_MAX_BOARDS || !boards[b].used)
+        harness_die("no such board", b);
+    return &boards[b];
+}
+
+void posix_reset(void)
+{
+    memset(boards, 0, sizeof boards);
+    current = -1;
+    now_ns = 0;
+    next_seq = 0;
+    heap_n = 0;
+    preempt_hook = NULL;
+    preempt_ctx = NULL;
+    posix_console_redirect(NULL, NULL);
+}
+
+int posix_board_create(const char *name)
+{
+    for (int b = 0; b < POSIX_MAX_BOARDS; b++) {
+        if (!boards[b].used) {
+            memset(&boards[b], 0, sizeof boards[b]);
+            boards[b].used = true;
+            snprintf(boards[b].name, sizeof boards[b].name, "%s", name ? name : "board");
+            return b;
+        }
+    }
+    return -1;
+}
+
+void posix_board_select(int board)
+{
+    (void)board_at(board);
+    current = board;
+}
+
+int posix_board_current(void)
+{
+    /* Unit tests call firmware without a harness set up: give them a default board. */
+    if (current < 0) {
+        int b = posix_board_create("default");
+        if (b < 0)
+            harness_die("cannot create the default board", b);
+        current = b;
+    }
+    return current;
+}
+
+const char *posix_board_name(int board)
+{
+    return board_at(board)->name;
+}
+
+posix_board_state_t *posix_board_state(int board)
+{
+    return &board_at(board)->hal;
+}
+
+int posix_source_register(int board, int vector, int bit, bool nonmaskable, posix_isr_fn fn,
+                          void *ctx)
+{
+    if (vector < 1 || vector > 16 || bit < 0 || bit > 7 || fn == NULL)
+        return -1;
+    board_t *bd = board_at(board);
+    int free_slot = -1;
+    for (int i = 0; i < POSIX_MAX_SOURCES; i++) {
+        source_t *s = &bd->src[i];
+        if (s->used && s->vector == vector && s->bit == bit) {
+            s->fn = fn;
+            s->ctx = ctx;
+            s->nonmaskable = nonmaskable;
+            return i;
+        }
+        if (!s->used && free_slot < 0)
+            free_slot = i;
+    }
+    if (free_slot < 0)
+        return -1;
+    source_t *s = &bd->src[free_slot];
+    memset(s, 0, sizeof *s);
+    s->used = true;
+    s->vector = (uint8_t)vector;
+    s->bit = (uint8_t)bit;
+    s->nonmaskable = nonmaskable;
+    s->enabled = true;
+    s->fn = fn;
+    s->ctx = ctx;
+    return free_slot;
+}
+
+int posix_source_find(int board, int vector, int bit)
+{
+    board_t *bd = board_at(board);
+    for (int i = 0; i < POSIX_MAX_SOURCES; i++)
+        if (bd->src[i].used && bd->src[i].vector == vector && bd->src[i].bit == bit)
+            return i;
+    return -1;
+}
+
+static source_t *source_at(int board, int source)
+{
+    board_t *bd = board_at(board);
+    if (source < 0 || source >= POSIX_MAX_SOURCES || !bd->src[source].used)
+        harness_die("no such interrupt source", source);
+    return &bd->src[source];
+}
+
+void posix_source_raise(int board, int source)
+{
+    source_at(board, source)->pending = true;
+}
+
+void posix_source_enable(int board, int source, bool enable)
+{
+    source_at(board, source)->enabled = enable;
+}
+
+bool posix_source_pending(int board, int source)
+{
+    return source_at(board, source)->pending;
+}
+
+uint32_t posix_source_count(int board, int source)
+{
+    return source_at(board, source)->count;
+}
+
+bool posix_in_isr(int board)
+{
+    return board_at(board)->isr_depth > 0;
+}
+
+bool posix_gie(int board)
+{
+    return board_at(board)->gie;
+}
+
+void posix_set_gie(int board, bool gie)
+{
+    board_at(board)->gie = gie;
+}
+
+/* Highest-priority deliverable source of a board, or -1. */
+static int pick(const board_t *bd)
+{
+    int best = -1;
+    for (int i = 0; i < POSIX_MAX_SOURCES; i++) {
+        const source_t *s = &bd->src[i];
+        if (!s->used || !s->pending || !s->enabled)
+            continue;
+        bool allowed = s->nonmaskable ? !bd->in_nmi : bd->gie;
+        if (!allowed)
+            continue;
+        if (best < 0 || s->vector > bd->src[best].vector ||
+            (s->vector == bd->src[best].vector && s->bit < bd->src[best].bit))
+            best = i;
+    }
+    return best;
+}
+
+void posix_dispatch_board(int b)
+{
+    board_t *bd = board_at(b);
+    for (;;) {
+        int i = pick(bd);
+        if (i < 0)
+            return;
+        source_t *s = &bd->src[i];
+        /* Interrupt entry: flag cleared by the shim, GIE cleared by the CPU. */
+        s->pending = false;
+        s->count++;
+        bool saved_gie = bd->gie;
+        bool saved_nmi = bd->in_nmi;
+        int saved_current = current;
+        bd->gie = false;
+        if (s->nonmaskable)
+            bd->in_nmi = true;
+        bd->isr_depth++;
+        current = b;
+        s->fn(s->ctx);
+        /* RETI: the status register (hence GIE) comes back from the stack. */
+        current = saved_current;
+        bd->isr_depth--;
+        bd->in_nmi = saved_nmi;
+        bd->gie = saved_gie;
+    }
+}
+
+void posix_dispatch(void)
+{
+    for (int b = 0; b < POSIX_MAX_BOARDS; b++)
+        if (boards[b].used)
+            posix_dispatch_board(b);
+}
+
+void hal_preempt_point(void)
+{
+    int b = posix_board_current();
+    board_t *bd = board_at(b);
+    bd->preempt_points++;
+    if (preempt_hook)
+        preempt_hook(preempt_ctx, b, bd->preempt_points);
+    posix_dispatch_board(b);
+}
+
+void posix_set_preempt_hook(posix_preempt_hook_fn fn, void *ctx)
+{
+    preempt_hook = fn;
+    preempt_ctx = ctx;
+}
+
+uint64_t posix_preempt_points(int board)
+{
+    return board_at(board)->preempt_points;
+}
+
+/* ---- time and events: a binary min-heap ordered by (t, seq) ---- */
+
+static bool before(const event_t *a, const event_t *b)
+{
+    return a->t < b->t || (a->t == b->t && a->seq < b->seq);
+}
+
+static void heap_swap(size_t i, size_t j)
+{
+    event_t tmp = heap[i];
+    heap[i] = heap[j];
+    heap[j] = tmp;
+}
+
+static void sift_up(size_t i)
+{
+    while (i > 0) {
+        size_t p = (i - 1) / 2;
+        if (!before(&heap[i], &heap[p]))
+            break;
+        heap_swap(i, p);
+        i = p;
+    }
+}
+
+static void sift_down(size_t i)
+{
+    for (;;) {
+        size_t l = 2 * i + 1, r = l + 1, m = i;
+        if (l < heap_n && before(&heap[l], &heap[m]))
+            m = l;
+        if (r < heap_n && before(&heap[r], &heap[m]))
+            m = r;
+        if (m == i)
+            return;
+        heap_swap(i, m);
+        i = m;
+    }
+}
+
+static void heap_remove(size_t i)
+{
+    heap_n--;
+    if (i == heap_n)
+        return;
+    heap[i] = heap[heap_n];
+    sift_down(i);
+    sift_up(i);
+}
+
+uint64_t posix_now_ns(void)
+{
+    return now_ns;
+}
+
+uint64_t posix_schedule(uint64_t t_ns, posix_event_fn fn, void *ctx)
+{
+    if (fn == NULL || t_ns < now_ns || heap_n >= POSIX_MAX_EVENTS)
+        return 0;
+    uint64_t id = ++next_seq;
+    event_t *e = &heap[heap_n];
+    e->t = t_ns;
+    e->seq = id;
+    e->id = id;
+    e->fn = fn;
+    e->ctx = ctx;
+    heap_n++;
+    sift_up(heap_n - 1);
+    return id;
+}
+
+bool posix_cancel(uint64_t id)
+{
+    for (size_t i = 0; i < heap_n; i++) {
+        if (heap[i].id == id) {
+            heap_remove(i);
+            return true;
+        }
+    }
+    return false;
+}
+
+uint64_t posix_next_event_ns(void)
+{
+    return heap_n ? heap[0].t : UINT64_MAX;
+}
+
+uint64_t posix_run_until(uint64_t t_ns)
+{
+    uint64_t n = 0;
+    while (heap_n && heap[0].t <= t_ns) {
+        event_t e = heap[0];
+        heap_remove(0);
+        now_ns = e.t;
+        e.fn(e.ctx, e.t);
+        posix_dispatch();
+        n++;
+    }
+    if (t_ns > now_ns)
+        now_ns = t_ns;
+    return n;
+}

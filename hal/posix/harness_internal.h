@@ -1,0 +1,39 @@
+/*
+ * harness_internal.h - per-board HAL state shared by the hal/posix sources.
+ */
+#ifndef HAL_POSIX_HARNESS_INTERNAL_H
+#define HAL_POSIX_HARNESS_INTERNAL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "hal/capture.h"
+#include "hal/edge.h"
+
+typedef struct {
+    hal_edge_cb_t cb;
+    void *arg;
+    int source;
+} posix_edge_slot_t;
+
+typedef struct {
+    hal_capture_cb_t cb;
+    void *arg;
+    int source;
+    uint16_t count;
+    uint8_t rising;
+    uint32_t overflows;
+} posix_capture_slot_t;
+
+typedef struct {
+    uint8_t critical_depth;
+    bool critical_saved;
+    posix_edge_slot_t edge[HAL_EDGE_COUNT];
+    posix_capture_slot_t capture[HAL_CAPTURE_COUNT];
+} posix_board_state_t;
+
+posix_board_state_t *posix_board_state(int board);
+void posix_set_gie(int board, bool gie);
+void posix_dispatch_board(int board);
+
+#endif

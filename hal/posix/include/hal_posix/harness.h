@@ -1,0 +1,156 @@
+/*
+ * hal_posix/harness.h - the host harness: boards, a virtual interrupt controller per board,
+ * simulated time and a deterministic event queue. Used by sim/ and by tests; never by
+ * portable firmware.
+ *
+ * Model (mirrors the MSP430):
+ *  - Each board has 16 vectors, numbered 1..16 like clang's interrupt(N) (vector N lives at
+ *    0xFFE0 + 2(N-1)); a higher number is a higher priority. Several sources may share one
+ *    vector (the pins of a port); within a vector the lower source bit is served first.
+ *  - A source is pending (its flag) and enabled (its mask). Delivery needs the board's global
+ *    enable (GIE), except for non-maskable sources (NMI), which are never nested into
+ *    themselves. Entering a handler clears the source flag and GIE; returning restores GIE.
+ *  - Interrupts are delivered at dispatch points only: after each harness event, when a
+ *    board re-enables interrupts (hal_irq_restore/enable, hal_critical_exit) and at
+ *    HAL_PREEMPT_POINT() marks. Handlers run on the caller's stack, so a debugger breakpoint
+ *    on a portable handler stops inside the harness's call chain.
+ *  - Time is a 64-bit nanosecond count that only the event loop advances. Events at the same
+ *    instant run in the order they were scheduled. No signals, no wall clock: the same
+ *    schedule gives the same run.
+ */
+#ifndef HAL_POSIX_HARNESS_H
+#define HAL_POSIX_HARNESS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "hal/capture.h"
+#include "hal/edge.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Most boards one harness holds. */
+#define POSIX_MAX_BOARDS  4
+/** Sources per board. */
+#define POSIX_MAX_SOURCES 32
+/** Pending events at most. */
+#define POSIX_MAX_EVENTS  4096
+
+/** A handler as the controller sees it: the host twin of a target ISR shim. */
+typedef void (*posix_isr_fn)(void *ctx);
+
+/** Reset the whole harness: no boards, no events, time 0. */
+void posix_reset(void);
+
+/** Create a board named @p name (copied, up to 15 chars); returns its id or -1 when full. */
+int posix_board_create(const char *name);
+
+/** Make @p board the one HAL calls act on (the harness does this before calling into it). */
+void posix_board_select(int board);
+
+/** The board HAL calls act on now. */
+int posix_board_current(void);
+
+/** Name of @p board. */
+const char *posix_board_name(int board);
+
+/**
+ * Register a source on @p board: vector 1..16, bit 0..7 within the vector, handler @p fn.
+ * Returns the source id, or -1 when the arguments are out of range or the table is full.
+ * Registering the same (vector, bit) again replaces the handler and keeps the id.
+ */
+int posix_source_register(int board, int vector, int bit, bool nonmaskable, posix_isr_fn fn,
+                          void *ctx);
+
+/** Find the source (vector, bit) on @p board; -1 when absent. */
+int posix_source_find(int board, int vector, int bit);
+
+/** Set the pending flag of a source (what the hardware does on an edge). */
+void posix_source_raise(int board, int source);
+
+/** Mask (false) or unmask (true) one source. */
+void posix_source_enable(int board, int source, bool enable);
+
+/** True when the source's flag is set. */
+bool posix_source_pending(int board, int source);
+
+/** Number of times the source's handler has run. */
+uint32_t posix_source_count(int board, int source);
+
+/** Deliver every pending, allowed interrupt on every board (a dispatch point). */
+void posix_dispatch(void);
+
+/** True while @p board runs a handler. */
+bool posix_in_isr(int board);
+
+/** Global interrupt enable of @p board (its GIE). */
+bool posix_gie(int board);
+
+/* ---- simulated time and events ---- */
+
+/** Simulated time, ns since posix_reset(). */
+uint64_t posix_now_ns(void);
+
+/** Event callback: runs at its instant with the board selection undefined. */
+typedef void (*posix_event_fn)(void *ctx, uint64_t t_ns);
+
+/**
+ * Schedule @p fn at @p t_ns (not before now). Returns an event id > 0, or 0 when the queue
+ * is full or @p t_ns is in the past.
+ */
+uint64_t posix_schedule(uint64_t t_ns, posix_event_fn fn, void *ctx);
+
+/** Cancel a scheduled event; true when it was still queued. */
+bool posix_cancel(uint64_t id);
+
+/** Time of the next queued event, or UINT64_MAX when none. */
+uint64_t posix_next_event_ns(void);
+
+/**
+ * Run events in time order up to and including @p t_ns, dispatching interrupts after each
+ * one, then set the clock to @p t_ns. Returns the number of events run.
+ */
+uint64_t posix_run_until(uint64_t t_ns);
+
+/**
+ * Hook called at every HAL_PREEMPT_POINT() (with the number of points passed so far on the
+ * current board) before pending interrupts are delivered there; NULL removes it.
+ */
+typedef void (*posix_preempt_hook_fn)(void *ctx, int board, uint64_t point);
+void posix_set_preempt_hook(posix_preempt_hook_fn fn, void *ctx);
+
+/** Preemption points passed on @p board since posix_reset(). */
+uint64_t posix_preempt_points(int board);
+
+/* ---- peripherals, host side ---- */
+
+/** Raise a logical edge line on @p board (as a pulse on its pin would). */
+void posix_edge_raise(int board, hal_edge_line_t line);
+
+/** Source id of a logical line on @p board, -1 when the firmware did not register it. */
+int posix_edge_source(int board, hal_edge_line_t line);
+
+/**
+ * Latch a capture on @p board: @p count is what the timer would hold at the edge. A second
+ * capture before the handler ran counts an overflow (the MSP430's COV) and is lost.
+ */
+void posix_capture_raise(int board, hal_capture_channel_t ch, uint16_t count, uint8_t rising);
+
+/** Capture overflows (COV) seen on @p board channel @p ch. */
+uint32_t posix_capture_overflows(int board, hal_capture_channel_t ch);
+
+/**
+ * Redirect the console of @p board: bytes go to @p sink (NULL restores stdout). The sink is
+ * called once per byte.
+ */
+typedef void (*posix_console_sink_fn)(void *ctx, int board, char c);
+void posix_console_redirect(posix_console_sink_fn sink, void *ctx);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,18 @@
+/*
+ * fault_irq_test.c - an interrupt on a vector nobody claimed lands in cy_isr_unexpected
+ * (the linker script fills every free vector with it) and faults with 0x0104.
+ */
+#include "cy_test.h"
+#include "hal/cpu.h"
+#include "hal/irq.h"
+
+int main(void)
+{
+    hal_cpu_init();
+    hal_irq_enable();
+    cy_print("@sim tr trigger 3\n"); /* vector 4 (0xFFE6, USCI_A1/B1 receive): no ISR */
+    cy_target_sync();
+    cy_print("FAIL the unexpected interrupt was not trapped\n");
+    cy_test_end();
+    return 0;
+}

@@ -1,0 +1,133 @@
+/*
+ * cy_test.c - test support on the console of either world (see cy_test.h).
+ */
+#include "cy_test.h"
+
+#include "hal/console.h"
+
+#ifdef __MSP430__
+#include "f249.h"
+#endif
+
+static uint16_t failures;
+uint16_t cy_bench_overhead;
+
+void cy_print(const char *s)
+{
+    hal_console_puts(s);
+}
+
+void cy_println(void)
+{
+    hal_console_putc('\n');
+}
+
+static void hex(uint32_t v, int digits)
+{
+    static const char d[] = "0123456789abcdef";
+    for (int i = digits - 1; i >= 0; i--)
+        hal_console_putc(d[(v >> (4 * i)) & 0xFu]);
+}
+
+void cy_print_hex16(uint16_t v)
+{
+    hex(v, 4);
+}
+
+void cy_print_hex32(uint32_t v)
+{
+    hex(v, 8);
+}
+
+void cy_print_hex64(uint64_t v)
+{
+    hex((uint32_t)(v >> 32), 8);
+    hex((uint32_t)v, 8);
+}
+
+void cy_print_dec(int32_t v)
+{
+    char buf[12];
+    int n = 0;
+    uint32_t u = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+    do {
+        buf[n++] = (char)('0' + u % 10u);
+        u /= 10u;
+    } while (u);
+    if (v < 0)
+        hal_console_putc('-');
+    while (n)
+        hal_console_putc(buf[--n]);
+}
+
+void cy_check(int ok, const char *what)
+{
+    if (ok)
+        return;
+    failures++;
+    cy_print("FAIL ");
+    cy_print(what);
+    cy_println();
+}
+
+uint16_t cy_failures(void)
+{
+    return failures;
+}
+
+void cy_test_end(void)
+{
+    if (failures == 0) {
+        cy_print("CY-TEST-END PASS\n");
+    } else {
+        cy_print("CY-TEST-END FAIL ");
+        cy_print_dec(failures);
+        cy_println();
+    }
+}
+
+__attribute__((noinline)) void cy_target_sync(void)
+{
+    /* The runner's breakpoint. The barrier keeps the call from being optimised away. */
+    __asm__ volatile("" ::: "memory");
+}
+
+void cy_bench_init(void)
+{
+#ifdef __MSP430__
+    TBCTL = TASSEL_2 | MC_2 | TACLR; /* SMCLK, continuous */
+    uint16_t t0 = cy_bench_now();
+    uint16_t t1 = cy_bench_now();
+    cy_bench_overhead = (uint16_t)(t1 - t0);
+#endif
+}
+
+uint16_t cy_bench_now(void)
+{
+#ifdef __MSP430__
+    return TBR;
+#else
+    return 0;
+#endif
+}
+
+void cy_bench_add(cy_bench_stat_t *st, uint32_t cycles)
+{
+    if (cycles > st->max)
+        st->max = cycles;
+    st->sum += cycles;
+    st->n++;
+}
+
+void cy_bench_report(const cy_bench_stat_t *st)
+{
+    cy_print("@cycles ");
+    cy_print(st->name);
+    hal_console_putc(' ');
+    cy_print_dec((int32_t)st->max);
+    hal_console_putc(' ');
+    cy_print_dec(st->n ? (int32_t)(st->sum / st->n) : 0);
+    hal_console_putc(' ');
+    cy_print_dec(st->n);
+    cy_println();
+}

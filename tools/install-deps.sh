@@ -1,0 +1,43 @@
+#!/bin/sh
+# Installs what cyclopion needs to build and test, and nothing when it is all there.
+# Debian 12, as root: one `apt-get update`, then the missing packages; then the Python
+# packages of tools/requirements.txt with pip. Without root it only reports what is missing.
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+
+debs="clang-16 lld-16 llvm-16 clang-format-16 mspdebug cmake ninja-build make \
+libgtest-dev libeigen3-dev liblcm-dev liblcm-bin libjansson-dev python3 python3-pip gdb"
+
+missing=""
+for p in $debs; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+        missing="$missing $p"
+    fi
+done
+
+if [ -n "$missing" ]; then
+    if [ "$(id -u)" -ne 0 ]; then
+        echo "install-deps: missing Debian packages:$missing" >&2
+        echo "install-deps: run as root (or: sudo apt-get install$missing)" >&2
+        exit 1
+    fi
+    echo "install-deps: installing$missing"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -q
+    # shellcheck disable=SC2086
+    apt-get install -y -q --no-install-recommends $missing
+fi
+
+if ! python3 -c "import lcm, numpy, matplotlib" 2>/dev/null; then
+    echo "install-deps: installing Python packages from tools/requirements.txt"
+    if ! python3 -m pip install -q --disable-pip-version-check -r "$here/requirements.txt" 2>/tmp/cy-pip.log; then
+        if grep -q externally-managed /tmp/cy-pip.log; then
+            python3 -m pip install -q --disable-pip-version-check --break-system-packages \
+                -r "$here/requirements.txt"
+        else
+            cat /tmp/cy-pip.log >&2
+            exit 1
+        fi
+    fi
+fi
+exit 0

@@ -1,0 +1,415 @@
+#!/usr/bin/env python3
+"""Run an MSP430 test image in mspdebug's simulator and judge it.
+
+The image talks to this runner through the simulator's console device (address 0x00FF):
+
+  @sim <device> <args...>   queue `simio config <device> <args...>` (raise a pin, latch a
+                            capture...); the image then calls cy_target_sync(), where a
+                            breakpoint stops it, the runner applies the queue and resumes.
+  @cycles <name> <max> <mean> <n>
+                            a cycle measurement for the cycle report (--cycles-json).
+  # ...                     a comment, shown with --verbose.
+  CY-TEST-END PASS | CY-TEST-END FAIL <n>
+                            the sentinel: the verdict of the image itself.
+  FAULT 0x....              printed by hal_fault() before the CPU stops.
+  anything else             a data line, compared with the host's output (--compare-cmd)
+                            and/or handed to a checker (--check).
+
+The image stops in cy_halt (a breakpoint). The run fails loudly when the sentinel is
+missing, the image reports FAIL, the simulated cycle count passes --max-cycles (a hang),
+the wall-clock --timeout passes, or mspdebug itself misbehaves.
+
+Simulated devices: the MSP430F249's Timer_A3 at 0x160 (vectors 7/6 in clang's interrupt(N)
+numbering), Timer_B7 at 0x180 (14/13), ports P1 (0x20, vector 5) and P2 (0x28, vector 2) with
+interrupts, the 16 x 16 hardware multiplier, the watchdog, the console and the tracer.
+"""
+import argparse
+import fcntl
+import importlib.util
+import json
+import os
+import re
+import select
+import shlex
+import signal
+import subprocess
+import sys
+import time
+
+CONFIG = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mspdebug-f249.cfg")
+
+
+def devices():
+    """The simulator set-up commands (tools/mspdebug-f249.cfg, shared with interactive use)."""
+    with open(CONFIG) as f:
+        return [l.strip() for l in f if l.strip() and not l.startswith("#")]
+
+
+SENTINEL = "CY-TEST-END"
+PC_RE = re.compile(r"\(\s*PC:\s*([0-9a-fA-F]+)\)")
+DUMP_RE = re.compile(r"\s*\(\s*PC:")
+ERROR_RE = re.compile(r"(can't|invalid|unknown|failed|expected|error|no such)", re.I)
+
+
+class SimError(Exception):
+    pass
+
+
+class Mspdebug:
+    """mspdebug reading commands from a pipe.
+
+    (Its --embedded mode has a reader thread that silently drops a command arriving between
+    its "\\ready" and the main thread asking for input; under load that hangs the runner, so
+    the plain mode is used.) Each command is followed by an unknown command "cymark_<n>",
+    whose error line marks the end of the command's output; a running `run` is stopped with
+    SIGINT, mspdebug's Ctrl+C.
+    """
+
+    def __init__(self, log):
+        self.log = log
+        self.proc = subprocess.Popen(["mspdebug", "-q", "-n", "sim"], stdin=subprocess.PIPE,
+                                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+        self.buf = ""
+        self.marks = 0
+
+    def close(self):
+        try:
+            self.proc.stdin.write(b"exit\n")
+            self.proc.stdin.flush()
+            self.proc.wait(timeout=5)
+        except Exception:
+            self.proc.kill()
+
+    def _send(self, command):
+        self.marks += 1
+        mark = f"cymark_{self.marks}"
+        if self.log:
+            self.log.write(f">> {command}\n")
+        self.proc.stdin.write(f"{command}\n{mark}\n".encode())
+        self.proc.stdin.flush()
+        return mark
+
+    def _wait(self, mark, timeout):
+        """Output up to the marker; None when it did not come within @timeout seconds."""
+        end_text = f"unknown command: {mark}"
+        end = time.monotonic() + timeout
+        while True:
+            i = self.buf.find(end_text)
+            if i >= 0:
+                j = self.buf.find("\n", i)
+                if j >= 0:
+                    out = self.buf[:i]
+                    self.buf = self.buf[j + 1:]
+                    if self.log:
+                        self.log.write(out)
+                    k = out.rfind(f"(mspdebug) {mark}")
+                    return out[:k] if k >= 0 else out
+            left = end - time.monotonic()
+            if left <= 0:
+                return None
+            ready, _, _ = select.select([self.proc.stdout], [], [], min(left, 0.5))
+            if not ready:
+                continue
+            data = os.read(self.proc.stdout.fileno(), 65536)
+            if not data:
+                raise SimError("mspdebug exited unexpectedly:\n" + self.buf[-2000:])
+            self.buf += data.decode("latin-1")
+
+    @staticmethod
+    def _lines(out, command):
+        lines = out.split("\n")
+        # Drop the echo "(mspdebug) <command>" and a trailing empty piece.
+        while lines and (lines[0].startswith("(mspdebug)") or not lines[0].strip()):
+            if lines[0].startswith("(mspdebug)"):
+                lines.pop(0)
+                break
+            lines.pop(0)
+        if lines and lines[-1] == "":
+            lines.pop()
+        return lines
+
+    def cmd(self, command, timeout=30, check=True):
+        mark = self._send(command)
+        out = self._wait(mark, timeout)
+        if out is None:
+            raise SimError(f"mspdebug did not answer `{command}` within {timeout} s")
+        lines = self._lines(out, command)
+        errors = [l for l in lines if check and ERROR_RE.search(l)]
+        if errors:
+            raise SimError(f"mspdebug: `{command}`: " + "; ".join(errors))
+        return lines
+
+    def run(self, slice_s):
+        """One `run`: (lines, stopped by SIGINT?). Stops it with SIGINT after @slice_s."""
+        mark = self._send("run")
+        out = self._wait(mark, slice_s)
+        broken = out is None
+        while out is None:
+            self.proc.send_signal(signal.SIGINT)
+            out = self._wait(mark, 0.5)
+        return self._lines(out, "run"), broken
+
+    def cycles(self):
+        for line in self.cmd("simio info tr", check=False):
+            if line.startswith("MCLK:"):
+                return int(line.split()[1])
+        raise SimError("tracer did not report MCLK")
+
+
+def symbols(elf):
+    nm = os.environ.get("CY_NM", "llvm-nm-16")
+    out = subprocess.run([nm, elf], check=True, capture_output=True, text=True).stdout
+    table = {}
+    for line in out.splitlines():
+        parts = line.split()
+        if len(parts) == 3:
+            table[parts[2]] = int(parts[0], 16)
+    return table
+
+
+def split_run_output(lines, broken):
+    """Console lines, the unfinished console text and the PC of the stop of one `run`.
+
+    A stop at a breakpoint prints the register dump right after the console's bytes, so
+    unfinished console text is what precedes "( PC:" on that line. A stop by \\break first
+    prints a newline, so the last line before the dump is the unfinished text (often empty).
+    """
+    console, pc, partial = [], None, ""
+    for line in lines:
+        text = line
+        if text.startswith("Running. Press Ctrl+C"):
+            continue
+        m = DUMP_RE.search(text)
+        if m and pc is None:
+            pc = int(PC_RE.search(text).group(1), 16)
+            if broken:
+                partial = console.pop() if console else ""
+            else:
+                partial = text[:m.start()]
+            continue
+        if pc is None:
+            console.append(text)
+    return console, partial, pc
+
+
+def merge_cycles(path, entries, images_dir):
+    """Merge entries (by name) into the cycle report, under a lock (ctest runs in parallel)."""
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    with open(path + ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        report = {"clock_hz": 16000000, "entries": [], "images": []}
+        if os.path.exists(path):
+            try:
+                with open(path) as f:
+                    report = json.load(f)
+            except (OSError, ValueError):
+                pass
+        by_name = {e["name"]: e for e in report.get("entries", [])}
+        for e in entries:
+            by_name[e["name"]] = e
+        report["entries"] = [by_name[k] for k in sorted(by_name)]
+        images = []
+        if images_dir and os.path.isdir(images_dir):
+            for fn in sorted(os.listdir(images_dir)):
+                if fn.endswith(".json"):
+                    with open(os.path.join(images_dir, fn)) as f:
+                        img = json.load(f)
+                    if img.get("kind") == "board":
+                        images.append({k: img[k] for k in ("name", "text", "data", "bss")})
+        report["images"] = images
+        report["clock_hz"] = 16000000
+        tmp = path + ".tmp"
+        with open(tmp, "w") as f:
+            json.dump(report, f, indent=1)
+            f.write("\n")
+        os.replace(tmp, path)
+
+
+def run_image(args, log):
+    syms = symbols(args.elf)
+    for needed in ("cy_halt",):
+        if needed not in syms:
+            raise SimError(f"{args.elf}: no symbol {needed}; is it an image of this project?")
+    sync_pc = syms.get("cy_target_sync")
+    halt_pc = syms["cy_halt"]
+    until_pc = None
+    if args.until:
+        if args.until not in syms:
+            raise SimError(f"{args.elf}: no symbol {args.until} for --until")
+        until_pc = syms[args.until]
+
+    sim = Mspdebug(log)
+    try:
+        for c in devices():
+            sim.cmd(c)
+        sim.cmd(f"prog {args.elf}", timeout=60)
+        sim.cmd("reset")
+        sim.cmd(f"setbreak 0x{halt_pc:04x}")
+        if sync_pc is not None:
+            sim.cmd(f"setbreak 0x{sync_pc:04x}")
+        if until_pc is not None:
+            sim.cmd(f"setbreak 0x{until_pc:04x}")
+        sim.cmd("simio config tr clear")
+
+        console_text = []
+        pending_line = ""
+        queue = []
+        started = time.monotonic()
+        halted = False
+        while not halted:
+            lines, broken = sim.run(args.slice)
+            text, partial, pc = split_run_output(lines, broken)
+            for t in text:
+                full = pending_line + t
+                pending_line = ""
+                console_text.append(full)
+                if full.startswith("@sim "):
+                    queue.append(full[5:].strip())
+                if args.verbose:
+                    print("  | " + full)
+            pending_line += partial
+            cycles = sim.cycles()
+            if until_pc is not None and pc == until_pc:
+                sr = next(int(m.group(1), 16) for m in
+                          (re.search(r"\(\s*SR:\s*([0-9a-fA-F]+)\)", l) for l in lines) if m)
+                console_text.append(f"@until {args.until} sr=0x{sr:04x}")
+                halted = True
+            elif pc == halt_pc:
+                halted = True
+            elif sync_pc is not None and pc == sync_pc:
+                for q in queue:
+                    sim.cmd("simio config " + q)
+                queue = []  # `run` steps over the breakpoint it stands on
+            if cycles > args.max_cycles:
+                raise SimError(f"cycle limit: {cycles} cycles > {args.max_cycles} "
+                               f"(PC 0x{pc or 0:04x}); the image hangs or needs a larger "
+                               f"--max-cycles")
+            if time.monotonic() - started > args.timeout:
+                raise SimError(f"wall-clock timeout after {args.timeout} s at {cycles} cycles "
+                               f"(PC 0x{pc or 0:04x})")
+        if pending_line:
+            console_text.append(pending_line)
+        return console_text, sim.cycles()
+    finally:
+        sim.close()
+
+
+def data_lines(lines):
+    return [l for l in lines if l and not l.startswith(("@", "#", SENTINEL))]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--elf", required=True, help="image to run")
+    ap.add_argument("--max-cycles", type=int, default=200_000_000,
+                    help="fail when the simulated MCLK count passes this (default 2e8)")
+    ap.add_argument("--timeout", type=float, default=120, help="wall-clock limit, s")
+    ap.add_argument("--slice", type=float, default=2.0,
+                    help="wall-clock seconds between cycle-limit checks")
+    ap.add_argument("--until", metavar="SYMBOL",
+                    help="pass when execution reaches SYMBOL (a boot check; no sentinel)")
+    ap.add_argument("--expect-gie", action="store_true",
+                    help="with --until: interrupts must be enabled there")
+    ap.add_argument("--expect-fault", help="pass only if the image stops with this fault code")
+    ap.add_argument("--compare-cmd", help="host command whose stdout data lines must equal "
+                                          "the image's, line by line (bit-identical results)")
+    ap.add_argument("--check", help="Python file with check(lines) -> list of errors, run on "
+                                    "the image's data lines")
+    ap.add_argument("--min-lines", type=int, default=0,
+                    help="fail when the image printed fewer data lines")
+    ap.add_argument("--cycles-json", help="merge @cycles lines into this report")
+    ap.add_argument("--images-dir", help="image size records for the report "
+                                         "(default: images/ beside --cycles-json)")
+    ap.add_argument("--log", help="write the mspdebug conversation here")
+    ap.add_argument("--verbose", action="store_true", help="echo the console")
+    args = ap.parse_args()
+
+    log = open(args.log, "w") if args.log else None
+    name = os.path.basename(args.elf)
+    try:
+        console, cycles = run_image(args, log)
+    except SimError as e:
+        print(f"FAIL {name}: {e}")
+        return 1
+    finally:
+        if log:
+            log.close()
+
+    failures = []
+    faults = [l for l in console if l.startswith("FAULT ")]
+    if args.until:
+        stops = [l for l in console if l.startswith("@until ")]
+        if not stops:
+            failures.append(f"never reached {args.until}")
+        elif args.expect_gie and not int(stops[0].split("sr=")[1], 16) & 0x0008:
+            failures.append(f"reached {args.until} with interrupts disabled ({stops[0]})")
+    elif args.expect_fault:
+        want = f"FAULT {args.expect_fault.lower()}"
+        if not any(l.lower() == want.lower() for l in faults):
+            failures.append(f"expected `{want}`, the image printed {faults or 'no fault'}")
+    else:
+        if faults:
+            failures.append(f"the image faulted: {faults[0]}")
+        verdicts = [l for l in console if l.startswith(SENTINEL)]
+        if not verdicts:
+            failures.append(f"missing sentinel `{SENTINEL}`: the image stopped without a verdict")
+        elif verdicts[-1] != f"{SENTINEL} PASS":
+            failures.append(f"the image reports `{verdicts[-1]}`")
+        for l in console:
+            if l.startswith("FAIL"):
+                failures.append("image: " + l)
+
+    data = data_lines(console)
+    if len(data) < args.min_lines:
+        failures.append(f"only {len(data)} data lines, expected at least {args.min_lines}")
+
+    if args.check:
+        spec = importlib.util.spec_from_file_location("cy_check", args.check)
+        mod = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(mod)
+        errors = mod.check(data)
+        failures.extend(errors[:20])
+        if len(errors) > 20:
+            failures.append(f"... and {len(errors) - 20} more")
+
+    if args.compare_cmd:
+        host = subprocess.run(shlex.split(args.compare_cmd), capture_output=True, text=True)
+        if host.returncode != 0 and not os.path.exists(shlex.split(args.compare_cmd)[0]):
+            failures.append(f"host reference `{args.compare_cmd}` not found: build the host "
+                            "preset first")
+        else:
+            ref = data_lines(host.stdout.splitlines())
+            if len(ref) != len(data):
+                failures.append(f"host printed {len(ref)} data lines, target {len(data)}")
+            for i, (a, b) in enumerate(zip(ref, data)):
+                if a != b:
+                    failures.append(f"line {i + 1} differs: host `{a}` target `{b}`")
+                    break
+
+    if args.cycles_json:
+        entries = []
+        for l in console:
+            if l.startswith("@cycles "):
+                f = l.split()
+                entries.append({"name": f[1], "cycles_max": int(f[2]),
+                                "cycles_mean": int(f[3]), "samples": int(f[4])})
+        if entries:
+            images_dir = args.images_dir or os.path.join(
+                os.path.dirname(os.path.abspath(args.cycles_json)), "images")
+            merge_cycles(args.cycles_json, entries, images_dir)
+            for e in entries:
+                print(f"  cycles {e['name']:<20} max {e['cycles_max']:>7}  mean "
+                      f"{e['cycles_mean']:>7}  ({e['samples']} samples)")
+
+    if failures:
+        print(f"FAIL {name} ({cycles} cycles)")
+        for f in failures:
+            print("  " + f)
+        return 1
+    print(f"PASS {name}: {len(data)} data lines, {cycles} simulated cycles")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
