@@ -89,3 +89,44 @@ else()
         gtest_discover_tests(${name} PROPERTIES LABELS "${A_LABELS}" DISCOVERY_TIMEOUT 60)
     endfunction()
 endif()
+
+# cy_vector_program(NAME SOURCES src... [LINK lib...] [MAX_CYCLES n] [TIMEOUT s] [ARGS ...])
+# One C program built for both worlds from the same sources (tests/support/cy_test.h for
+# output). Host tree: bin/NAME, printing to stdout. MSP430 tree: the image NAME_target, run
+# in the simulator by ctest (label "target") and compared line by line with the host
+# program's output (the host tree's bin/, CY_HOST_BIN_DIR): bit-identical results. The
+# program's @cycles lines go to the cycle report.
+function(cy_vector_program name)
+    cmake_parse_arguments(A "" "MAX_CYCLES;TIMEOUT" "SOURCES;LINK;ARGS" ${ARGN})
+    if(CY_TARGET_MSP430)
+        cy_msp430_image(${name}_target KIND test SOURCES ${A_SOURCES} LINK ${A_LINK} cy_test_support)
+        set(extra)
+        if(A_MAX_CYCLES)
+            list(APPEND extra MAX_CYCLES ${A_MAX_CYCLES})
+        endif()
+        if(A_TIMEOUT)
+            list(APPEND extra TIMEOUT ${A_TIMEOUT})
+        endif()
+        cy_target_test(${name} IMAGE ${name}_target ${extra}
+            ARGS --compare-cmd ${CY_HOST_BIN_DIR}/${name} ${A_ARGS})
+    else()
+        add_executable(${name} ${A_SOURCES})
+        cy_warnings(${name})
+        target_link_libraries(${name} PRIVATE ${A_LINK} cy_test_support cy_hal_posix)
+    endif()
+endfunction()
+
+# cy_agvcalc_op(NAME op SOURCE file.c HELP "one line" [LINK lib...])
+# Adds an op to agvcalc (host only): SOURCE defines
+#   int agvcalc_op_<op>(json_t *req, json_t *resp, char *err, size_t errlen)
+# (tools/agvcalc/agvcalc.h). Modules call this from their own CMakeLists.txt.
+function(cy_agvcalc_op)
+    cmake_parse_arguments(A "" "NAME;SOURCE;HELP" "LINK" ${ARGN})
+    if(CY_TARGET_MSP430)
+        return()
+    endif()
+    set_property(GLOBAL APPEND PROPERTY CY_AGVCALC_OPS ${A_NAME})
+    set_property(GLOBAL APPEND PROPERTY CY_AGVCALC_HELP "${A_HELP}")
+    set_property(GLOBAL APPEND PROPERTY CY_AGVCALC_SOURCES ${A_SOURCE})
+    set_property(GLOBAL APPEND PROPERTY CY_AGVCALC_LIBS ${A_LINK})
+endfunction()

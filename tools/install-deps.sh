@@ -6,7 +6,7 @@ set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 
 debs="clang-16 lld-16 llvm-16 clang-format-16 mspdebug cmake ninja-build make \
-libgtest-dev libeigen3-dev liblcm-dev liblcm-bin libjansson-dev python3 python3-pip gdb"
+libgtest-dev libeigen3-dev liblcm-dev liblcm-bin libjansson-dev pkg-config python3 python3-pip gdb"
 
 missing=""
 for p in $debs; do

@@ -177,7 +177,7 @@ def split_run_output(lines, broken):
     console, pc, partial = [], None, ""
     for line in lines:
         text = line
-        if text.startswith("Running. Press Ctrl+C"):
+        if text.startswith(("Running. Press Ctrl+C", "Stepping over breakpoint")):
             continue
         m = DUMP_RE.search(text)
         if m and pc is None:

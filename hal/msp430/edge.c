@@ -24,7 +24,12 @@ int hal_edge_init(hal_edge_line_t line, hal_edge_flank_t flank, hal_edge_cb_t cb
     hal_irq_state_t s = hal_irq_disable();
     slots[line].cb = cb;
     slots[line].arg = arg;
-    if (HAL_EDGE_PORT_OF(line) == 1) {
+    if (HAL_EDGE_PORT_OF(line) == 0) {
+        /* RST/NMI pin in NMI mode; the watchdog stays held. */
+        WDTCTL = (uint16_t)(WDTPW | WDTHOLD | WDTNMI | (flank == HAL_EDGE_FALLING ? WDTNMIES : 0u));
+        IFG1 &= (uint8_t)~NMIIFG;
+        IE1 |= NMIIE;
+    } else if (HAL_EDGE_PORT_OF(line) == 1) {
         P1DIR &= (uint8_t)~bit;
         P1SEL &= (uint8_t)~bit;
         if (flank == HAL_EDGE_FALLING)
@@ -52,7 +57,13 @@ void hal_edge_enable(hal_edge_line_t line, uint8_t enable)
     if ((unsigned)line >= HAL_EDGE_COUNT || slots[line].cb == NULL)
         return;
     uint8_t bit = (uint8_t)(1u << hal_edge_pin(line));
-    volatile uint8_t *ie = HAL_EDGE_PORT_OF(line) == 1 ? &P1IE : &P2IE;
+    volatile uint8_t *ie = &P2IE;
+    if (HAL_EDGE_PORT_OF(line) == 0) {
+        ie = &IE1;
+        bit = NMIIE;
+    } else if (HAL_EDGE_PORT_OF(line) == 1) {
+        ie = &P1IE;
+    }
     hal_irq_state_t s = hal_irq_disable();
     if (enable)
         *ie |= bit;
@@ -82,4 +93,15 @@ CY_ISR(HAL_VEC_PORT2, hal_isr_port2)
     uint8_t f = P2IFG & P2IE;
     P2IFG &= (uint8_t)~f;
     dispatch(2, f);
+}
+
+/*
+ * The NMI: accepting it clears NMIIE (so it cannot nest into itself); the handler runs, then
+ * NMIIE is set again for the next request.
+ */
+CY_ISR(HAL_VEC_NMI, hal_isr_nmi)
+{
+    IFG1 &= (uint8_t)~NMIIFG;
+    slots[HAL_EDGE_COORD_REQUEST].cb(slots[HAL_EDGE_COORD_REQUEST].arg);
+    IE1 |= NMIIE;
 }

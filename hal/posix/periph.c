@@ -26,7 +26,7 @@ int hal_edge_init(hal_edge_line_t line, hal_edge_flank_t flank, hal_edge_cb_t cb
     slot->cb = cb;
     slot->arg = arg;
     slot->source = posix_source_register(b, (int)hal_edge_vector(line), (int)hal_edge_pin(line),
-                                         false, edge_trampoline, slot);
+                                         line == HAL_EDGE_COORD_REQUEST, edge_trampoline, slot);
     return slot->source < 0 ? -1 : 0;
 }
 

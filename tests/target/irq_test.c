@@ -38,6 +38,14 @@ static void on_test(void *arg)
     note('T');
 }
 
+static volatile uint16_t nmi_count;
+
+static void on_nmi(void *arg)
+{
+    cy_check(arg == &marker, "NMI handler gets its argument");
+    nmi_count++;
+}
+
 static void on_capture(void *arg, uint16_t count, uint8_t rising)
 {
     if (arg == &index_tag) {
@@ -119,6 +127,18 @@ int main(void)
     hal_edge_enable(HAL_EDGE_TEST, 1);
     sim("p2 set 7 1");
     cy_check(test_count == before + 1, "unmasked line interrupts again");
+
+    /* 5. The coordinate request (NMI) is served even inside a critical section. */
+    cy_check(hal_edge_init(HAL_EDGE_COORD_REQUEST, HAL_EDGE_FALLING, on_nmi, &marker) == 0,
+             "NMI line init");
+    hal_critical_enter();
+    sim("wdt nmi 0");
+    cy_check(nmi_count == 1, "NMI served inside a critical section");
+    sim("wdt nmi 1");
+    sim("wdt nmi 0");
+    cy_check(nmi_count == 2, "NMI re-armed after its handler");
+    hal_critical_exit();
+    sim("wdt nmi 1");
 
     cy_print("# handler calls: test ");
     cy_print_dec(test_count);

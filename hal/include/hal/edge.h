@@ -5,7 +5,10 @@
  * and vector; hal/posix: the same vector numbers on the virtual interrupt controller) decides
  * where it lands; the firmware only registers the portable handler. Priorities are the
  * MSP430's and identical on both targets: Port 1 (vector 5) above Port 2 (vector 2), and
- * within one port the lower pin is served first.
+ * within one port the lower pin is served first. HAL_EDGE_COORD_REQUEST is the RST/NMI pin
+ * in NMI mode (vector 15): it is served even with interrupts disabled, inside critical
+ * sections and inside other handlers (the seed's unmaskable "Coordinate Request"), but never
+ * nested into itself.
  */
 #ifndef HAL_EDGE_H
 #define HAL_EDGE_H
@@ -24,6 +27,7 @@ typedef enum {
     HAL_EDGE_BEACON_SIGHTED, /**< nav board: main board latched a beacon sighting       P1.3 */
     HAL_EDGE_DELTA_S,        /**< main board: drive board's segment-almost-done pulse   P2.0 */
     HAL_EDGE_TEST,           /**< free line for tests                                   P2.7 */
+    HAL_EDGE_COORD_REQUEST,  /**< nav board: coordinate request, NON-MASKABLE    RST/NMI pin */
     HAL_EDGE_COUNT
 } hal_edge_line_t;
 

@@ -3,7 +3,8 @@
  * implementations so that interrupt priorities are the same on the MSP430 and in the harness.
  *
  * MSP430F249 pins: P1.0 TACLK (goniometer angle clock), P1.1 CCI0A (index pulse), P1.2 CCI1A
- * (photodetector), P1.4..P1.7 nav-board pulse inputs, P2.0 delta-S, P2.7 test line.
+ * (photodetector), P1.4..P1.7 nav-board pulse inputs, P2.0 delta-S, P2.7 test line, the
+ * RST/NMI pin (NMI mode) the nav board's coordinate request.
  * Vectors use clang's interrupt(N) numbering (vector N at 0xFFE0 + 2(N-1)).
  */
 #ifndef HAL_PINMAP_H
@@ -23,20 +24,24 @@
 #define HAL_VEC_NMI     15 /* 0xFFFC */
 #define HAL_VEC_RESET   16 /* 0xFFFE */
 
-/** Port (1 or 2), hence vector, of each edge line. */
-#define HAL_EDGE_PORT_OF(line) ((line) == HAL_EDGE_DELTA_S || (line) == HAL_EDGE_TEST ? 2 : 1)
+/** Port (1 or 2) of each edge line; 0 for the NMI pin. */
+#define HAL_EDGE_PORT_OF(line)                                                                     \
+    ((line) == HAL_EDGE_COORD_REQUEST                        ? 0                                   \
+     : (line) == HAL_EDGE_DELTA_S || (line) == HAL_EDGE_TEST ? 2                                   \
+                                                             : 1)
 
-/** Pin (0..7) of each edge line on its port. */
+/** Pin (0..7) of each edge line on its port (bit 0 of the NMI vector for the NMI pin). */
 static inline unsigned hal_edge_pin(hal_edge_line_t line)
 {
-    static const unsigned char pins[HAL_EDGE_COUNT] = {4, 5, 6, 7, 0, 7};
+    static const unsigned char pins[HAL_EDGE_COUNT] = {4, 5, 6, 7, 0, 7, 0};
     return pins[line];
 }
 
 /** Vector of each edge line. */
 static inline unsigned hal_edge_vector(hal_edge_line_t line)
 {
-    return HAL_EDGE_PORT_OF(line) == 2 ? HAL_VEC_PORT2 : HAL_VEC_PORT1;
+    unsigned port = HAL_EDGE_PORT_OF(line);
+    return port == 0 ? HAL_VEC_NMI : port == 2 ? HAL_VEC_PORT2 : HAL_VEC_PORT1;
 }
 
 /** Vector of each capture channel (CCR0 has its own, CCR1 shares TIMERA1). */
