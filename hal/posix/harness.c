@@ -30,6 +30,7 @@ typedef struct {
     uint8_t isr_depth;
     bool in_nmi;
     uint64_t preempt_points;
+    bool woken;
     source_t src[POSIX_MAX_SOURCES];
     posix_board_state_t hal; /* per-board HAL state (critical sections, lines, captures) */
 } board_t;
@@ -110,6 +111,19 @@ int posix_board_current(void)
 const char *posix_board_name(int board)
 {
     return board_at(board)->name;
+}
+
+void posix_board_wake(int board)
+{
+    board_at(board)->woken = true;
+}
+
+bool posix_board_take_wake(int board)
+{
+    board_t *bd = board_at(board);
+    bool w = bd->woken;
+    bd->woken = false;
+    return w;
 }
 
 posix_board_state_t *posix_board_state(int board)

@@ -8,6 +8,7 @@
 
 extern "C" {
 #include "hal/capture.h"
+#include "hal/cpu.h"
 #include "hal/edge.h"
 #include "hal/irq.h"
 #include "hal/pinmap.h"
@@ -362,6 +363,14 @@ TEST_F(Harness, PreemptHookCanLandAnInterruptAtEveryPoint)
         EXPECT_EQ(torn, 1) << "protect=" << protect;
     }
     posix_set_preempt_hook(nullptr, nullptr);
+}
+
+TEST_F(Harness, WakeIsTakenOnce)
+{
+    EXPECT_FALSE(posix_board_take_wake(board));
+    hal_cpu_wake();
+    EXPECT_TRUE(posix_board_take_wake(board));
+    EXPECT_FALSE(posix_board_take_wake(board));
 }
 
 } // namespace

@@ -26,6 +26,13 @@ void hal_cpu_init(void);
  */
 void hal_cpu_idle(void);
 
+/**
+ * Called by an interrupt handler that left work for the main loop. MSP430: nothing (the main
+ * loop polls). POSIX: the harness runs a pass of that board's main loop after the handler
+ * (posix_board_take_wake()), instead of after every event.
+ */
+void hal_cpu_wake(void);
+
 #ifdef __cplusplus
 }
 #endif

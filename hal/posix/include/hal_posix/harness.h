@@ -57,6 +57,12 @@ int posix_board_current(void);
 /** Name of @p board. */
 const char *posix_board_name(int board);
 
+/** Mark @p board as having main-loop work (what hal_cpu_wake() does on the host). */
+void posix_board_wake(int board);
+
+/** True (once) when @p board was woken since the last call: run a main-loop pass then. */
+bool posix_board_take_wake(int board);
+
 /**
  * Register a source on @p board: vector 1..16, bit 0..7 within the vector, handler @p fn.
  * Returns the source id, or -1 when the arguments are out of range or the table is full.
