@@ -31,3 +31,5 @@ void hal_cpu_init(void)
 }
 
 void hal_cpu_idle(void) {}
+
+void hal_cpu_wake(void) {}

@@ -20,6 +20,11 @@ void hal_cpu_init(void)
 
 void hal_cpu_idle(void) {}
 
+void hal_cpu_wake(void)
+{
+    posix_board_wake(posix_board_current());
+}
+
 void posix_console_redirect(posix_console_sink_fn sink, void *ctx)
 {
     console_sink = sink;
