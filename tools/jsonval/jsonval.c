@@ -1,12 +1,12 @@
 /*
- * util.c - validating readers for agvcalc ops (see agvcalc.h).
+ * jsonval.c - validating readers of JSON input (see jsonval.h).
  */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "agvcalc.h"
+#include "jsonval.h"
 
 int ac_fail(char *err, size_t errlen, const char *fmt, ...)
 {

@@ -1,0 +1,131 @@
+/*
+ * gonio.c - photodetector edges from the geometry of a moving vehicle (see gonio.h).
+ */
+#include "sim/gonio.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+uint16_t sim_gonio_count(const sim_gonio_cfg_t *cfg, double t)
+{
+    double c = floor(t * cfg->rev_per_s * (double)cfg->counts + 1e-9);
+    return (uint16_t)(uint64_t)fmod(c, 65536.0);
+}
+
+/* Mirror angle (unwrapped) at t. */
+static double mirror_at(const sim_gonio_cfg_t *cfg, double t_index, double t)
+{
+    return 2.0 * M_PI * cfg->rev_per_s * (t - t_index);
+}
+
+/*
+ * F(t) = heading(t) + mirror(t) - bearing(t) - offset(t), unwrapped around an estimate:
+ * the beam leads the target direction by -offset when F = 0 (mod 2 pi).
+ */
+typedef struct {
+    const sim_gonio_cfg_t *cfg;
+    const sim_segment_t *seg;
+    double t_index;
+    double tx, ty;
+    double half; /* half of the apparent width (angle), < 0: a glint of fixed width */
+    double side; /* -1 rising edge (beam at centre - half), +1 falling (centre + half) */
+} crossing_t;
+
+static double target_half(const crossing_t *c, double px, double py)
+{
+    if (c->half < 0.0)
+        return -c->half;
+    double d = hypot(c->tx - px, c->ty - py);
+    double r = c->half; /* diameter / 2 */
+    return d > r ? asin(r / d) : 0.5 * M_PI;
+}
+
+static double F(const crossing_t *c, double t)
+{
+    sim_pose_t p = sim_segment_pose(c->seg, t);
+    double bearing = atan2(c->ty - p.y, c->tx - p.x);
+    double off = c->side * target_half(c, p.x, p.y);
+    return p.th + mirror_at(c->cfg, c->t_index, t) - bearing - off;
+}
+
+/* The crossing of F through 0 (mod 2 pi) in [t_from, t_to); NAN if none. */
+static double solve(const crossing_t *c, double t_from, double t_to)
+{
+    double w = 2.0 * M_PI * c->cfg->rev_per_s;
+    double f0 = F(c, t_from);
+    /* Next multiple of 2 pi above f0: F grows at about the mirror rate. */
+    double target = ceil(f0 / (2.0 * M_PI)) * 2.0 * M_PI;
+    double t = t_from + (target - f0) / w;
+    for (int i = 0; i < 8; i++) {
+        double h = 1e-6;
+        double f = F(c, t) - target;
+        double df = (F(c, t + h) - F(c, t - h)) / (2.0 * h);
+        if (df <= 0.0)
+            df = w;
+        double dt = f / df;
+        t -= dt;
+        if (fabs(dt) < 1e-13)
+            break;
+    }
+    if (!(t >= t_from) || !(t < t_to))
+        return NAN;
+    return t;
+}
+
+static int by_time(const void *a, const void *b)
+{
+    const sim_gonio_event_t *x = a, *y = b;
+    if (x->t < y->t)
+        return -1;
+    if (x->t > y->t)
+        return 1;
+    return x->target - y->target;
+}
+
+static size_t add_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w,
+                        const sim_segment_t *seg, double t_index, double t_from, double t_to,
+                        sim_rng_t *rng, double tx, double ty, double half, int16_t target,
+                        sim_gonio_event_t *out, size_t n, size_t max)
+{
+    for (int e = 0; e < 2; e++) {
+        crossing_t c = {cfg, seg, t_index, tx, ty, half, e == 0 ? -1.0 : 1.0};
+        double t = solve(&c, t_from, t_to);
+        if (isnan(t))
+            continue;
+        sim_pose_t p = sim_segment_pose(seg, t);
+        if (hypot(tx - p.x, ty - p.y) > cfg->max_range)
+            continue;
+        if (!sim_world_visible(w, p.x, p.y, tx, ty))
+            continue;
+        double noise = cfg->noise_rad > 0.0 ? cfg->noise_rad * sim_rng_normal(rng) : 0.0;
+        double wrate = 2.0 * M_PI * cfg->rev_per_s;
+        t += noise / wrate;
+        if (t < t_from || t >= t_to || n >= max)
+            continue;
+        double m = fmod(mirror_at(cfg, t_index, t), 2.0 * M_PI);
+        if (m < 0.0)
+            m += 2.0 * M_PI;
+        out[n].t = t;
+        out[n].edge = (uint8_t)e;
+        out[n].target = target;
+        out[n].mirror = m;
+        n++;
+    }
+    return n;
+}
+
+size_t sim_gonio_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const sim_segment_t *seg,
+                       double t_index, double t_from, double t_to, sim_rng_t *rng,
+                       sim_gonio_event_t *out, size_t max)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < w->n_beacons; i++)
+        n = add_edges(cfg, w, seg, t_index, t_from, t_to, rng, w->beacon[i].x, w->beacon[i].y,
+                      0.5 * w->beacon[i].diameter, (int16_t)i, out, n, max);
+    for (size_t i = 0; i < w->n_spurious; i++)
+        n = add_edges(cfg, w, seg, t_index, t_from, t_to, rng, w->spurious[i].x,
+                      w->spurious[i].y, -0.5 * w->spurious[i].width, (int16_t)(-1 - (int)i), out,
+                      n, max);
+    qsort(out, n, sizeof out[0], by_time);
+    return n;
+}

@@ -1,0 +1,48 @@
+/*
+ * motion.h - the truth trajectory of a tricycle vehicle: a steered front wheel a wheelbase L
+ * ahead of the rear axle, reference point the rear-axle centre. Between drive commands the
+ * steering angle and the speed are constant, so the rear axle follows a circle (or a line)
+ * exactly; the simulator keeps one such segment at a time and evaluates it in closed form.
+ *
+ * Conventions: metres, seconds, radians, counter-clockwise; steering angle alpha left
+ * positive; rear-axle curvature kappa = tan(alpha) / L; speed v of the rear axle, negative in
+ * reverse; the front wheel rolls |v| / cos(alpha).
+ */
+#ifndef SIM_MOTION_H
+#define SIM_MOTION_H
+
+#include <stdbool.h>
+
+typedef struct {
+    double x, y, th; /* rear-axle centre, heading (rad, unwrapped) */
+} sim_pose_t;
+
+typedef struct {
+    double t0;        /* start time, s */
+    sim_pose_t p0;    /* pose at t0 */
+    double kappa;     /* rear-axle curvature, 1/m, left positive */
+    double v;         /* rear-axle speed, m/s (negative: reverse) */
+    double front_per_rear; /* front-wheel travel per metre of rear travel, 1/cos(alpha) */
+    double front0;    /* front-wheel distance rolled before t0, m (always increasing) */
+} sim_segment_t;
+
+/** A segment from pose @p p at time @p t with steering @p alpha (rad) and speed @p v. */
+sim_segment_t sim_segment(double t, sim_pose_t p, double front_rolled, double alpha, double v,
+                          double wheelbase);
+
+/** Pose on the segment at time @p t (t >= seg->t0). */
+sim_pose_t sim_segment_pose(const sim_segment_t *seg, double t);
+
+/** Front-wheel distance rolled (total since the start of the run) at time @p t. */
+double sim_segment_front(const sim_segment_t *seg, double t);
+
+/**
+ * Earliest time >= @p after at which the front-wheel total reaches @p front; INFINITY when the
+ * vehicle stands.
+ */
+double sim_segment_time_at_front(const sim_segment_t *seg, double front, double after);
+
+/** Heading rate on the segment, rad/s. */
+double sim_segment_omega(const sim_segment_t *seg);
+
+#endif

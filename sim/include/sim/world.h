@@ -1,0 +1,41 @@
+/*
+ * world.h - the simulated building: retroreflective beacons (cylindrical posts), mirror-like
+ * spurious reflectors (narrow glints), and occluders (wall segments that block the beam).
+ */
+#ifndef SIM_WORLD_H
+#define SIM_WORLD_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#define SIM_MAX_BEACONS   64
+#define SIM_MAX_SPURIOUS  16
+#define SIM_MAX_OCCLUDERS 32
+
+typedef struct {
+    double x, y;
+    double diameter; /* m */
+} sim_beacon_t;
+
+typedef struct {
+    double x, y;
+    double width; /* apparent angular width of the glint, rad (range independent) */
+} sim_spurious_t;
+
+typedef struct {
+    double x1, y1, x2, y2;
+} sim_occluder_t;
+
+typedef struct {
+    sim_beacon_t beacon[SIM_MAX_BEACONS];
+    size_t n_beacons;
+    sim_spurious_t spurious[SIM_MAX_SPURIOUS];
+    size_t n_spurious;
+    sim_occluder_t occluder[SIM_MAX_OCCLUDERS];
+    size_t n_occluders;
+} sim_world_t;
+
+/** True when the straight line from (ax, ay) to (bx, by) crosses no occluder. */
+bool sim_world_visible(const sim_world_t *w, double ax, double ay, double bx, double by);
+
+#endif
