@@ -82,10 +82,10 @@ static int by_time(const void *a, const void *b)
     return x->target - y->target;
 }
 
-static size_t add_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w,
-                        const sim_segment_t *seg, double t_index, double t_from, double t_to,
-                        sim_rng_t *rng, double tx, double ty, double half, int16_t target,
-                        sim_gonio_event_t *out, size_t n, size_t max)
+static size_t add_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const sim_segment_t *seg,
+                        double t_index, double t_from, double t_to, sim_rng_t *rng, double tx,
+                        double ty, double half, int16_t target, sim_gonio_event_t *out, size_t n,
+                        size_t max)
 {
     for (int e = 0; e < 2; e++) {
         crossing_t c = {cfg, seg, t_index, tx, ty, half, e == 0 ? -1.0 : 1.0};
@@ -123,9 +123,8 @@ size_t sim_gonio_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const s
         n = add_edges(cfg, w, seg, t_index, t_from, t_to, rng, w->beacon[i].x, w->beacon[i].y,
                       0.5 * w->beacon[i].diameter, (int16_t)i, out, n, max);
     for (size_t i = 0; i < w->n_spurious; i++)
-        n = add_edges(cfg, w, seg, t_index, t_from, t_to, rng, w->spurious[i].x,
-                      w->spurious[i].y, -0.5 * w->spurious[i].width, (int16_t)(-1 - (int)i), out,
-                      n, max);
+        n = add_edges(cfg, w, seg, t_index, t_from, t_to, rng, w->spurious[i].x, w->spurious[i].y,
+                      -0.5 * w->spurious[i].width, (int16_t)(-1 - (int)i), out, n, max);
     qsort(out, n, sizeof out[0], by_time);
     return n;
 }

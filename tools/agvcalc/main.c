@@ -6,7 +6,6 @@
  * ok:false and the next line is still answered. The ops are listed by --help; their formats
  * are in ../../../shared/CONTRACT.md and the README.
  */
-#define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>

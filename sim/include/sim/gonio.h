@@ -17,19 +17,19 @@
 #include "sim/world.h"
 
 typedef struct {
-    double rev_per_s;  /* mirror turns per second (2 in the seed) */
-    uint32_t counts;   /* angle-clock counts per turn (50,000 in the seed) */
-    double noise_rad;  /* standard deviation of each edge's angle, rad */
-    double max_range;  /* beyond this the return is too weak to trigger, m */
+    double rev_per_s; /* mirror turns per second (2 in the seed) */
+    uint32_t counts;  /* angle-clock counts per turn (50,000 in the seed) */
+    double noise_rad; /* standard deviation of each edge's angle, rad */
+    double max_range; /* beyond this the return is too weak to trigger, m */
 } sim_gonio_cfg_t;
 
 typedef enum { SIM_GEV_RISE = 0, SIM_GEV_FALL = 1 } sim_gonio_edge_t;
 
 typedef struct {
-    double t;        /* s */
-    uint8_t edge;    /* sim_gonio_edge_t */
-    int16_t target;  /* beacon index, or -1 - spurious index */
-    double mirror;   /* mirror angle at the edge, rad in [0, 2 pi), noise included */
+    double t;       /* s */
+    uint8_t edge;   /* sim_gonio_edge_t */
+    int16_t target; /* beacon index, or -1 - spurious index */
+    double mirror;  /* mirror angle at the edge, rad in [0, 2 pi), noise included */
 } sim_gonio_event_t;
 
 /** Timer_A count at time @p t (the angle clock, started at t = 0, 16 bits). */

@@ -18,12 +18,12 @@ typedef struct {
 } sim_pose_t;
 
 typedef struct {
-    double t0;        /* start time, s */
-    sim_pose_t p0;    /* pose at t0 */
-    double kappa;     /* rear-axle curvature, 1/m, left positive */
-    double v;         /* rear-axle speed, m/s (negative: reverse) */
+    double t0;             /* start time, s */
+    sim_pose_t p0;         /* pose at t0 */
+    double kappa;          /* rear-axle curvature, 1/m, left positive */
+    double v;              /* rear-axle speed, m/s (negative: reverse) */
     double front_per_rear; /* front-wheel travel per metre of rear travel, 1/cos(alpha) */
-    double front0;    /* front-wheel distance rolled before t0, m (always increasing) */
+    double front0;         /* front-wheel distance rolled before t0, m (always increasing) */
 } sim_segment_t;
 
 /** A segment from pose @p p at time @p t with steering @p alpha (rad) and speed @p v. */
