@@ -75,6 +75,7 @@ void posix_reset(void)
     preempt_hook = NULL;
     preempt_ctx = NULL;
     posix_console_redirect(NULL, NULL);
+    posix_link_reset();
 }
 
 int posix_board_create(const char *name)

@@ -10,7 +10,7 @@ int main(void)
 {
     hal_cpu_init();
     hal_irq_enable();
-    cy_print("@sim tr trigger 3\n"); /* vector 4 (0xFFE6, USCI_A1/B1 receive): no ISR */
+    cy_print("@sim tr trigger 7\n"); /* vector 8 (0xFFEE, ADC12): no ISR */
     cy_target_sync();
     cy_print("FAIL the unexpected interrupt was not trapped\n");
     cy_test_end();

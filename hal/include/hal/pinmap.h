@@ -15,6 +15,8 @@
 
 /** Vector numbers of the MSP430F249 (clang interrupt(N) numbering). */
 #define HAL_VEC_PORT2   2  /* 0xFFE2 */
+#define HAL_VEC_LINK_TX 3  /* 0xFFE4 USCIAB1TX */
+#define HAL_VEC_LINK_RX 4  /* 0xFFE6 USCIAB1RX */
 #define HAL_VEC_PORT1   5  /* 0xFFE8 */
 #define HAL_VEC_TIMERA1 6  /* 0xFFEA */
 #define HAL_VEC_TIMERA0 7  /* 0xFFEC */

@@ -27,6 +27,7 @@
 
 #include "hal/capture.h"
 #include "hal/edge.h"
+#include "hal/link.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -154,6 +155,18 @@ uint32_t posix_capture_overflows(int board, hal_capture_channel_t ch);
  */
 typedef void (*posix_console_sink_fn)(void *ctx, int board, char c);
 void posix_console_redirect(posix_console_sink_fn sink, void *ctx);
+
+/* ---- the inter-board link (hal/link.h) ---- */
+
+/** Latency of the in-process bus, ns (default 200 us). posix_reset() restores the default. */
+void posix_link_set_latency(uint64_t ns);
+
+/** Observer of every frame sent (logs, telemetry); NULL removes it. */
+typedef void (*posix_link_tap_fn)(void *ctx, int from_board, const hal_link_frame_t *f);
+void posix_link_set_tap(posix_link_tap_fn fn, void *ctx);
+
+/** Forget every link port and frame in flight (posix_reset() calls it). */
+void posix_link_reset(void);
 
 #ifdef __cplusplus
 }
