@@ -1,0 +1,42 @@
+/*
+ * path.h - the nominal path: a chain of circular arcs and straights (double precision),
+ * and the distance of a point to it (the cross-track error of CONTRACT.md).
+ */
+#ifndef SIM_PATH_H
+#define SIM_PATH_H
+
+#include <stddef.h>
+
+#include "sim/motion.h"
+
+#define SIM_MAX_PIECES 4096
+
+typedef struct {
+    double x0, y0, th0; /* start of the piece: rear-axle position and heading */
+    double kappa;       /* curvature, 1/m, left positive (0 = straight) */
+    double length;      /* rear-axle path length, m (>= 0); travelled backwards if reverse */
+    int reverse;        /* 1 when the vehicle drives this piece backwards */
+} sim_piece_t;
+
+typedef struct {
+    sim_piece_t piece[SIM_MAX_PIECES];
+    size_t n;
+} sim_path_t;
+
+/** Append a piece that starts where the path ends (or at @p start for the first). Returns 0
+ * or -1 when the path is full. */
+int sim_path_append(sim_path_t *p, sim_pose_t start, double kappa, double length, int reverse);
+
+/** The pose at the end of a piece. */
+sim_pose_t sim_piece_end(const sim_piece_t *pc);
+
+/** The pose at the end of the whole path (the start pose of an empty path is undefined). */
+sim_pose_t sim_path_end(const sim_path_t *p);
+
+/** Shortest distance from (x, y) to the path, m; INFINITY for an empty path. */
+double sim_path_distance(const sim_path_t *p, double x, double y);
+
+/** Total length, m. */
+double sim_path_length(const sim_path_t *p);
+
+#endif
