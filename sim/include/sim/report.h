@@ -1,0 +1,51 @@
+/*
+ * report.h - what agv-sim measures and writes (CONTRACT.md "Report"): fix accuracy, path
+ * tracking, interrupt counts. Numbers are rounded to fixed decimals so that the same run gives
+ * the same bytes (wall time aside).
+ */
+#ifndef SIM_REPORT_H
+#define SIM_REPORT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/** Samples of one quantity: mean, RMS, max, 95th percentile. */
+typedef struct {
+    double *v;
+    size_t n, cap;
+    double sum, sumsq, max;
+} sim_stat_t;
+
+void sim_stat_add(sim_stat_t *s, double x);
+double sim_stat_mean(const sim_stat_t *s);
+double sim_stat_rms(const sim_stat_t *s);
+/** The p-quantile (0..1), nearest rank; 0 for no samples. */
+double sim_stat_quantile(sim_stat_t *s, double p);
+void sim_stat_free(sim_stat_t *s);
+
+#define SIM_MAX_ISR_NAMES 16
+
+typedef struct {
+    char scenario[64];
+    uint64_t seed;
+    int full_travel;
+    double sim_time, wall_time;
+    uint32_t fixes_attempted, fixes_accepted, fixes_rejected;
+    sim_stat_t fix_error;     /* m, accepted fixes vs truth at their reference instant */
+    sim_stat_t heading_error; /* deg, absolute */
+    bool reached_goal;
+    sim_stat_t cross_track; /* m, sampled along the travelled distance */
+    double final_error;     /* m, truth at the end vs the last prescribed point */
+    const char *isr_name[SIM_MAX_ISR_NAMES];
+    uint64_t isr_count[SIM_MAX_ISR_NAMES];
+    size_t n_isr;
+} sim_report_t;
+
+/** Write the report as JSON to @p path. Returns 0 or -1 (errno set). */
+int sim_report_write(sim_report_t *r, const char *path);
+
+/** The report as a JSON string (malloc'd; the caller frees it). */
+char *sim_report_json(sim_report_t *r);
+
+#endif

@@ -1,0 +1,132 @@
+/*
+ * report.c - statistics and the JSON report (see report.h).
+ */
+#include "sim/report.h"
+
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+void sim_stat_add(sim_stat_t *s, double x)
+{
+    if (s->n == s->cap) {
+        size_t cap = s->cap ? 2 * s->cap : 256;
+        double *v = realloc(s->v, cap * sizeof *v);
+        if (!v) {
+            fprintf(stderr, "agv-sim: out of memory\n");
+            exit(3);
+        }
+        s->v = v;
+        s->cap = cap;
+    }
+    s->v[s->n++] = x;
+    s->sum += x;
+    s->sumsq += x * x;
+    if (s->n == 1 || x > s->max)
+        s->max = x;
+}
+
+double sim_stat_mean(const sim_stat_t *s)
+{
+    return s->n ? s->sum / (double)s->n : 0.0;
+}
+
+double sim_stat_rms(const sim_stat_t *s)
+{
+    return s->n ? sqrt(s->sumsq / (double)s->n) : 0.0;
+}
+
+static int cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double sim_stat_quantile(sim_stat_t *s, double p)
+{
+    if (!s->n)
+        return 0.0;
+    qsort(s->v, s->n, sizeof s->v[0], cmp);
+    size_t k = (size_t)ceil(p * (double)s->n);
+    if (k < 1)
+        k = 1;
+    return s->v[k - 1];
+}
+
+void sim_stat_free(sim_stat_t *s)
+{
+    free(s->v);
+    s->v = NULL;
+    s->n = s->cap = 0;
+}
+
+/* Fixed decimals: the text of a number never depends on float formatting quirks. */
+static json_t *num(double v, int decimals)
+{
+    double scale = pow(10.0, decimals);
+    double r = round(v * scale) / scale;
+    if (r == 0.0 || !isfinite(r))
+        r = isfinite(r) ? 0.0 : -1.0;
+    return json_real(r);
+}
+
+char *sim_report_json(sim_report_t *r)
+{
+    json_t *root = json_object();
+    json_object_set_new(root, "scenario", json_string(r->scenario));
+    json_object_set_new(root, "seed", json_integer((json_int_t)r->seed));
+    json_object_set_new(root, "mode", json_string(r->full_travel ? "full" : "simplified"));
+    json_object_set_new(root, "sim_time_s", num(r->sim_time, 6));
+    json_object_set_new(root, "wall_time_s", num(r->wall_time, 3));
+
+    json_t *fixes = json_object();
+    json_object_set_new(fixes, "attempted", json_integer(r->fixes_attempted));
+    json_object_set_new(fixes, "accepted", json_integer(r->fixes_accepted));
+    json_object_set_new(fixes, "rejected", json_integer(r->fixes_rejected));
+    json_t *err = json_object();
+    json_object_set_new(err, "rms", num(sim_stat_rms(&r->fix_error), 6));
+    json_object_set_new(err, "p95", num(sim_stat_quantile(&r->fix_error, 0.95), 6));
+    json_object_set_new(err, "max", num(r->fix_error.n ? r->fix_error.max : 0.0, 6));
+    json_object_set_new(fixes, "error_m", err);
+    json_t *herr = json_object();
+    json_object_set_new(herr, "rms", num(sim_stat_rms(&r->heading_error), 5));
+    json_object_set_new(herr, "max", num(r->heading_error.n ? r->heading_error.max : 0.0, 5));
+    json_object_set_new(fixes, "heading_error_deg", herr);
+    json_object_set_new(root, "fixes", fixes);
+
+    json_t *path = json_object();
+    json_object_set_new(path, "reached_goal", json_boolean(r->reached_goal));
+    json_t *ct = json_object();
+    json_object_set_new(ct, "mean", num(sim_stat_mean(&r->cross_track), 6));
+    json_object_set_new(ct, "max", num(r->cross_track.n ? r->cross_track.max : 0.0, 6));
+    json_object_set_new(path, "cross_track_m", ct);
+    json_object_set_new(path, "final_error_m", num(r->final_error, 6));
+    json_object_set_new(root, "path", path);
+
+    json_t *isr = json_object();
+    for (size_t i = 0; i < r->n_isr; i++)
+        json_object_set_new(isr, r->isr_name[i], json_integer((json_int_t)r->isr_count[i]));
+    json_object_set_new(root, "isr", isr);
+
+    char *s = json_dumps(root, JSON_INDENT(1) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(12));
+    json_decref(root);
+    return s;
+}
+
+int sim_report_write(sim_report_t *r, const char *path)
+{
+    char *s = sim_report_json(r);
+    if (!s)
+        return -1;
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        free(s);
+        return -1;
+    }
+    int rc = fputs(s, f) < 0 || fputc('\n', f) < 0 ? -1 : 0;
+    if (fclose(f))
+        rc = -1;
+    free(s);
+    return rc;
+}
