@@ -16,8 +16,6 @@ typedef struct {
     uint8_t vector;
     uint8_t bit;
     bool nonmaskable;
-    bool pending;
-    bool enabled;
     posix_isr_fn fn;
     void *ctx;
     uint32_t count;
@@ -31,6 +29,9 @@ typedef struct {
     bool in_nmi;
     uint64_t preempt_points;
     bool woken;
+    uint32_t pending;     /* bit i: source i's flag */
+    uint32_t enabled;     /* bit i: source i unmasked */
+    uint32_t nonmaskable; /* bit i: source i ignores GIE */
     source_t src[POSIX_MAX_SOURCES];
     posix_board_state_t hal; /* per-board HAL state (critical sections, lines, captures) */
 } board_t;
@@ -145,6 +146,10 @@ int posix_source_register(int board, int vector, int bit, bool nonmaskable, posi
             s->fn = fn;
             s->ctx = ctx;
             s->nonmaskable = nonmaskable;
+            if (nonmaskable)
+                bd->nonmaskable |= 1u << i;
+            else
+                bd->nonmaskable &= ~(1u << i);
             return i;
         }
         if (!s->used && free_slot < 0)
@@ -158,9 +163,15 @@ int posix_source_register(int board, int vector, int bit, bool nonmaskable, posi
     s->vector = (uint8_t)vector;
     s->bit = (uint8_t)bit;
     s->nonmaskable = nonmaskable;
-    s->enabled = true;
     s->fn = fn;
     s->ctx = ctx;
+    uint32_t bitmask = 1u << free_slot;
+    bd->pending &= ~bitmask;
+    bd->enabled |= bitmask;
+    if (nonmaskable)
+        bd->nonmaskable |= bitmask;
+    else
+        bd->nonmaskable &= ~bitmask;
     return free_slot;
 }
 
@@ -183,17 +194,23 @@ static source_t *source_at(int board, int source)
 
 void posix_source_raise(int board, int source)
 {
-    source_at(board, source)->pending = true;
+    (void)source_at(board, source);
+    boards[board].pending |= 1u << source;
 }
 
 void posix_source_enable(int board, int source, bool enable)
 {
-    source_at(board, source)->enabled = enable;
+    (void)source_at(board, source);
+    if (enable)
+        boards[board].enabled |= 1u << source;
+    else
+        boards[board].enabled &= ~(1u << source);
 }
 
 bool posix_source_pending(int board, int source)
 {
-    return source_at(board, source)->pending;
+    (void)source_at(board, source);
+    return (boards[board].pending >> source) & 1u;
 }
 
 uint32_t posix_source_count(int board, int source)
@@ -219,14 +236,17 @@ void posix_set_gie(int board, bool gie)
 /* Highest-priority deliverable source of a board, or -1. */
 static int pick(const board_t *bd)
 {
+    uint32_t allowed = bd->gie ? ~0u : 0u;
+    if (!bd->in_nmi)
+        allowed |= bd->nonmaskable;
+    else
+        allowed &= ~bd->nonmaskable;
+    uint32_t m = bd->pending & bd->enabled & allowed;
     int best = -1;
-    for (int i = 0; i < POSIX_MAX_SOURCES; i++) {
+    while (m) {
+        int i = __builtin_ctz(m);
+        m &= m - 1;
         const source_t *s = &bd->src[i];
-        if (!s->used || !s->pending || !s->enabled)
-            continue;
-        bool allowed = s->nonmaskable ? !bd->in_nmi : bd->gie;
-        if (!allowed)
-            continue;
         if (best < 0 || s->vector > bd->src[best].vector ||
             (s->vector == bd->src[best].vector && s->bit < bd->src[best].bit))
             best = i;
@@ -243,7 +263,7 @@ void posix_dispatch_board(int b)
             return;
         source_t *s = &bd->src[i];
         /* Interrupt entry: flag cleared by the shim, GIE cleared by the CPU. */
-        s->pending = false;
+        bd->pending &= ~(1u << i);
         s->count++;
         bool saved_gie = bd->gie;
         bool saved_nmi = bd->in_nmi;
@@ -265,7 +285,7 @@ void posix_dispatch_board(int b)
 void posix_dispatch(void)
 {
     for (int b = 0; b < POSIX_MAX_BOARDS; b++)
-        if (boards[b].used)
+        if (boards[b].pending)
             posix_dispatch_board(b);
 }
 
