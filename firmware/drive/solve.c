@@ -25,9 +25,9 @@
  * misses by under 4e-7 rad and 2e-6 m). */
 #define STRAIGHT_ANGLE   256 /* binary angle, 2.1e-5 degrees */
 #define STRAIGHT_LAT_L24 16  /* L24 */
-/* Half-sweeps below 0.25 rad take their length from the chord (x / sin x series); above,
- * from the radius (s = 2 |tau| r). 0.25 rad as a binary angle: */
-#define SMALL_HALF_SWEEP 170891318l
+/* Arcs whose half-sweeps are both below 0.2 rad take their lengths from the chords (series
+ * in the half-sweeps); otherwise from the radius, s = 2 |tau| r. 0.2 rad as a binary angle: */
+#define SMALL_HALF_SWEEP 136713055l
 
 const char *drive_status_text(drive_status_t st)
 {
@@ -65,20 +65,126 @@ static int32_t shr_round(int32_t v, uint8_t sh)
     return v >= 0 ? (v + half) >> sh : -((-v + half) >> sh);
 }
 
-/* Length of an arc of chord @p chord (L24) and half-sweep @p tau (binary angle, |tau| small). */
-static int32_t arc_from_chord(int32_t chord, int32_t tau)
+/* v * 2^sh for 0 <= sh <= 14 (the caller knows it fits). */
+static int32_t shl(int32_t v, uint8_t sh)
 {
-    return fx_mul_q30(chord, drive_x_over_sin_small(drive_angle_to_rad_q28(tau) * 4));
+    return (int32_t)((uint32_t)v << sh);
 }
 
-/* Length of an arc of radius @p r (L24) and half-sweep @p tau: 2 |tau| r; -1 on overflow. */
-static int32_t arc_from_radius(int32_t r, int32_t tau)
+/* The canonical problem: heading change 2 eta >= 0 to the left, target E = (p, q) in the frame
+ * of the mean heading u, lengths in L24 (Q24 of 2^k m, osh = 8 - k). */
+typedef struct {
+    int32_t p, q, aq;   /* L24; aq = |q| */
+    int32_t eta;        /* binary angle, 0 <= eta <= quarter / 2 */
+    fx_q30_t s, c;      /* sin eta, cos eta */
+    int32_t pc, qs;     /* p cos eta, q sin eta */
+    int32_t sp, cq;     /* p sin eta, |q| cos eta */
+    int32_t e2;         /* |E|^2, L24 m^2 */
+    int8_t k;           /* scale 2^k m */
+    uint8_t osh;        /* 8 - k */
+    fx_q16_t rmin;      /* metres Q16 */
+    drive_case_t kase;  /* result: case */
+    int32_t curv;       /* result: first arc's curvature, Q4.28 /m, canonical sign */
+    int32_t len0, len1; /* result: lengths, L24 (case 4/5: the arc's already in Q16) */
+    int32_t arc_q16;    /* case 4/5: the arc's length, Q16 m */
+    fx_angle_t sweep0;  /* result: first segment's heading change (double arc), canonical */
+} canon_t;
+
+/* Cases 4 and 5: an arc and a straight, when the arc's radius (as driven) is >= rmin.
+ * Straight l = |q| / sin(eta); the arc's chord Lc = p - l cos(eta) lies along u. */
+static bool arc_and_straight(canon_t *z)
 {
-    int32_t two_tau = drive_angle_to_rad_q28((int32_t)drive_abs32(tau)) << 1; /* <= 2 pi, Q28 */
-    int32_t s;
-    if (!fx_mul_shift(r, two_tau, 28, &s))
-        return -1;
-    return s;
+    int32_t l, lc, arc;
+    int32_t eta30 = drive_angle_to_rad_q30(z->eta);
+    if (z->eta < SMALL_HALF_SWEEP) {
+        if (!fx_div_shift(z->aq, z->s, 30, &l))
+            return false;
+        lc = z->p - fx_mul_q30(l, z->c);
+        arc = fx_mul_q30(lc, drive_x_over_sin_small(eta30));
+    } else {
+        int32_t inv_s; /* 1 / sin(eta) <= 5.1, Q4.28 */
+        (void)fx_div_shift(FX_Q30_ONE, z->s, 28, &inv_s);
+        l = fx_mul_q30(z->aq * 4, inv_s);
+        lc = z->p - fx_mul_q30(l, z->c);
+        arc = fx_mul_q30(fx_mul_q30(lc * 2, inv_s), eta30 * 2); /* 2 eta r */
+    }
+    if (lc <= 0 || arc <= 0)
+        return false;
+    /* The straight next to the arc can be long: make the arc's heading change exact in the
+     * units it is driven in. Length rounded up, curvature = sweep / length (never above the
+     * true one), and that curvature checked against the minimum radius. */
+    int32_t arc_q16 = (int32_t)(((uint32_t)arc + (((uint32_t)1 << z->osh) - 1u)) >> z->osh);
+    if (!fx_div_shift(eta30, arc_q16, 15, &z->curv) ||
+        fx_mul_q16(z->curv, z->rmin) > DRIVE_CURV_ONE)
+        return false;
+    z->arc_q16 = arc_q16;
+    if (z->q >= 0) {
+        z->kase = DRIVE_CASE_4;
+        z->len1 = l;
+        z->sweep0 = (fx_angle_t)z->eta * 2u;
+    } else {
+        z->kase = DRIVE_CASE_5;
+        z->len0 = l;
+    }
+    return true;
+}
+
+/* Cases 1, 2 and 3: a double arc of equal radii, first turn sigma = sign(q).
+ * X = sqrt(q^2 + (p sin eta)^2) + |q| cos eta, curvature 2 X / |E|^2, radius r = |E|^2 / (2 X),
+ * rho = r sin(eta), junction 2J = (p + 2 sigma rho, q), half-sweeps gamma + eta and -gamma
+ * with gamma the angle of J. */
+static drive_status_t double_arc(canon_t *z, int32_t *needed)
+{
+    int32_t sigma = z->q >= 0 ? 1 : -1;
+    int32_t x = (int32_t)fx_hypot(z->q, z->sp) + z->cq;
+    bool fits = fx_div_shift(x, z->e2, (uint8_t)(29 - z->k), &z->curv);
+    if (!fits || fx_mul_q16(z->curv, z->rmin) > DRIVE_CURV_ONE) {
+        if (needed != NULL)
+            *needed = fits ? z->curv : INT32_MAX;
+        return DRIVE_ERR_RADIUS;
+    }
+    int32_t r20, rho; /* radius L20 (fits below 2048 * 2^k m), rho L24 */
+    bool have_r = fx_div_shift(z->e2, x, 19, &r20);
+    if (!have_r)
+        (void)fx_div_shift(fx_mul_q30(z->e2, z->s), x, 23, &rho);
+    else if (r20 < (1l << 27))
+        rho = fx_mul_q30(r20 * 16, z->s);
+    else
+        rho = fx_mul_q30(r20, z->s) * 16;
+    /* rho <= p/2 whenever |q| sin(eta) <= p cos(eta) (always for sigma > 0, as P > 0): J
+     * cannot pass E (sigma > 0) or fall behind O (sigma < 0). When q and p sin(eta) are a few
+     * LSB, rho is known only roughly and may overshoot; moving J along u keeps it on the locus
+     * of junctions to within (q / |E|) |d rho| < 1 LSB, so the clamp costs nothing and keeps
+     * both chords forward. */
+    if ((sigma > 0 || z->pc + z->qs >= 0) && rho > z->p / 2)
+        rho = z->p / 2;
+    int32_t jx2 = z->p + 2 * sigma * rho, kx2 = z->p - 2 * sigma * rho;
+    int32_t gamma = (int32_t)fx_atan2(z->q, jx2);
+    int32_t tau0 = gamma + z->eta, tau1 = -gamma;
+    if (sigma < 0 && tau0 > 0)
+        return DRIVE_ERR_SWEEP;
+    if (drive_abs32(tau0) < (uint32_t)SMALL_HALF_SWEEP &&
+        drive_abs32(tau1) < (uint32_t)SMALL_HALF_SWEEP) {
+        /* From the chords: arc 1 from O to J (at angle gamma = -tau1 from u), arc 2 from J to
+         * E (at gamma + eta = tau0): s = (chord along u) sec(chord angle) tau / sin(tau). */
+        int32_t t0 = drive_angle_to_rad_q30(tau0), t1 = drive_angle_to_rad_q30(tau1);
+        z->len0 = fx_mul_q30(fx_mul_q30(jx2 / 2, drive_sec_small(t1)), drive_x_over_sin_small(t0));
+        z->len1 = fx_mul_q30(fx_mul_q30(kx2 / 2, drive_sec_small(t0)), drive_x_over_sin_small(t1));
+    } else {
+        /* From the radius: s = 2 |tau| r (r is below about 2.5 |E| here). */
+        if (!have_r || r20 >= (1l << 27))
+            return DRIVE_ERR_SWEEP;
+        int32_t r24 = r20 * 16;
+        z->len0 = fx_mul_q30(r24, drive_angle_to_rad_q28((int32_t)drive_abs32(tau0)) * 2) * 4;
+        z->len1 = fx_mul_q30(r24, drive_angle_to_rad_q28((int32_t)drive_abs32(tau1)) * 2) * 4;
+    }
+    if (z->len0 < 0 || z->len1 < 0)
+        return DRIVE_ERR_SWEEP;
+    /* For q < 0, p sin(eta) - |q| cos(eta) is T = A x D: >= 0 same side (case 2). */
+    z->kase = sigma > 0 ? DRIVE_CASE_1 : (z->sp - z->cq >= 0 ? DRIVE_CASE_2 : DRIVE_CASE_3);
+    z->curv *= sigma;
+    z->sweep0 = (fx_angle_t)tau0 * 2u;
+    return DRIVE_OK;
 }
 
 drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_q16_t min_radius,
@@ -97,199 +203,115 @@ drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_
     int32_t dl = (int32_t)(a2 - a1);
     if (dl > (int32_t)FX_ANGLE_QUARTER || dl < -(int32_t)FX_ANGLE_QUARTER)
         return DRIVE_ERR_HEADING;
-    int32_t eta = dl / 2;
+    canon_t z;
+    z.eta = dl / 2;
+    z.rmin = min_radius;
 
     /* D and its scale 2^k: |dx|, |dy| <= 4 * 2^k m (Q16: 2^(18 + k)), -5 <= k <= 4. */
     int64_t dx64 = (int64_t)to->x - from->x, dy64 = (int64_t)to->y - from->y;
     uint64_t mx = (uint64_t)(dx64 < 0 ? -dx64 : dx64), my = (uint64_t)(dy64 < 0 ? -dy64 : dy64);
-    uint64_t m = mx > my ? mx : my;
-    if (m > (uint64_t)DRIVE_MAX_DIST)
+    if (mx > (uint64_t)DRIVE_MAX_DIST || my > (uint64_t)DRIVE_MAX_DIST)
         return DRIVE_ERR_TOO_FAR;
-    int32_t dx = (int32_t)dx64, dy = (int32_t)dy64;
-    int8_t k = -5;
-    while (m > ((uint64_t)1 << (18 + k)))
-        k++;
+    uint32_t m = (uint32_t)(mx > my ? mx : my);
+    z.k = -5;
+    while (m > ((uint32_t)1 << (18 + z.k)))
+        z.k++;
+    z.osh = (uint8_t)(8 - z.k);
 
-    /* E in the u frame, L24: p along u, q to its left. */
+    /* E in the u frame: p along u, q to its left. */
     fx_q30_t cu, su;
-    fx_sincos(a1 + (fx_angle_t)eta, &su, &cu);
-    uint8_t sh = (uint8_t)(22 + k); /* Q16 * Q30 -> L24 */
-    int32_t t1, t2, t3, t4;
-    (void)fx_mul_shift(dx, cu, sh, &t1); /* |dx| <= 2^22 and sh >= 22: always fits */
-    (void)fx_mul_shift(dy, su, sh, &t2);
-    (void)fx_mul_shift(dx, su, sh, &t3);
-    (void)fx_mul_shift(dy, cu, sh, &t4);
-    int32_t p = t1 + t2, q = t4 - t3;
+    fx_sincos(a1 + (fx_angle_t)z.eta, &su, &cu);
+    int32_t dx = shl((int32_t)dx64, z.osh), dy = shl((int32_t)dy64, z.osh); /* |.| <= 2^26 */
+    z.p = fx_mul_q30(dx, cu) + fx_mul_q30(dy, su);
+    z.q = fx_mul_q30(dy, cu) - fx_mul_q30(dx, su);
 
     /* Mirror image: solve a heading change to the left (or none, target on the left). */
-    bool mirror = eta < 0 || (eta == 0 && q < 0);
+    bool mirror = z.eta < 0 || (z.eta == 0 && z.q < 0);
     if (mirror) {
-        eta = -eta;
-        q = -q;
+        z.eta = -z.eta;
+        z.q = -z.q;
     }
-    fx_q30_t s, c;
-    fx_sincos((fx_angle_t)eta, &s, &c);
-    uint32_t aq = drive_abs32(q);
+    fx_sincos((fx_angle_t)z.eta, &z.s, &z.c);
+    z.aq = z.q < 0 ? -z.q : z.q;
 
     /* P = A . D > 0: the target is ahead. */
-    int32_t pc = fx_mul_q30(p, c), qs = fx_mul_q30(q, s);
-    int32_t pp = pc - qs;
+    z.pc = fx_mul_q30(z.p, z.c);
+    z.qs = fx_mul_q30(z.q, z.s);
+    int32_t pp = z.pc - z.qs;
     if (pp <= 0)
         return DRIVE_ERR_BEHIND;
-    int32_t p2 = 0, q2 = 0;
-    (void)fx_mul_shift(p, p, 24, &p2); /* |p|, |q| < 5.7 * 2^24: squares < 2^31 */
-    (void)fx_mul_shift(q, q, 24, &q2);
-    int32_t e2 = p2 + q2; /* |E|^2, L24 m^2 */
-    if (k == 4 && e2 > (1l << 28))
+    z.e2 = fx_mul_q30(z.p * 8, z.p * 8) + fx_mul_q30(z.q * 8, z.q * 8);
+    if (z.k == 4 && z.e2 > (1l << 28))
         return DRIVE_ERR_TOO_FAR; /* |D| > 64 m */
-    if (k == -5 && e2 < (1l << 22))
+    if (z.k == -5 && z.e2 < (1l << 22))
         return DRIVE_ERR_TOO_CLOSE; /* |D| < 1/64 m */
+    z.curv = 0;
+    z.sweep0 = 0;
+    z.arc_q16 = 0;
 
-    int32_t len0, len1;    /* L24 */
-    int32_t curv = 0;      /* Q4.28 /m, the first arc's turn, canonical (before mirroring) */
-    fx_angle_t sweep0 = 0; /* the first segment's heading change, canonical (wraps) */
-
-    if (dl < STRAIGHT_ANGLE && dl > -STRAIGHT_ANGLE && aq <= STRAIGHT_LAT_L24) {
+    if (dl < STRAIGHT_ANGLE && dl > -STRAIGHT_ANGLE && z.aq <= STRAIGHT_LAT_L24) {
         /* Straight case: two halves along A. */
-        out->kase = DRIVE_CASE_STRAIGHT;
-        len0 = pp / 2;
-        len1 = pp - len0;
+        z.kase = DRIVE_CASE_STRAIGHT;
+        z.len0 = pp / 2;
+        z.len1 = pp - z.len0;
     } else {
-        /* A5 = p sin(eta) - |q| cos(eta) = Lc sin(eta): > 0 when an arc and a straight fit
-         * (rotation and translation the same way, eta > beta); the arc's radius is then
-         * Lc / (2 sin eta) >= rmin when A5 >= 2 sin^2(eta) rmin. For q < 0 it is T = A x D. */
-        int32_t a5 = fx_mul_q30(p, s) - fx_mul_q30((int32_t)aq, c);
-        int32_t rs, thr = INT32_MAX; /* 2 sin^2(eta) rmin, L24; beyond int32 means no fit */
-        if (fx_mul_shift(min_radius, s, sh, &rs) && rs <= INT32_MAX / 2)
-            thr = fx_mul_q30(rs * 2, s);
-        bool arc_line = false;
-        if (a5 > 0 && s > 0 && a5 >= thr) {
-            /* Cases 4 (q >= 0: arc, then straight) and 5 (q < 0: straight, then arc), if the
-             * arc's radius, exactly as it will be driven, is at least the minimum (the test
-             * above is the cheap, approximate filter). */
-            int32_t l = (int32_t)drive_udiv(aq, (uint32_t)s, 30);
-            int32_t lc = p - fx_mul_q30(l, c);
-            int32_t chk;
-            curv = lc > 0 ? (int32_t)drive_udiv((uint32_t)s, (uint32_t)lc, (uint8_t)(23 - k)) : -1;
-            if (curv > 0 && fx_mul_shift(curv, min_radius, 28, &chk) && chk <= FX_Q16_ONE) {
-                arc_line = true;
-                int32_t arc;
-                if (eta < SMALL_HALF_SWEEP) {
-                    arc = arc_from_chord(lc, eta);
-                } else {
-                    int32_t r = (int32_t)drive_udiv((uint32_t)lc, (uint32_t)s, 29);
-                    arc = arc_from_radius(r, eta);
-                }
-                if (q >= 0) {
-                    out->kase = DRIVE_CASE_4;
-                    len0 = arc;
-                    len1 = l;
-                    sweep0 = (fx_angle_t)eta * 2u;
-                } else {
-                    out->kase = DRIVE_CASE_5;
-                    len0 = l;
-                    len1 = arc;
-                }
-            }
-        }
-        if (!arc_line) {
-            /* Double arc of equal radii, first turn sigma = sign(q). */
-            int32_t sigma = q >= 0 ? 1 : -1;
-            int32_t sp = fx_mul_q30(p, s);
-            int32_t x = (int32_t)(drive_hypot(q, sp) + (uint32_t)fx_mul_q30((int32_t)aq, c));
-            curv = (int32_t)drive_udiv((uint32_t)x, (uint32_t)e2, (uint8_t)(29 - k));
-            if (curv < 0)
-                curv = INT32_MAX; /* saturated */
-            int32_t chk;
-            if (!fx_mul_shift(curv, min_radius, 28, &chk) || chk > FX_Q16_ONE) {
-                if (needed != NULL)
-                    *needed = curv;
-                return DRIVE_ERR_RADIUS;
-            }
-            /* rho = sin(eta) |E|^2 / (2 X) <= |E| / 2; the doubled junction 2J = (p + 2 sigma
-             * rho, q) and 2(E - J) = (p - 2 sigma rho, q). */
-            uint64_t se2 = drive_umul((uint32_t)s, (uint32_t)e2); /* Q54 */
-            int32_t rho = (int32_t)drive_udiv64(se2 >> 7, (uint32_t)x);
-            /* rho <= p/2 whenever |q| sin(eta) <= p cos(eta) (always for sigma > 0, as P > 0):
-             * J cannot pass E (sigma > 0) or fall behind O (sigma < 0). When q and p sin(eta)
-             * are a few LSB, rho is known only roughly and may overshoot; moving J along u
-             * keeps it on the locus of junctions to within (q / |E|) |d rho| < 1 LSB, so the
-             * clamp costs nothing and keeps both chords forward. */
-            if ((sigma > 0 || pc + qs >= 0) && rho > p / 2)
-                rho = p / 2;
-            int32_t jx2 = p + 2 * sigma * rho, kx2 = p - 2 * sigma * rho;
-            int32_t gamma = (int32_t)fx_atan2(q, jx2);
-            int32_t tau0 = gamma + eta, tau1 = -gamma;
-            if (sigma < 0 && tau0 > 0)
-                return DRIVE_ERR_SWEEP;
-            int32_t r = -1;
-            if (drive_abs32(tau0) < (uint32_t)SMALL_HALF_SWEEP) {
-                len0 = (arc_from_chord((int32_t)drive_hypot(jx2, q), tau0) + 1) >> 1;
-            } else {
-                r = (int32_t)drive_udiv((uint32_t)e2, (uint32_t)x, 23);
-                len0 = arc_from_radius(r, tau0);
-            }
-            if (drive_abs32(tau1) < (uint32_t)SMALL_HALF_SWEEP) {
-                len1 = (arc_from_chord((int32_t)drive_hypot(kx2, q), tau1) + 1) >> 1;
-            } else {
-                if (r < 0)
-                    r = (int32_t)drive_udiv((uint32_t)e2, (uint32_t)x, 23);
-                len1 = arc_from_radius(r, tau1);
-            }
-            if (len0 < 0 || len1 < 0)
-                return DRIVE_ERR_SWEEP;
-            out->kase = sigma > 0 ? DRIVE_CASE_1 : (a5 >= 0 ? DRIVE_CASE_2 : DRIVE_CASE_3);
-            curv *= sigma;
-            sweep0 = (fx_angle_t)tau0 * 2u;
+        /* A5 = p sin(eta) - |q| cos(eta) = Lc sin(eta) > 0 when an arc and a straight fit
+         * (rotation and translation the same way, eta > beta), and then the arc's radius
+         * Lc / (2 sin eta) >= rmin when A5 >= 2 sin^2(eta) rmin: a cheap filter before the
+         * exact test in arc_and_straight() (the seed's order: case 4/5 first, then its
+         * fallback, the double arc). */
+        z.sp = fx_mul_q30(z.p, z.s);
+        z.cq = fx_mul_q30(z.aq, z.c);
+        int32_t a5 = z.sp - z.cq;
+        int32_t rs = fx_mul_q30(min_radius, z.s), thr = INT32_MAX; /* rmin sin(eta), Q16 m */
+        if (rs < (INT32_MAX >> (z.osh + 1)))
+            thr = fx_mul_q30(shl(rs, (uint8_t)(z.osh + 1)), z.s);
+        if (!(a5 > 0 && z.s > 0 && a5 >= thr && arc_and_straight(&z))) {
+            drive_status_t st = double_arc(&z, needed);
+            if (st != DRIVE_OK)
+                return st;
         }
     }
 
     /* Back to the real world: mirror, reverse, units. The sweeps are heading changes of the
      * vehicle (equal to those of the direction of travel); the curvature is the steering's,
      * so reverse travel mirrors it. */
-    if (mirror) {
-        curv = -curv;
-        sweep0 = 0u - sweep0;
-    }
+    int32_t curv = mirror ? -z.curv : z.curv;
+    fx_angle_t sweep0 = mirror ? 0u - z.sweep0 : z.sweep0;
     int32_t steer = reverse ? -curv : curv;
-    uint8_t osh = (uint8_t)(8 - k);
     drive_segment_t *s0 = &out->seg[0], *s1 = &out->seg[1];
-    s0->length = shr_round(len0, osh);
-    s1->length = shr_round(len1, osh);
-    switch (out->kase) {
+    out->kase = z.kase;
+    switch (z.kase) {
     case DRIVE_CASE_STRAIGHT:
+        s0->length = shr_round(z.len0, z.osh);
+        s1->length = shr_round(z.len1, z.osh);
         s0->curvature = s1->curvature = 0;
         s0->sweep = s1->sweep = 0;
         break;
     case DRIVE_CASE_4:
+        s0->length = z.arc_q16;
+        s1->length = shr_round(z.len1, z.osh);
         s0->curvature = steer;
         s0->sweep = (fx_angle_t)dl;
         s1->curvature = 0;
         s1->sweep = 0;
         break;
     case DRIVE_CASE_5:
+        s0->length = shr_round(z.len0, z.osh);
+        s1->length = z.arc_q16;
         s0->curvature = 0;
         s0->sweep = 0;
         s1->curvature = steer;
         s1->sweep = (fx_angle_t)dl;
         break;
     default:
+        s0->length = shr_round(z.len0, z.osh);
+        s1->length = shr_round(z.len1, z.osh);
         s0->curvature = steer;
         s0->sweep = sweep0;
         s1->curvature = -steer;
         s1->sweep = (fx_angle_t)dl - sweep0;
         break;
-    }
-    if (out->kase == DRIVE_CASE_4 || out->kase == DRIVE_CASE_5) {
-        /* The straight after (or before) the arc can be long: make the arc's heading change
-         * exact in the units it is driven in. Its length is rounded up and the curvature set
-         * to sweep / length, never above the one checked against the minimum radius. */
-        drive_segment_t *arc = out->kase == DRIVE_CASE_4 ? s0 : s1;
-        int32_t arc_len = out->kase == DRIVE_CASE_4 ? len0 : len1;
-        arc->length = (int32_t)(((uint32_t)arc_len + ((1u << osh) - 1u)) >> osh);
-        uint32_t k_out =
-            drive_udiv((uint32_t)drive_angle_to_rad_q28(eta) * 2u, (uint32_t)arc->length, 16);
-        arc->curvature = steer < 0 ? -(int32_t)k_out : (int32_t)k_out;
     }
     return DRIVE_OK;
 }
@@ -299,11 +321,10 @@ fx_q16_t drive_radius_of(int32_t curvature)
     if (curvature == 0)
         return 0;
     uint32_t a = drive_abs32(curvature);
-    /* r = 2^28 / k metres = 2^44 / k in Q16 */
-    uint32_t r = drive_udiv(1u << 30, a, 14);
-    if (r > (uint32_t)INT32_MAX)
-        r = (uint32_t)INT32_MAX;
-    return curvature < 0 ? -(int32_t)r : (int32_t)r;
+    int32_t r; /* 2^28 / k metres = 2^44 / k in Q16 */
+    if (!fx_recip((int32_t)a, 44, &r))
+        r = INT32_MAX;
+    return curvature < 0 ? -r : r;
 }
 
 drive_pose_t drive_pose_advance(const drive_pose_t *pose, int32_t curvature, fx_q16_t dist,
@@ -325,9 +346,9 @@ drive_pose_t drive_pose_advance(const drive_pose_t *pose, int32_t curvature, fx_
     if (drive_abs32((int32_t)half) < (uint32_t)SMALL_HALF_SWEEP) {
         ratio = drive_sin_over_x_small(drive_angle_to_rad_q28((int32_t)half) * 4);
     } else {
-        fx_q30_t sh = fx_sin(half);
-        uint32_t num = drive_abs32(sh), den = drive_abs32(half28);
-        ratio = (int32_t)drive_udiv(num, den, 28); /* |sin x| / |x| in Q30 */
+        /* |sin x| / |x| in Q30 */
+        (void)fx_div_shift((int32_t)drive_abs32(fx_sin(half)), (int32_t)drive_abs32(half28), 28,
+                           &ratio);
     }
     int32_t chord = fx_mul_q30(dist, ratio);
     fx_angle_t dir = pose->heading + (reverse ? FX_ANGLE_HALF : 0u) + half;
