@@ -54,17 +54,16 @@ drive_status_t drive_speed_counts(fx_q16_t speed_mps, bool reverse, const drive_
     return DRIVE_OK;
 }
 
-/* Front-wheel counts of a segment: round(s sqrt(1 + (L k)^2) counts_per_m). */
+/* Front-wheel counts of a segment: round(s counts_per_m sqrt(1 + (L k)^2)). */
 static drive_status_t front_counts(const drive_segment_t *g, const drive_board_t *b, uint8_t *out)
 {
-    int32_t lf = g->length; /* front-wheel length, metres Q16 */
+    int32_t counts = fx_mul_q16(g->length, b->counts_per_m); /* rear-axle counts, Q16 */
     if (g->curvature != 0) {
         int32_t lk = fx_mul_q16(g->curvature, b->wheelbase); /* Q4.28 */
         uint32_t sec = fx_hypot(DRIVE_CURV_ONE, lk);         /* sqrt(1 + (L k)^2), Q4.28 */
-        if (sec > (uint32_t)INT32_MAX || !fx_mul_shift(lf, (int32_t)sec, 28, &lf))
+        if (sec > (uint32_t)INT32_MAX || !fx_mul_shift(counts, (int32_t)sec, 28, &counts))
             return DRIVE_ERR_RANGE;
     }
-    int32_t counts = fx_mul_q16(lf, b->counts_per_m); /* Q16 counts */
     counts = (counts + (1l << 15)) >> 16;
     if (counts > 255)
         return DRIVE_ERR_RANGE;

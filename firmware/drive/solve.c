@@ -21,10 +21,10 @@
 #include "drive/drive.h"
 #include "drive_internal.h"
 
-/* Straight case: heading change and lateral offset below these (the straight path then
- * misses by under 4e-7 rad and 2e-6 m). */
-#define STRAIGHT_ANGLE   256 /* binary angle, 2.1e-5 degrees */
-#define STRAIGHT_LAT_L24 16  /* L24 */
+/* Straight case (the seed's THRESH test): a heading change below 2^12 binary-angle LSB
+ * (6e-6 rad, 3.4e-4 degrees) and a lateral offset of at most one Q16 LSB (15 um): the two
+ * straight halves then land within 0.4 mm at 64 m. */
+#define STRAIGHT_ANGLE   4096l
 /* Arcs whose half-sweeps are both below 0.2 rad take their lengths from the chords (series
  * in the half-sweeps); otherwise from the radius, s = 2 |tau| r. 0.2 rad as a binary angle: */
 #define SMALL_HALF_SWEEP 136713055l
@@ -249,7 +249,7 @@ drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_
     z.sweep0 = 0;
     z.arc_q16 = 0;
 
-    if (dl < STRAIGHT_ANGLE && dl > -STRAIGHT_ANGLE && z.aq <= STRAIGHT_LAT_L24) {
+    if (dl < STRAIGHT_ANGLE && dl > -STRAIGHT_ANGLE && z.aq <= ((int32_t)1 << z.osh)) {
         /* Straight case: two halves along A. */
         z.kase = DRIVE_CASE_STRAIGHT;
         z.len0 = pp / 2;
@@ -346,9 +346,8 @@ drive_pose_t drive_pose_advance(const drive_pose_t *pose, int32_t curvature, fx_
     if (drive_abs32((int32_t)half) < (uint32_t)SMALL_HALF_SWEEP) {
         ratio = drive_sin_over_x_small(drive_angle_to_rad_q28((int32_t)half) * 4);
     } else {
-        /* |sin x| / |x| in Q30 */
-        (void)fx_div_shift((int32_t)drive_abs32(fx_sin(half)), (int32_t)drive_abs32(half28), 28,
-                           &ratio);
+        /* sin x / x in Q30: negative beyond half a turn (the chord points back) */
+        (void)fx_div_shift(fx_sin(half), half28, 28, &ratio);
     }
     int32_t chord = fx_mul_q30(dist, ratio);
     fx_angle_t dir = pose->heading + (reverse ? FX_ANGLE_HALF : 0u) + half;

@@ -16,7 +16,13 @@
 
 extern "C" {
 #include "drive/drive.h"
+#include "drive/drive_cmd.h"
+#include "drive/drive_path.h"
+#include "drive/drive_proto.h"
+#include "drive/drive_seq.h"
 #include "fx/fx_host.h"
+#include "hal_posix/drive_port_posix.h"
+#include "hal_posix/harness.h"
 }
 
 namespace
@@ -86,6 +92,8 @@ SeedRef seed_reference(Pose from, Pose to, double rmin, bool reverse)
     double C = A.x() * B.y() - A.y() * B.x(), S = A.dot(B);
     if (P <= 0 || S < 0)
         return {"refuse", 0, std::min(std::fabs(P) / D.norm(), std::fabs(S))};
+    if (std::fabs(T) < 1e-9 && std::fabs(C) < 1e-9) // the seed's THRESH test
+        return {"straight", INFINITY, 1.0};
     double phi = std::atan2(std::fabs(C), S), beta = std::atan2(std::fabs(T), P);
     double a = std::fabs(T), K = std::tan(beta);
     double root = 2 * std::sqrt(1 + K * K);
@@ -319,4 +327,528 @@ TEST(DriveSolve, OutsideTheDomainRefusesOrLands)
                 refusals[DRIVE_ERR_HEADING], refusals[DRIVE_ERR_RADIUS], refusals[DRIVE_ERR_SWEEP]);
     std::printf("worst landing error of the answers: %.3g mm, %.3g deg\n", worst_pos * 1e3,
                 worst_head);
+}
+
+// Mirror images are solved as exact reflections (fx is exactly odd): reflecting the world
+// across a line through the start gives exactly the reflected segments.
+TEST(DriveSolve, MirrorImagesAreExact)
+{
+    std::mt19937_64 rng(5);
+    int n = 0;
+    for (int i = 0; i < 20000; i++) {
+        Config c = random_config(rng);
+        drive_pose_t f = to_fx(c.from), t = to_fx(c.to);
+        // Reflect across the x axis: (x, y, heading) -> (x, -y, -heading).
+        drive_pose_t fm = {f.x, -f.y, 0u - f.heading}, tm = {t.x, -t.y, 0u - t.heading};
+        fx_q16_t rmin = fx_q16_from_double(c.rmin);
+        drive_solution_t a, b;
+        drive_status_t sa = drive_solve(&f, &t, rmin, c.reverse, &a, nullptr);
+        drive_status_t sb = drive_solve(&fm, &tm, rmin, c.reverse, &b, nullptr);
+        ASSERT_EQ(sa, sb);
+        if (sa != DRIVE_OK)
+            continue;
+        n++;
+        ASSERT_EQ(a.kase, b.kase);
+        for (int j = 0; j < 2; j++) {
+            ASSERT_EQ(a.seg[j].length, b.seg[j].length);
+            ASSERT_EQ(a.seg[j].curvature, -b.seg[j].curvature);
+            ASSERT_EQ(a.seg[j].sweep, 0u - b.seg[j].sweep);
+        }
+    }
+    std::printf("mirrored pairs identical up to the sign: %d\n", n);
+}
+
+// Each case on a configuration whose answer is known from elementary geometry.
+TEST(DriveSolve, CasesOnExactGeometry)
+{
+    struct Known {
+        const char *what;
+        Pose to;
+        double rmin;
+        drive_case_t kase;
+        double k0, s0, k1, s1; // expected curvatures (1/m) and lengths (m)
+    };
+    const double r = 0.8, h = kPi / 2;
+    const double t = 0.5; // S-curve half-sweep angle of each arc, rad
+    const Known known[] = {
+        // quarter circle of radius 0.8 to the left, then 1 m straight
+        {"case 4", {r, r + 1.0, h}, 0.5, DRIVE_CASE_4, 1 / r, r * h, 0, 1.0},
+        // 1 m straight, then the quarter circle to the right
+        {"case 5", {1.0 + r, -r, -h}, 0.5, DRIVE_CASE_5, 0, 1.0, -1 / r, r * h},
+        // single left arc of 60 degrees: d = h (case 4 with a zero straight)
+        {"single arc",
+         {r * std::sin(kPi / 3), r * (1 - std::cos(kPi / 3)), kPi / 3},
+         0.5,
+         DRIVE_CASE_4,
+         1 / r,
+         r * kPi / 3,
+         0,
+         0},
+        // symmetric S-curve, left then right, no heading change: case 1 (limit)
+        {"S-curve",
+         {2 * r * std::sin(t), 2 * r * (1 - std::cos(t)), 0},
+         0.5,
+         DRIVE_CASE_1,
+         1 / r,
+         r * t,
+         -1 / r,
+         r * t},
+        // the quarter circle of case 4 with a minimum radius above 0.8: the double arc
+        // of the seed's fallback (case 1) with the radius of the quadratic
+        {"case 4 -> 1", {r, r + 1.0, h}, 0.9, DRIVE_CASE_1, 0, 0, 0, 0},
+    };
+    for (const Known &k : known) {
+        drive_pose_t f = to_fx({0, 0, 0}), t2 = to_fx(k.to);
+        drive_solution_t sol;
+        ASSERT_EQ(drive_solve(&f, &t2, fx_q16_from_double(k.rmin), false, &sol, nullptr), DRIVE_OK)
+            << k.what;
+        Miss m = miss_of(f, t2, sol, false);
+        EXPECT_LT(m.pos, 1e-4) << k.what;
+        if (k.k0 == 0 &&
+            k.s0 == 0) {           // the fallback: equal radii from 4 s^2 r^2 + 4 c |q| r = |E|^2
+            Pose tq = from_fx(t2); // the target as the solver sees it (Q16)
+            double eta = wrap_pi(tq.th) / 2, s = std::sin(eta), c = std::cos(eta);
+            double p = tq.x * c + tq.y * s, q = -tq.x * s + tq.y * c;
+            double rr = (-4 * c * std::fabs(q) +
+                         std::sqrt(16 * c * c * q * q + 16 * s * s * (p * p + q * q))) /
+                        (8 * s * s);
+            EXPECT_NEAR(1 / curv_to_double(sol.seg[0].curvature), rr, 1e-6) << k.what;
+            EXPECT_NEAR(curv_to_double(sol.seg[1].curvature), -curv_to_double(sol.seg[0].curvature),
+                        1e-9);
+            EXPECT_EQ(sol.kase, k.kase) << k.what;
+            continue;
+        }
+        // A single arc is case 4 with an empty straight, or case 5 if q rounds below zero.
+        const drive_segment_t *g = sol.seg;
+        if (k.s1 == 0 && sol.kase == DRIVE_CASE_5) {
+            EXPECT_LE(sol.seg[0].length, 1) << k.what;
+            g = &sol.seg[1];
+        } else {
+            EXPECT_EQ(sol.kase, k.kase) << k.what;
+            EXPECT_NEAR(curv_to_double(sol.seg[1].curvature), k.k1, 2e-5 * std::fabs(k.k1))
+                << k.what;
+            EXPECT_NEAR(fx_q16_to_double(sol.seg[1].length), k.s1, 2e-5) << k.what;
+        }
+        // Arcs next to a straight are driven with a length rounded up to the next Q16 LSB
+        // and the curvature that keeps the heading change exact: 1 LSB / s relative.
+        EXPECT_NEAR(curv_to_double(g->curvature), k.k0, 2e-5 * std::fabs(k.k0)) << k.what;
+        EXPECT_NEAR(fx_q16_to_double(g->length), k.s0, 2e-5) << k.what;
+    }
+    // Straight ahead: the straight case, two halves.
+    drive_pose_t f = to_fx({1, 2, 0.3}),
+                 t2 = to_fx({1 + 3 * std::cos(0.3), 2 + 3 * std::sin(0.3), 0.3});
+    drive_solution_t sol;
+    ASSERT_EQ(drive_solve(&f, &t2, fx_q16_from_double(0.5), false, &sol, nullptr), DRIVE_OK);
+    EXPECT_EQ(sol.kase, DRIVE_CASE_STRAIGHT);
+    EXPECT_EQ(sol.seg[0].curvature, 0);
+    EXPECT_EQ(sol.seg[1].curvature, 0);
+    EXPECT_NEAR(fx_q16_to_double(sol.seg[0].length + sol.seg[1].length), 3.0, 2e-5);
+    // Reverse: backing straight into a spot 2 m behind.
+    drive_pose_t b = to_fx({1 - 2 * std::cos(0.3), 2 - 2 * std::sin(0.3), 0.3});
+    ASSERT_EQ(drive_solve(&f, &b, fx_q16_from_double(0.5), true, &sol, nullptr), DRIVE_OK);
+    EXPECT_EQ(sol.kase, DRIVE_CASE_STRAIGHT);
+    // The same spot going forward is behind: refused with the reason.
+    EXPECT_EQ(drive_solve(&f, &b, fx_q16_from_double(0.5), false, &sol, nullptr), DRIVE_ERR_BEHIND);
+}
+
+// The seed's typical run (thesis table 6-1, inches): every leg between the prescribed poses
+// is solvable with the seed's minimum radius of 10 in and lands.
+TEST(DriveSolve, SeedTableRun)
+{
+    const double in = 0.0254;
+    const double pts[][3] = {{36, 142, 270}, {42, 108, 300}, {36, 60, 270}, {48, 36, 315},
+                             {72, 30, 0},    {108, 30, 0},   {144, 30, 0}};
+    for (int i = 0; i + 1 < 7; i++) {
+        Pose a = {pts[i][0] * in, pts[i][1] * in, pts[i][2] * kPi / 180};
+        Pose b = {pts[i + 1][0] * in, pts[i + 1][1] * in, pts[i + 1][2] * kPi / 180};
+        drive_pose_t f = to_fx(a), t = to_fx(b);
+        drive_solution_t sol;
+        int32_t need = 0;
+        drive_status_t st = drive_solve(&f, &t, fx_q16_from_double(10 * in), false, &sol, &need);
+        SeedRef ref = seed_reference(from_fx(f), from_fx(t), 10 * in, false);
+        ASSERT_EQ(st, DRIVE_OK) << "leg " << i << " " << drive_status_text(st);
+        EXPECT_EQ(ref.kase, case_name(sol.kase)) << "leg " << i;
+        Miss m = miss_of(f, t, sol, false);
+        EXPECT_LT(m.pos, 1e-4);
+        std::printf(
+            "seed leg %d: case %s, r = %.1f in, s = %.1f + %.1f in\n", i, case_name(sol.kase),
+            sol.seg[0].curvature ? 1 / curv_to_double(sol.seg[0].curvature) / in
+                                 : 1 / curv_to_double(sol.seg[1].curvature) / in,
+            fx_q16_to_double(sol.seg[0].length) / in, fx_q16_to_double(sol.seg[1].length) / in);
+    }
+}
+
+TEST(DriveSolve, PoseAdvanceAndRadius)
+{
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> U(0, 1);
+    double worst = 0, worst_h = 0;
+    for (int i = 0; i < 20000; i++) {
+        Pose p = {-50 + 100 * U(rng), -50 + 100 * U(rng), 2 * kPi * U(rng)};
+        double k = (U(rng) - 0.5) * 8 * (U(rng) < 0.2 ? 1e-4 : 1);
+        if (U(rng) < 0.1)
+            k = 0;
+        double s = 5 * U(rng);
+        if (std::fabs(s * k) > 7.9) // the documented range: under 8 rad per call
+            s = 7.9 / std::fabs(k) * U(rng);
+        bool rev = U(rng) < 0.5;
+        drive_pose_t f = to_fx(p);
+        int32_t kq = (int32_t)std::llround(k * DRIVE_CURV_ONE);
+        fx_q16_t sq = fx_q16_from_double(s);
+        drive_pose_t e = drive_pose_advance(&f, kq, sq, rev);
+        Pose ref = follow(from_fx(f), {{curv_to_double(kq), fx_q16_to_double(sq)}}, rev);
+        worst = std::max(worst,
+                         std::hypot(fx_q16_to_double(e.x) - ref.x, fx_q16_to_double(e.y) - ref.y));
+        worst_h = std::max(worst_h, std::fabs(wrap_pi(fx_angle_to_rad(e.heading) - ref.th)));
+    }
+    std::printf("drive_pose_advance: worst %.3g mm, %.3g rad over 5 m\n", worst * 1e3, worst_h);
+    EXPECT_LT(worst, 5e-5);
+    EXPECT_LT(worst_h, 5e-6);
+    EXPECT_EQ(drive_radius_of(0), 0);
+    EXPECT_NEAR(fx_q16_to_double(drive_radius_of(DRIVE_CURV_ONE / 4)), 4.0, 2e-5);
+    EXPECT_NEAR(fx_q16_to_double(drive_radius_of(-DRIVE_CURV_ONE * 2)), -0.5, 2e-5);
+    EXPECT_EQ(drive_radius_of(1), INT32_MAX);
+}
+
+// ------------------------------------------------------------------ drive-board bytes
+
+namespace
+{
+
+const drive_board_t kSeedBoard = DRIVE_BOARD_SEED;
+
+// Distance of x from the nearest rounding tie (x.5): 0 means a tie.
+double from_tie(double x)
+{
+    return std::fabs(x - std::floor(x) - 0.5);
+}
+
+} // namespace
+
+// The seed's DRIVE procedure in double precision, inches and its own signs (left radius
+// negative): STEERING = 81.49 atan(30 / R) + 128 (81.49 = 256 / pi), ARC = 4.4 S sqrt(1 +
+// 900 / R^2). Our bytes, from the fixed-point solution in metres, must match them (rounded).
+TEST(DriveCmd, BytesMatchTheSeedFormulas)
+{
+    EXPECT_NEAR(fx_q16_to_double(kSeedBoard.wheelbase), 30 * 0.0254, 1e-5);
+    EXPECT_NEAR(fx_q16_to_double(kSeedBoard.counts_per_m), 4.4 / 0.0254, 1e-4);
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> U(0, 1);
+    int checked = 0, ties = 0;
+    for (int i = 0; i < 20000; i++) {
+        double r_in = (U(rng) < 0.5 ? -1 : 1) * (10 + 500 * U(rng));     // ours: left positive
+        double s_max = 250 / (4.4 * std::sqrt(1 + 900 / (r_in * r_in))); // inside the byte
+        double s_in = 0.7 + (s_max - 0.7) * U(rng);
+        drive_solution_t sol = {DRIVE_CASE_1,
+                                {{(int32_t)std::llround(DRIVE_CURV_ONE / (r_in * 0.0254)),
+                                  fx_q16_from_double(s_in * 0.0254), 0},
+                                 {0, fx_q16_from_double(s_in * 0.0254), 0}}};
+        drive_cmd_t cmd;
+        ASSERT_EQ(drive_cmd_build(&sol, &kSeedBoard, fx_q16_from_double(0.7), false, &cmd),
+                  DRIVE_OK);
+        double R = -1 / (curv_to_double(sol.seg[0].curvature) * 0.0254); // inches, the seed's sign
+        double S = fx_q16_to_double(sol.seg[0].length) / 0.0254;
+        double L = fx_q16_to_double(kSeedBoard.wheelbase) / 0.0254; // 30 in, as stored
+        double steer = 256 / kPi * std::atan(L / R) + 128;
+        double arc = 4.4 * S * std::sqrt(1 + L * L / (R * R));
+        if (from_tie(steer) < 1e-4 || from_tie(arc) < 1e-4) {
+            ties++;
+            continue;
+        }
+        checked++;
+        ASSERT_EQ(cmd.steer[0], (int)std::lround(steer)) << "R " << R;
+        ASSERT_EQ(cmd.arc[0], (int)std::lround(arc)) << "R " << R << " S " << S;
+        ASSERT_EQ(cmd.steer[1], DRIVE_STEER_STRAIGHT);
+        ASSERT_EQ(cmd.arc[1], (int)std::lround(4.4 * S));
+        ASSERT_EQ(cmd.speed, (int)std::lround(0.7 / fx_q16_to_double(kSeedBoard.speed_lsb)));
+        ASSERT_EQ(cmd.pulses, 2);
+    }
+    std::printf("steering and arc bytes equal to the seed's formulas: %d (ties skipped: %d)\n",
+                checked, ties);
+}
+
+TEST(DriveCmd, RangesReverseAndShortArcs)
+{
+    drive_cmd_t cmd;
+    // 1.47 m of front wheel is 255 counts: 1.48 m is out of the byte.
+    drive_solution_t straight = {
+        DRIVE_CASE_STRAIGHT, {{0, fx_q16_from_double(1.47), 0}, {0, fx_q16_from_double(0.5), 0}}};
+    ASSERT_EQ(drive_cmd_build(&straight, &kSeedBoard, fx_q16_from_double(0.5), false, &cmd),
+              DRIVE_OK);
+    EXPECT_EQ(cmd.arc[0], 255);
+    straight.seg[0].length = fx_q16_from_double(1.48);
+    EXPECT_EQ(drive_cmd_build(&straight, &kSeedBoard, fx_q16_from_double(0.5), false, &cmd),
+              DRIVE_ERR_RANGE);
+    // Speed: 127 counts at most, negative when reversing.
+    straight.seg[0].length = fx_q16_from_double(1.0);
+    EXPECT_EQ(drive_cmd_build(&straight, &kSeedBoard, fx_q16_from_double(2.3), false, &cmd),
+              DRIVE_ERR_RANGE);
+    ASSERT_EQ(drive_cmd_build(&straight, &kSeedBoard, fx_q16_from_double(1.0), true, &cmd),
+              DRIVE_OK);
+    EXPECT_EQ(cmd.speed, -(int)std::lround(1.0 / fx_q16_to_double(kSeedBoard.speed_lsb)));
+    // D7: a second arc under 3 counts is driven but not waited for; a short first arc is
+    // dropped; both short: nothing to wait for.
+    straight.seg[1].length = fx_q16_from_double(0.010); // 1.7 counts
+    ASSERT_EQ(drive_cmd_build(&straight, &kSeedBoard, fx_q16_from_double(0.5), false, &cmd),
+              DRIVE_OK);
+    EXPECT_EQ(cmd.arc[1], 2);
+    EXPECT_EQ(cmd.pulses, 1);
+    drive_solution_t first = {DRIVE_CASE_5,
+                              {{0, fx_q16_from_double(0.008), 0}, {0, fx_q16_from_double(0.5), 0}}};
+    ASSERT_EQ(drive_cmd_build(&first, &kSeedBoard, fx_q16_from_double(0.5), false, &cmd), DRIVE_OK);
+    EXPECT_EQ(cmd.arc[0], 0);
+    EXPECT_EQ(cmd.pulses, 1);
+    first.seg[1].length = fx_q16_from_double(0.004);
+    ASSERT_EQ(drive_cmd_build(&first, &kSeedBoard, fx_q16_from_double(0.5), false, &cmd), DRIVE_OK);
+    EXPECT_EQ(cmd.pulses, 0);
+    // Steering bytes: 1 count = pi / 256; the range ends at 89.6 degrees.
+    uint8_t b;
+    ASSERT_EQ(drive_steer_byte(fx_angle_from_deg(45), &b), DRIVE_OK);
+    EXPECT_EQ(b, 128 - 64);
+    ASSERT_EQ(drive_steer_byte(fx_angle_from_deg(-45), &b), DRIVE_OK);
+    EXPECT_EQ(b, 128 + 64);
+    ASSERT_EQ(drive_steer_byte(fx_angle_from_deg(89.5), &b), DRIVE_OK);
+    EXPECT_EQ(b, 1);
+    EXPECT_EQ(drive_steer_byte(fx_angle_from_deg(89.7), &b), DRIVE_ERR_RANGE);
+    // Seed 002's DAC: AGV_angle = CENTER + -(alpha) / 1.5707963 * (255 - CENTER), speed 128 + v.
+    for (double deg = -90; deg <= 90; deg += 0.37) {
+        double ref = 132 - (deg * kPi / 180) / 1.5707963 * (255 - 132);
+        if (from_tie(ref) < 1e-3)
+            continue;
+        ASSERT_EQ(drive_dac_angle_byte(fx_angle_from_deg(deg), 132), (int)std::lround(ref)) << deg;
+    }
+    EXPECT_EQ(drive_dac_speed_byte(0), 128);
+    EXPECT_EQ(drive_dac_speed_byte(127), 255);
+    EXPECT_EQ(drive_dac_speed_byte(-20), 108);
+    // The steering angle is atan(L / r), left positive.
+    double L = fx_q16_to_double(kSeedBoard.wheelbase);
+    EXPECT_NEAR(fx_angle_to_deg_signed(drive_steer_angle(DRIVE_CURV_ONE, kSeedBoard.wheelbase)),
+                std::atan(L) * 180 / kPi, 1e-4);
+    EXPECT_NEAR(
+        fx_angle_to_deg_signed(drive_steer_angle(-DRIVE_CURV_ONE / 2, kSeedBoard.wheelbase)),
+        -std::atan(L / 2) * 180 / kPi, 1e-4);
+}
+
+// ------------------------------------------------------------------ port protocols
+
+namespace
+{
+
+std::vector<std::pair<int, int>> writes_of(const drive_wseq_t &s)
+{
+    std::vector<std::pair<int, int>> v;
+    for (int i = 0; i < s.n; i++)
+        v.push_back({s.w[i].reg, s.w[i].value});
+    return v;
+}
+
+} // namespace
+
+// OUTPUT_TO_PORTS of seed 000, write by write, for the seed's speed of 40.
+TEST(DriveProto, SeedListingByteExact)
+{
+    const int A = HAL_DRIVE_PPI_A, B = HAL_DRIVE_PPI_B, C = HAL_DRIVE_PPI_C, W = HAL_DRIVE_PPI_CTRL;
+    drive_cmd_t cmd = {{0x9C, 0x6E}, {0xAA, 0x10}, 40, 2, {0, 0}};
+    drive_wseq_t s;
+    drive_ppi_load(&cmd, &s);
+    std::vector<std::pair<int, int>> expect = {
+        {C, 0x02},        {W, 0x80},            // OUTPUT(PORTC) = 002H; OUTPUT(C8255) = 080H
+        {A, 0x9C ^ 0xFF}, {B, 0x40}, {B, 0x00}, // steering angle 1
+        {A, 0xAA ^ 0xFF}, {B, 0x20}, {B, 0x00}, // arc length 1
+        {A, 0x6E ^ 0xFF}, {B, 0x50}, {B, 0x00}, // steering angle 2
+        {A, 0x10 ^ 0xFF}, {B, 0x30}, {B, 0x00}, // arc length 2
+        {A, 0x28 ^ 0xFF}, {B, 0x60}, {B, 0x00}, // speed 28H (40)
+        {W, 0x90},        {C, 0x82}};           // OUTPUT(C8255) = 90H; OUTPUT(PORTC) = 82H
+    EXPECT_EQ(writes_of(s), expect);
+    drive_ppi_speed(0, &s);
+    std::vector<std::pair<int, int>> stop = {{C, 0x02}, {W, 0x80}, {A, 0xFF}, {B, 0x60},
+                                             {B, 0x00}, {W, 0x90}, {C, 0x82}};
+    EXPECT_EQ(writes_of(s), stop);
+    drive_ppi_init(&s);
+    EXPECT_EQ(writes_of(s), (std::vector<std::pair<int, int>>{{W, 0x90}}));
+    const int DA = HAL_DRIVE_DAC_ANGLE, DS = HAL_DRIVE_DAC_SPEED, DO = HAL_DRIVE_DIGITAL;
+    drive_dac_start(132, &s); // seed 002's Init_AGV
+    EXPECT_EQ(writes_of(s),
+              (std::vector<std::pair<int, int>>{
+                  {DO, 0x03}, {DS, 128}, {DA, 132}, {DO, 0x07}, {DO, 0x05}, {DO, 0x04}}));
+    drive_dac_stop(132, &s);
+    EXPECT_EQ(writes_of(s), (std::vector<std::pair<int, int>>{{DA, 132}, {DS, 128}, {DO, 0x03}}));
+}
+
+TEST(DriveProto, DecoderRoundTripsEveryEncodableCommand)
+{
+    drive_decoder_t d;
+    drive_decoder_init(&d, 132);
+    drive_wseq_t s;
+    drive_event_t ev;
+    drive_ppi_init(&s);
+    for (int i = 0; i < s.n; i++)
+        ASSERT_FALSE(drive_decoder_feed(&d, s.w[i].reg, s.w[i].value, &ev));
+    std::mt19937_64 rng(11);
+    int n = 0;
+    // Every value of every item (the others random), then random commands.
+    for (int item = 0; item < 6; item++) {
+        for (int v = 0; v < 256; v++) {
+            for (int rep = 0; rep < (item == 5 ? 40 : 1); rep++) {
+                drive_cmd_t cmd = {{(uint8_t)rng(), (uint8_t)rng()},
+                                   {(uint8_t)rng(), (uint8_t)rng()},
+                                   (int8_t)rng(),
+                                   2,
+                                   {0, 0}};
+                if (item < 2)
+                    cmd.steer[item] = (uint8_t)v;
+                else if (item < 4)
+                    cmd.arc[item - 2] = (uint8_t)v;
+                else if (item == 4)
+                    cmd.speed = (int8_t)v;
+                drive_ppi_load(&cmd, &s);
+                int events = 0;
+                for (int i = 0; i < s.n; i++) {
+                    if (drive_decoder_feed(&d, s.w[i].reg, s.w[i].value, &ev)) {
+                        events++;
+                        ASSERT_EQ(i, s.n - 1) << "event before the commit";
+                        ASSERT_EQ(ev.type, DRIVE_EV_LOAD);
+                        ASSERT_EQ(ev.mask, DRIVE_ITEM_ALL);
+                        ASSERT_EQ(ev.cmd.steer[0], cmd.steer[0]);
+                        ASSERT_EQ(ev.cmd.steer[1], cmd.steer[1]);
+                        ASSERT_EQ(ev.cmd.arc[0], cmd.arc[0]);
+                        ASSERT_EQ(ev.cmd.arc[1], cmd.arc[1]);
+                        ASSERT_EQ(ev.cmd.speed, cmd.speed);
+                        ASSERT_EQ(ev.cmd.alpha[0], (fx_angle_t)((128 - cmd.steer[0]) * (1 << 23)));
+                    }
+                }
+                ASSERT_EQ(events, 1);
+                n++;
+                drive_ppi_speed(cmd.speed, &s);
+                for (int i = 0; i < s.n; i++)
+                    if (drive_decoder_feed(&d, s.w[i].reg, s.w[i].value, &ev)) {
+                        ASSERT_EQ(ev.type, DRIVE_EV_SPEED);
+                        ASSERT_EQ(ev.cmd.speed, cmd.speed);
+                    }
+            }
+        }
+    }
+    // DAC style: values and the decoded steering angle.
+    for (int v = 0; v < 256; v++) {
+        drive_dac_set((uint8_t)v, (uint8_t)(255 - v), &s);
+        ASSERT_TRUE(drive_decoder_feed(&d, s.w[0].reg, s.w[0].value, &ev));
+        ASSERT_EQ(ev.type, DRIVE_EV_DAC_ANGLE);
+        ASSERT_EQ(ev.value, v);
+        ASSERT_NEAR(fx_angle_to_deg_signed(ev.alpha), (132.0 - v) / 123.0 * 90.0, 1e-6);
+        ASSERT_EQ(drive_dac_angle_byte(ev.alpha, 132), v); // the encoder inverts it
+        ASSERT_TRUE(drive_decoder_feed(&d, s.w[1].reg, s.w[1].value, &ev));
+        ASSERT_EQ(ev.type, DRIVE_EV_DAC_SPEED);
+        ASSERT_EQ(ev.cmd.speed, 255 - v - 128);
+    }
+    drive_dac_outputs(0x15, &s);
+    ASSERT_TRUE(drive_decoder_feed(&d, s.w[0].reg, s.w[0].value, &ev));
+    EXPECT_EQ(ev.type, DRIVE_EV_OUTPUTS);
+    EXPECT_EQ(ev.value, 0x15);
+    std::printf("8255 loads round-tripped: %d (and as many speed changes)\n", n);
+}
+
+TEST(DriveProto, DecoderFlagsViolations)
+{
+    drive_decoder_t d;
+    drive_event_t ev;
+    const int A = HAL_DRIVE_PPI_A, B = HAL_DRIVE_PPI_B, C = HAL_DRIVE_PPI_C, W = HAL_DRIVE_PPI_CTRL;
+    struct Case {
+        const char *what;
+        std::vector<std::pair<int, int>> w;
+        drive_perr_t err;
+    } cases[] = {
+        {"port A written while input (after reset)", {{A, 0x12}}, DRIVE_PERR_PORT_INPUT},
+        {"mode 1", {{W, 0xA0}}, DRIVE_PERR_MODE},
+        {"unknown strobe code", {{W, 0x80}, {A, 0x00}, {B, 0x70}}, DRIVE_PERR_STROBE_CODE},
+        {"strobe without release",
+         {{W, 0x80}, {A, 0x00}, {B, 0x40}, {B, 0x20}},
+         DRIVE_PERR_STROBE_HELD},
+        {"strobe with the data bus released", {{W, 0x90}, {B, 0x40}}, DRIVE_PERR_NO_DATA},
+        {"register 7", {{7, 0x00}}, DRIVE_PERR_REGISTER},
+        {"port C while input", {{C, 0x82}}, DRIVE_PERR_PORT_INPUT},
+    };
+    for (const Case &c : cases) {
+        drive_decoder_init(&d, 132);
+        bool got = false;
+        for (auto &w : c.w) {
+            if (drive_decoder_feed(&d, (uint8_t)w.first, (uint8_t)w.second, &ev)) {
+                got = true;
+                EXPECT_EQ(ev.type, DRIVE_EV_ERROR) << c.what;
+                EXPECT_EQ(ev.error, c.err) << c.what;
+            }
+        }
+        EXPECT_TRUE(got) << c.what;
+    }
+    // A transfer broken by an error is forgotten; the next complete one decodes.
+    drive_decoder_init(&d, 132);
+    drive_wseq_t s;
+    drive_ppi_init(&s);
+    for (int i = 0; i < s.n; i++)
+        drive_decoder_feed(&d, s.w[i].reg, s.w[i].value, &ev);
+    drive_cmd_t cmd = {{100, 150}, {20, 30}, 12, 2, {0, 0}};
+    drive_ppi_load(&cmd, &s);
+    for (int i = 0; i < 6; i++)
+        drive_decoder_feed(&d, s.w[i].reg, s.w[i].value, &ev);
+    EXPECT_TRUE(drive_decoder_feed(&d, B, 0x77, &ev));
+    EXPECT_EQ(ev.type, DRIVE_EV_ERROR);
+    int loads = 0;
+    for (int i = 0; i < s.n; i++)
+        if (drive_decoder_feed(&d, s.w[i].reg, s.w[i].value, &ev) && ev.type == DRIVE_EV_LOAD)
+            loads++;
+    EXPECT_EQ(loads, 1);
+    // Port C bit set/reset: PC7 set by a control word commits too.
+    drive_ppi_speed(5, &s);
+    for (int i = 0; i + 1 < s.n; i++)
+        drive_decoder_feed(&d, s.w[i].reg, s.w[i].value, &ev);
+    ASSERT_TRUE(drive_decoder_feed(&d, W, 0x0F, &ev)); // bit 7 of C set
+    EXPECT_EQ(ev.type, DRIVE_EV_SPEED);
+    EXPECT_EQ(ev.cmd.speed, 5);
+}
+
+// hal/posix records every write of the board that makes it, with the simulated time, and
+// hands it to the sink: the closed-loop simulator's drive-board model sits there.
+TEST(DriveProto, HostPortRecordsAndFeedsTheDecoder)
+{
+    posix_reset();
+    int b = posix_board_create("main");
+    posix_board_select(b);
+    struct Sink {
+        drive_decoder_t d;
+        std::vector<drive_event_t> events;
+        int writes = 0;
+    } sink;
+    drive_decoder_init(&sink.d, 132);
+    posix_drive_port_set_sink(
+        b,
+        [](void *ctx, int, const posix_drive_write_t *w) {
+            Sink *k = static_cast<Sink *>(ctx);
+            k->writes++;
+            drive_event_t ev;
+            if (drive_decoder_feed(&k->d, w->reg, w->value, &ev))
+                k->events.push_back(ev);
+        },
+        &sink);
+    hal_drive_port_init();
+    drive_wseq_t s;
+    drive_ppi_init(&s);
+    drive_port_send(&s);
+    drive_cmd_t cmd = {{90, 170}, {200, 15}, -30, 2, {0, 0}};
+    drive_ppi_load(&cmd, &s);
+    drive_port_send(&s);
+    ASSERT_EQ(posix_drive_port_count(b), 20u);
+    posix_drive_write_t log[32];
+    ASSERT_EQ(posix_drive_port_log(b, log, 32), 20u);
+    for (int i = 0; i < s.n; i++) {
+        EXPECT_EQ(log[1 + i].reg, s.w[i].reg);
+        EXPECT_EQ(log[1 + i].value, s.w[i].value);
+    }
+    EXPECT_EQ(posix_drive_port_value(b, HAL_DRIVE_PPI_C), 0x82);
+    ASSERT_EQ(sink.events.size(), 1u);
+    EXPECT_EQ(sink.events[0].type, DRIVE_EV_LOAD);
+    EXPECT_EQ(sink.events[0].cmd.arc[0], 200);
+    EXPECT_EQ(sink.events[0].cmd.speed, -30);
+    EXPECT_EQ(sink.writes, 20);
+    posix_drive_port_clear(b);
+    EXPECT_EQ(posix_drive_port_count(b), 0u);
+    posix_reset();
 }

@@ -110,8 +110,9 @@ drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_
 
 /**
  * Advance @p pose by @p dist metres (Q16, >= 0) along a segment of curvature @p curvature
- * (Q4.28, vehicle frame), driving tail first when @p reverse. Exact to about 1e-7 m per metre
- * and 1e-7 rad (used to sample a nominal path and to predict where a loaded arc leads).
+ * (Q4.28, vehicle frame), driving tail first when @p reverse; |dist * curvature| < 8 rad
+ * (any arc of the solver). Error within 1e-5 m and 2e-6 rad over 5 m (tests/unit). Used to
+ * sample the nominal path and to predict where a loaded arc leads.
  */
 drive_pose_t drive_pose_advance(const drive_pose_t *pose, int32_t curvature, fx_q16_t dist,
                                 bool reverse);
