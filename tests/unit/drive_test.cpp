@@ -8,9 +8,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -851,4 +854,640 @@ TEST(DriveProto, HostPortRecordsAndFeedsTheDecoder)
     posix_drive_port_clear(b);
     EXPECT_EQ(posix_drive_port_count(b), 0u);
     posix_reset();
+}
+
+// ------------------------------------------------------------------ path preparation
+
+namespace
+{
+
+// The seed's typical run (table 6-1), inches to metres: the start and six path points.
+std::vector<drive_path_point_t> seed_path(double speed, drive_pose_t *start)
+{
+    const double in = 0.0254;
+    const double pts[][3] = {{36, 142, 270}, {42, 108, 300}, {36, 60, 270}, {48, 36, 315},
+                             {72, 30, 0},    {108, 30, 0},   {144, 30, 0}};
+    *start = to_fx({pts[0][0] * in, pts[0][1] * in, pts[0][2] * kPi / 180});
+    std::vector<drive_path_point_t> v;
+    for (int i = 1; i < 7; i++)
+        v.push_back({to_fx({pts[i][0] * in, pts[i][1] * in, pts[i][2] * kPi / 180}),
+                     fx_q16_from_double(speed), 0});
+    return v;
+}
+
+drive_path_config_t path_cfg(double nominal, double spacing, bool reverse)
+{
+    return {fx_q16_from_double(nominal), fx_q16_from_double(spacing), reverse};
+}
+
+} // namespace
+
+TEST(DrivePath, SecondaryPointsLieOnTheNominalPath)
+{
+    drive_pose_t start;
+    std::vector<drive_path_point_t> pts = seed_path(0.5, &start);
+    drive_path_t path;
+    drive_path_config_t cfg = path_cfg(0.4, 0.3, false);
+    ASSERT_EQ(drive_path_prepare(&path, &start, pts.data(), (uint8_t)pts.size(), &cfg, &kSeedBoard),
+              DRIVE_OK);
+    ASSERT_TRUE(path.ready);
+    int targets = 0;
+    double worst_off = 0, worst_gap = 0;
+    Pose prev = from_fx(start);
+    for (uint8_t leg = 0; leg < pts.size(); leg++) {
+        const drive_solution_t *sol;
+        ASSERT_EQ(drive_path_leg(&path, leg, &sol), DRIVE_OK);
+        double len = fx_q16_to_double(sol->seg[0].length + sol->seg[1].length);
+        int nsub = pts[leg].nsub;
+        EXPECT_GE(nsub * 0.3, len - 1e-4);
+        EXPECT_LT((nsub - 1) * 0.3, len);
+        // The nominal leg, densely sampled in double precision.
+        std::vector<Pose> dense;
+        Pose a = prev;
+        for (int j = 0; j <= 4000; j++) {
+            double t = len * j / 4000, s0 = fx_q16_to_double(sol->seg[0].length);
+            std::vector<Seg> part = {{curv_to_double(sol->seg[0].curvature), std::min(t, s0)}};
+            if (t > s0)
+                part.push_back({curv_to_double(sol->seg[1].curvature), t - s0});
+            dense.push_back(follow(a, part, false));
+        }
+        Pose last = a;
+        for (int sub = 1; sub <= nsub; sub++) {
+            drive_path_cursor_t cur = {leg, (uint8_t)sub};
+            drive_pose_t tp;
+            fx_q16_t speed;
+            ASSERT_EQ(drive_path_target(&path, cur, &tp, &speed), DRIVE_OK);
+            EXPECT_EQ(speed, pts[leg].speed);
+            Pose p = from_fx(tp);
+            double off = 1e9;
+            for (const Pose &d : dense)
+                off = std::min(off, std::hypot(d.x - p.x, d.y - p.y));
+            worst_off = std::max(worst_off, off);
+            worst_gap = std::max(worst_gap, std::hypot(p.x - last.x, p.y - last.y));
+            last = p;
+            targets++;
+            EXPECT_EQ(drive_path_is_last(&path, cur), leg + 1u == pts.size() && sub == nsub);
+        }
+        EXPECT_EQ(last.x, from_fx(pts[leg].pose).x); // the primary point itself
+        EXPECT_EQ(last.y, from_fx(pts[leg].pose).y);
+        prev = from_fx(pts[leg].pose);
+    }
+    // Walking the cursor visits every secondary point once.
+    drive_path_cursor_t c = drive_path_first(&path);
+    int walked = 1;
+    while (!drive_path_is_last(&path, c)) {
+        c = drive_path_next(&path, c);
+        walked++;
+    }
+    EXPECT_EQ(walked, targets);
+    std::printf("seed path: %d secondary points, farthest %.3g mm off the nominal path (sampling "
+                "step included), largest gap %.3f m (spacing 0.3 m)\n",
+                targets, worst_off * 1e3, worst_gap);
+    EXPECT_LT(worst_off, 2e-3);
+    EXPECT_LE(worst_gap, 0.3 + 1e-4);
+}
+
+TEST(DrivePath, UnacceptablePathsAreRejectedWithTheLeg)
+{
+    drive_pose_t start;
+    std::vector<drive_path_point_t> pts = seed_path(0.5, &start);
+    drive_path_t path;
+    drive_path_config_t cfg = path_cfg(0.4, 0.8, false);
+    struct Case {
+        const char *what;
+        int leg;
+        std::function<void(std::vector<drive_path_point_t> &, drive_path_config_t &)> spoil;
+        drive_status_t why;
+    } cases[] = {
+        {"heading change over 90 degrees", 2,
+         [](auto &p, auto &) { p[2].pose.heading += fx_angle_from_deg(120); }, DRIVE_ERR_HEADING},
+        {"point behind", 3,
+         [](auto &p, auto &) {
+             p[3].pose = p[2].pose;
+             p[3].pose.x -= FX_Q16_ONE;
+         },
+         DRIVE_ERR_BEHIND},
+        {"corner too tight for the nominal radius", 0,
+         [](auto &, auto &c) { c.nominal_radius = fx_q16_from_double(1.5); }, DRIVE_ERR_RADIUS},
+        {"speed zero", 4, [](auto &p, auto &) { p[4].speed = 0; }, DRIVE_ERR_PARAM},
+        {"speed beyond the byte", 0, [](auto &p, auto &) { p[0].speed = 5 * FX_Q16_ONE; },
+         DRIVE_ERR_RANGE},
+        {"piece beyond the 8-bit arc length (1.47 m)", 5,
+         [](auto &p, auto &c) {
+             p[5].pose.x += fx_q16_from_double(2.5); // 3.4 m: two halves of 1.7 m
+             c.spacing = fx_q16_from_double(8);
+         },
+         DRIVE_ERR_RANGE},
+        {"nominal radius below the vehicle's", 0,
+         [](auto &, auto &c) { c.nominal_radius = fx_q16_from_double(0.2); }, DRIVE_ERR_PARAM},
+    };
+    for (const Case &c : cases) {
+        std::vector<drive_path_point_t> p = pts;
+        drive_path_config_t k = cfg;
+        c.spoil(p, k);
+        EXPECT_EQ(drive_path_prepare(&path, &start, p.data(), (uint8_t)p.size(), &k, &kSeedBoard),
+                  c.why)
+            << c.what;
+        EXPECT_FALSE(path.ready) << c.what;
+        EXPECT_EQ(path.bad_leg, c.leg) << c.what;
+        drive_pose_t tp;
+        fx_q16_t sp;
+        EXPECT_EQ(drive_path_target(&path, drive_path_first(&path), &tp, &sp), DRIVE_ERR_PARAM);
+    }
+    // The unspoilt path, also driven tail first (its headings then point away from travel).
+    EXPECT_EQ(drive_path_prepare(&path, &start, pts.data(), (uint8_t)pts.size(), &cfg, &kSeedBoard),
+              DRIVE_OK);
+    std::vector<drive_path_point_t> back = pts;
+    drive_pose_t bstart = start;
+    bstart.heading += FX_ANGLE_HALF;
+    for (auto &q : back)
+        q.pose.heading += FX_ANGLE_HALF;
+    drive_path_config_t rcfg = path_cfg(0.4, 0.8, true);
+    EXPECT_EQ(
+        drive_path_prepare(&path, &bstart, back.data(), (uint8_t)back.size(), &rcfg, &kSeedBoard),
+        DRIVE_OK);
+}
+
+// ------------------------------------------------------------------ travel state table
+
+namespace
+{
+
+// A vehicle and its drive board in double precision, driven by the sequencer's actions
+// through the real port encoder and decoder, and a clock that raises index pulses, fixes,
+// poses, timers and delta-S pulses. The drive board executes an arc from its bytes: steering
+// alpha = (128 - byte) pi / 256, curvature tan(alpha) / L, rear-axle length = counts /
+// counts_per_m / sqrt(1 + (L k)^2); it raises delta-S when `margin` of an arc is left, arcs
+// shorter than min_pulse_counts raise none (the D7 worst case), a zero-length arc is
+// skipped, and it stops at the end of the second arc. Speed 0 brakes at 0.5 m/s^2 (never
+// beyond the end of the loaded arcs).
+struct World {
+    const drive_board_t *board;
+    drive_path_t *path;
+    drive_seq_t seq;
+    drive_decoder_t dec;
+    Pose pose;
+    double t = 0, v = 0, margin = 0.02;
+    bool braking = false;
+    struct Arc {
+        double k, len, left;
+        bool pulse;
+    } arc[2] = {};
+    int cur = 2;
+    bool index_on = false, reverse = false, fail_fixes = false;
+    double next_index = 0.5, t_fix = -1, t_pose = -1, t_timer = -1, pose_ms = 0;
+    std::vector<double> pulses;       // pending delta-S times
+    std::vector<Pose> stops;          // where STOP left the vehicle
+    std::vector<uint16_t> action_log; // every non-empty action set
+    int set_speeds = 0, events = 0;
+    bool done = false, fault = false;
+    drive_fault_t fault_why = DRIVE_FAULT_NONE;
+    double cross_max = 0, cross_sum = 0;
+    int cross_n = 0;
+    std::vector<Pose> nominal; // the nominal path, densely sampled
+
+    double L() const
+    {
+        return fx_q16_to_double(board->wheelbase);
+    }
+
+    void load_bytes(const drive_cmd_t &c)
+    {
+        double cpm = fx_q16_to_double(board->counts_per_m);
+        for (int i = 0; i < 2; i++) {
+            double alpha = (128 - c.steer[i]) * kPi / 256, k = std::tan(alpha) / L();
+            double len = c.arc[i] / cpm / std::sqrt(1 + L() * L() * k * k);
+            arc[i] = {k, len, len, c.arc[i] < board->min_pulse_counts};
+        }
+        cur = arc[0].len > 0 ? 0 : 1;
+        set_speed(c.speed);
+    }
+
+    void set_speed(int8_t counts)
+    {
+        if (counts == 0 && v != 0) {
+            braking = true;
+            return;
+        }
+        braking = false;
+        v = counts * fx_q16_to_double(board->speed_lsb);
+    }
+
+    void send(const drive_wseq_t &s)
+    {
+        drive_event_t ev;
+        for (int i = 0; i < s.n; i++) {
+            if (!drive_decoder_feed(&dec, s.w[i].reg, s.w[i].value, &ev))
+                continue;
+            if (ev.type == DRIVE_EV_LOAD)
+                load_bytes(ev.cmd);
+            else if (ev.type == DRIVE_EV_SPEED)
+                set_speed(ev.cmd.speed);
+            else
+                ADD_FAILURE() << "unexpected drive-board event " << ev.type;
+        }
+    }
+
+    // Move the vehicle by dt seconds.
+    void move(double dt)
+    {
+        if (braking) {
+            double m = std::max(0.0, std::fabs(v) - 0.5 * dt);
+            v = v < 0 ? -m : m;
+            if (m == 0)
+                braking = false;
+        }
+        double ds = std::fabs(v) * dt;
+        while (ds > 0 && cur < 2 && v != 0) {
+            Arc &a = arc[cur];
+            double step = std::min(ds, a.left);
+            pose = follow(pose, {{a.k, step}}, v < 0);
+            a.left -= step;
+            ds -= step;
+            if (!a.pulse && a.left <= margin) {
+                a.pulse = true;
+                pulses.push_back(t);
+            }
+            if (a.left <= 0) {
+                cur++;
+                if (cur == 1 && arc[1].len <= 0)
+                    cur = 2;
+                if (cur == 2)
+                    v = 0;
+            }
+        }
+        if (!nominal.empty() && !done) {
+            double d = 1e9;
+            for (const Pose &n : nominal)
+                d = std::min(d, std::hypot(n.x - pose.x, n.y - pose.y));
+            cross_max = std::max(cross_max, d);
+            cross_sum += d;
+            cross_n++;
+        }
+    }
+
+    Pose predict(double ms)
+    {
+        World w = *this;
+        w.nominal.clear();
+        for (int i = 0; i < (int)ms; i++)
+            w.move(0.001);
+        return w.pose;
+    }
+
+    void step(drive_evt_t type, Pose p = {})
+    {
+        drive_seq_event_t ev = {type, to_fx(p)};
+        drive_seq_out_t out;
+        drive_seq_step(&seq, &ev, &out);
+        events++;
+        if (out.actions)
+            action_log.push_back(out.actions);
+        drive_wseq_t s;
+        if (out.actions & DRIVE_ACT_STOP) {
+            drive_ppi_speed(0, &s);
+            send(s);
+            stops.push_back(pose);
+        }
+        if (out.actions & DRIVE_ACT_REQUEST_FIX)
+            t_fix = t + 0.017;
+        if (out.actions & DRIVE_ACT_REQUEST_POSE) {
+            t_pose = t + 0.001;
+            pose_ms = out.pose_ms;
+        }
+        if (out.actions & DRIVE_ACT_LOAD) {
+            drive_ppi_load(&out.cmd, &s);
+            send(s);
+        }
+        if (out.actions & DRIVE_ACT_SET_SPEED) {
+            drive_ppi_speed(out.speed, &s);
+            send(s);
+            set_speeds++;
+        }
+        if (out.actions & DRIVE_ACT_TIMER)
+            t_timer = t + out.timer_ms / 1000.0;
+        if (out.actions & DRIVE_ACT_INDEX_ON) {
+            index_on = true;
+            next_index = t + 0.5;
+        }
+        if (out.actions & DRIVE_ACT_INDEX_OFF)
+            index_on = false;
+        if (out.actions & DRIVE_ACT_DONE)
+            done = true;
+        if (out.actions & DRIVE_ACT_FAULT) {
+            fault = true;
+            fault_why = out.fault;
+        }
+    }
+
+    // Run until done, a fault or the time limit.
+    void run(double limit)
+    {
+        drive_wseq_t s;
+        drive_ppi_init(&s);
+        send(s);
+        step(DRIVE_EVT_START, from_fx(path->start));
+        while (!done && !fault && t < limit) {
+            t += 0.001;
+            move(0.001);
+            std::vector<double> due;
+            for (double pt : pulses)
+                if (pt <= t)
+                    due.push_back(pt);
+            for (size_t i = 0; i < due.size(); i++)
+                step(DRIVE_EVT_DELTA_S);
+            pulses.erase(
+                std::remove_if(pulses.begin(), pulses.end(), [&](double x) { return x <= t; }),
+                pulses.end());
+            if (index_on && t >= next_index) {
+                next_index += 0.5;
+                step(DRIVE_EVT_INDEX);
+            }
+            if (t_fix >= 0 && t >= t_fix) {
+                t_fix = -1;
+                step(fail_fixes ? DRIVE_EVT_FIX_FAILED : DRIVE_EVT_FIX_READY, pose);
+            }
+            if (t_pose >= 0 && t >= t_pose) {
+                t_pose = -1;
+                step(DRIVE_EVT_POSE, pose_ms ? predict(pose_ms) : pose);
+            }
+            if (t_timer >= 0 && t >= t_timer) {
+                t_timer = -1;
+                step(DRIVE_EVT_TIMER);
+            }
+        }
+        // Done: the vehicle brakes to a standstill.
+        for (int i = 0; i < 5000 && v != 0; i++) {
+            t += 0.001;
+            move(0.001);
+        }
+    }
+};
+
+std::vector<Pose> nominal_of(drive_path_t *path)
+{
+    std::vector<Pose> v;
+    Pose a = from_fx(path->start);
+    for (uint8_t leg = 0; leg < path->n; leg++) {
+        const drive_solution_t *sol;
+        if (drive_path_leg(path, leg, &sol) != DRIVE_OK)
+            return {};
+        for (int j = 0; j <= 400; j++) {
+            double s0 = fx_q16_to_double(sol->seg[0].length),
+                   s1 = fx_q16_to_double(sol->seg[1].length);
+            double t = (s0 + s1) * j / 400;
+            std::vector<Seg> part = {{curv_to_double(sol->seg[0].curvature), std::min(t, s0)}};
+            if (t > s0)
+                part.push_back({curv_to_double(sol->seg[1].curvature), t - s0});
+            v.push_back(follow(a, part, path->cfg.reverse));
+        }
+        a = from_fx(path->pts[leg].pose);
+    }
+    return v;
+}
+
+drive_seq_config_t seq_cfg(drive_mode_t mode)
+{
+    return {mode, 35, 50, fx_q16_from_double(0.15), fx_q16_from_double(0.4), 3};
+}
+
+} // namespace
+
+TEST(DriveSeq, FullTravelDrivesTheSeedPathAndStops)
+{
+    for (int rev = 0; rev < 2; rev++) {
+        drive_pose_t start;
+        std::vector<drive_path_point_t> pts = seed_path(0.5, &start);
+        if (rev) { // the same path tail first
+            start.heading += FX_ANGLE_HALF;
+            for (auto &q : pts)
+                q.pose.heading += FX_ANGLE_HALF;
+        }
+        drive_path_t path;
+        drive_path_config_t cfg = path_cfg(0.4, 0.8, rev != 0);
+        ASSERT_EQ(
+            drive_path_prepare(&path, &start, pts.data(), (uint8_t)pts.size(), &cfg, &kSeedBoard),
+            DRIVE_OK);
+        World w;
+        w.board = &kSeedBoard;
+        w.path = &path;
+        w.pose = from_fx(start);
+        w.nominal = nominal_of(&path);
+        drive_decoder_init(&w.dec, 132);
+        drive_seq_config_t sc = seq_cfg(DRIVE_MODE_FULL);
+        drive_seq_init(&w.seq, &path, &sc);
+        w.run(120);
+        ASSERT_TRUE(w.done) << "state " << drive_seq_state_name(w.seq.state) << " fault "
+                            << w.fault_why << " status " << w.seq.solve_status;
+        Pose goal = from_fx(pts.back().pose);
+        double miss = std::hypot(w.pose.x - goal.x, w.pose.y - goal.y);
+        double hmiss = std::fabs(wrap_pi(w.pose.th - goal.th)) * 180 / kPi;
+        std::printf("full travel%s: %.1f s, %u loads, %u underruns, %u ignored events, final miss "
+                    "%.1f mm %.2f deg, cross-track mean %.1f mm max %.1f mm\n",
+                    rev ? " (reverse)" : "", w.t, w.seq.loads, w.seq.underruns, w.seq.ignored,
+                    miss * 1e3, hmiss, w.cross_sum / w.cross_n * 1e3, w.cross_max * 1e3);
+        EXPECT_EQ(w.seq.state, DRIVE_ST_DONE);
+        EXPECT_EQ(w.set_speeds, 1); // the stopping routine slowed down once
+        EXPECT_GT(w.seq.loads, 8u);
+        EXPECT_EQ(w.seq.underruns, 0u);
+        EXPECT_LT(miss, 0.01);
+        EXPECT_LT(hmiss, 1.0);
+        EXPECT_LT(w.cross_max, 0.03);
+    }
+}
+
+TEST(DriveSeq, SimplifiedTravelStopsAtEveryPoint)
+{
+    drive_pose_t start;
+    std::vector<drive_path_point_t> pts = seed_path(0.4, &start);
+    drive_path_t path;
+    drive_path_config_t cfg = path_cfg(0.4, 0.8, false);
+    ASSERT_EQ(drive_path_prepare(&path, &start, pts.data(), (uint8_t)pts.size(), &cfg, &kSeedBoard),
+              DRIVE_OK);
+    World w;
+    w.board = &kSeedBoard;
+    w.path = &path;
+    w.pose = from_fx(start);
+    drive_decoder_init(&w.dec, 132);
+    drive_seq_config_t sc = seq_cfg(DRIVE_MODE_SIMPLIFIED);
+    drive_seq_init(&w.seq, &path, &sc);
+    w.run(300);
+    ASSERT_TRUE(w.done) << drive_seq_state_name(w.seq.state);
+    int targets = 0;
+    for (uint8_t leg = 0; leg < path.n; leg++)
+        targets += pts[leg].nsub;
+    Pose goal = from_fx(pts.back().pose);
+    double miss = std::hypot(w.pose.x - goal.x, w.pose.y - goal.y);
+    std::printf("simplified travel: %.1f s, %d stops for %d points, %u loads, final miss %.1f mm\n",
+                w.t, (int)w.stops.size(), targets, w.seq.loads, miss * 1e3);
+    EXPECT_EQ((int)w.stops.size(), targets);
+    EXPECT_EQ((int)w.seq.loads, targets);
+    EXPECT_LT(miss, 0.01);
+    // Stop and go: every load is preceded by the fix of a clean revolution.
+    int fixes = 0;
+    for (uint16_t a : w.action_log)
+        fixes += (a & DRIVE_ACT_REQUEST_FIX) != 0;
+    EXPECT_EQ(fixes, targets);
+}
+
+TEST(DriveSeq, RejectedPathFixFailuresAndSpuriousEvents)
+{
+    drive_pose_t start;
+    std::vector<drive_path_point_t> pts = seed_path(0.5, &start);
+    pts[2].pose.heading += fx_angle_from_deg(120); // unacceptable
+    drive_path_t path;
+    drive_path_config_t cfg = path_cfg(0.4, 0.8, false);
+    ASSERT_NE(drive_path_prepare(&path, &start, pts.data(), (uint8_t)pts.size(), &cfg, &kSeedBoard),
+              DRIVE_OK);
+    drive_seq_t seq;
+    drive_seq_config_t sc = seq_cfg(DRIVE_MODE_FULL);
+    drive_seq_init(&seq, &path, &sc);
+    drive_seq_event_t ev = {DRIVE_EVT_START, start};
+    drive_seq_out_t out;
+    drive_seq_step(&seq, &ev, &out);
+    EXPECT_EQ(out.actions, DRIVE_ACT_FAULT);
+    EXPECT_EQ(out.fault, DRIVE_FAULT_NOT_READY);
+    EXPECT_EQ(seq.state, DRIVE_ST_FAULT);
+
+    // Every fix fails: dead reckoning carries the run for max_fix_failures, then it stops.
+    pts = seed_path(0.5, &start);
+    ASSERT_EQ(drive_path_prepare(&path, &start, pts.data(), (uint8_t)pts.size(), &cfg, &kSeedBoard),
+              DRIVE_OK);
+    World w;
+    w.board = &kSeedBoard;
+    w.path = &path;
+    w.pose = from_fx(start);
+    w.fail_fixes = true;
+    drive_decoder_init(&w.dec, 132);
+    drive_seq_init(&w.seq, &path, &sc);
+    w.run(60);
+    EXPECT_TRUE(w.fault);
+    EXPECT_EQ(w.fault_why, DRIVE_FAULT_FIXES);
+    EXPECT_TRUE(w.braking || w.v == 0.0);
+
+    // Events that have no row in the current state are ignored: nothing happens.
+    uint16_t nrows;
+    const drive_seq_row_t *rows = drive_seq_table(&nrows);
+    World z;
+    z.board = &kSeedBoard;
+    z.path = &path;
+    z.pose = from_fx(start);
+    drive_decoder_init(&z.dec, 132);
+    drive_seq_init(&z.seq, &path, &sc);
+    std::mt19937_64 rng(4);
+    int injected = 0;
+    drive_wseq_t s;
+    drive_ppi_init(&s);
+    z.send(s);
+    z.step(DRIVE_EVT_START, from_fx(start));
+    while (!z.done && !z.fault && z.t < 120) {
+        z.t += 0.001;
+        z.move(0.001);
+        if (rng() % 50 == 0) {
+            drive_evt_t e = (drive_evt_t)(rng() % DRIVE_EVT_STOP); // never STOP
+            bool has_row = false;
+            for (uint16_t i = 0; i < nrows; i++)
+                has_row |= (rows[i].state == z.seq.state || rows[i].state == DRIVE_ST_ANY) &&
+                           rows[i].event == e;
+            if (!has_row) {
+                drive_state_t before = z.seq.state;
+                uint16_t ign = z.seq.ignored;
+                drive_seq_event_t sev = {e, to_fx(z.pose)};
+                drive_seq_out_t o;
+                drive_seq_step(&z.seq, &sev, &o);
+                ASSERT_EQ(o.actions, 0);
+                ASSERT_EQ(z.seq.state, before);
+                ASSERT_EQ(z.seq.ignored, ign + 1);
+                injected++;
+            }
+        }
+        std::vector<double> due;
+        for (double pt : z.pulses)
+            if (pt <= z.t)
+                due.push_back(pt);
+        for (size_t i = 0; i < due.size(); i++)
+            z.step(DRIVE_EVT_DELTA_S);
+        z.pulses.erase(
+            std::remove_if(z.pulses.begin(), z.pulses.end(), [&](double x) { return x <= z.t; }),
+            z.pulses.end());
+        if (z.index_on && z.t >= z.next_index) {
+            z.next_index += 0.5;
+            z.step(DRIVE_EVT_INDEX);
+        }
+        if (z.t_fix >= 0 && z.t >= z.t_fix) {
+            z.t_fix = -1;
+            z.step(DRIVE_EVT_FIX_READY, z.pose);
+        }
+        if (z.t_pose >= 0 && z.t >= z.t_pose) {
+            z.t_pose = -1;
+            z.step(DRIVE_EVT_POSE, z.pose_ms ? z.predict(z.pose_ms) : z.pose);
+        }
+        if (z.t_timer >= 0 && z.t >= z.t_timer) {
+            z.t_timer = -1;
+            z.step(DRIVE_EVT_TIMER);
+        }
+    }
+    std::printf("spurious events injected and ignored: %d; the run still finished: %s\n", injected,
+                z.done ? "yes" : "no");
+    EXPECT_TRUE(z.done);
+    EXPECT_GT(injected, 100);
+
+    // A stop request ends any running state.
+    drive_seq_init(&seq, &path, &sc);
+    ev = {DRIVE_EVT_START, start};
+    drive_seq_step(&seq, &ev, &out);
+    ev.type = DRIVE_EVT_STOP;
+    drive_seq_step(&seq, &ev, &out);
+    EXPECT_EQ(out.actions, DRIVE_ACT_STOP | DRIVE_ACT_DONE);
+    EXPECT_EQ(seq.state, DRIVE_ST_DONE);
+}
+
+// D7 in the stopping routine: when the last double arc's second arc is too short for a
+// pulse, the vehicle stops at the first (and only) pulse instead of waiting forever.
+TEST(DriveSeq, ShortSecondArcStopsAtTheOnlyPulse)
+{
+    drive_pose_t start = to_fx({0, 0, 0});
+    // Case 4: a left arc of 0.5 m radius over 30 degrees, then 8 mm straight (1.4 counts).
+    double r = 0.5, a = kPi / 6;
+    Pose end = {r * std::sin(a) + 0.008 * std::cos(a), r * (1 - std::cos(a)) + 0.008 * std::sin(a),
+                a};
+    std::vector<drive_path_point_t> pts = {{to_fx(end), fx_q16_from_double(0.3), 0}};
+    drive_path_t path;
+    drive_path_config_t cfg = path_cfg(0.4, 1.0, false);
+    ASSERT_EQ(drive_path_prepare(&path, &start, pts.data(), 1, &cfg, &kSeedBoard), DRIVE_OK);
+    World w;
+    w.board = &kSeedBoard;
+    w.path = &path;
+    w.pose = from_fx(start);
+    drive_decoder_init(&w.dec, 132);
+    drive_seq_config_t sc = seq_cfg(DRIVE_MODE_FULL);
+    drive_seq_init(&w.seq, &path, &sc);
+    w.run(20);
+    ASSERT_TRUE(w.done) << drive_seq_state_name(w.seq.state);
+    EXPECT_EQ(w.seq.loaded.pulses, 1);
+    EXPECT_EQ(w.set_speeds, 0); // no second pulse to slow down for
+    double miss = std::hypot(w.pose.x - end.x, w.pose.y - end.y);
+    std::printf("short second arc: stopped %.1f mm from the point\n", miss * 1e3);
+    EXPECT_LT(miss, 0.01);
+}
+
+TEST(DriveSeq, TableIsConsistent)
+{
+    uint16_t n;
+    const drive_seq_row_t *rows = drive_seq_table(&n);
+    std::set<drive_state_t> reached = {DRIVE_ST_IDLE};
+    for (uint16_t i = 0; i < n; i++) {
+        ASSERT_TRUE(rows[i].state < DRIVE_ST_COUNT || rows[i].state == DRIVE_ST_ANY);
+        ASSERT_LT(rows[i].event, DRIVE_EVT_COUNT);
+        ASSERT_TRUE(rows[i].next < DRIVE_ST_COUNT || rows[i].next == 0xFE);
+        if (rows[i].next < DRIVE_ST_COUNT)
+            reached.insert((drive_state_t)rows[i].next);
+        for (uint16_t j = 0; j < i; j++) // no duplicate (state, event, guard)
+            ASSERT_FALSE(rows[j].state == rows[i].state && rows[j].event == rows[i].event &&
+                         rows[j].guard == rows[i].guard)
+                << "rows " << j << " and " << i;
+    }
+    EXPECT_EQ(reached.size(), (size_t)DRIVE_ST_COUNT); // every state is entered somewhere
+    std::printf("state table: %u rows, %d states, %d events\n", n, (int)DRIVE_ST_COUNT,
+                (int)DRIVE_EVT_COUNT);
 }
