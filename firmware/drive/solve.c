@@ -24,10 +24,10 @@
 /* Straight case (the seed's THRESH test): a heading change below 2^12 binary-angle LSB
  * (6e-6 rad, 3.4e-4 degrees) and a lateral offset of at most one Q16 LSB (15 um): the two
  * straight halves then land within 0.4 mm at 64 m. */
-#define STRAIGHT_ANGLE   4096l
-/* Arcs whose half-sweeps are both below 0.2 rad take their lengths from the chords (series
- * in the half-sweeps); otherwise from the radius, s = 2 |tau| r. 0.2 rad as a binary angle: */
-#define SMALL_HALF_SWEEP 136713055l
+#define STRAIGHT_ANGLE 4096l
+/* Half-sweeps (binary angles) bounding the ways of getting arc lengths (double_arc()). */
+#define TAU_TINY       20506958l  /* 0.03 rad */
+#define TAU_SMALL      136713055l /* 0.2 rad */
 
 const char *drive_status_text(drive_status_t st)
 {
@@ -56,23 +56,9 @@ const char *drive_status_text(drive_status_t st)
     return "unknown status";
 }
 
-/* v / 2^sh rounded to nearest (ties away from zero), 0 <= sh <= 30. */
-static int32_t shr_round(int32_t v, uint8_t sh)
-{
-    if (sh == 0)
-        return v;
-    int32_t half = (int32_t)1 << (sh - 1);
-    return v >= 0 ? (v + half) >> sh : -((-v + half) >> sh);
-}
-
-/* v * 2^sh for 0 <= sh <= 14 (the caller knows it fits). */
-static int32_t shl(int32_t v, uint8_t sh)
-{
-    return (int32_t)((uint32_t)v << sh);
-}
-
 /* The canonical problem: heading change 2 eta >= 0 to the left, target E = (p, q) in the frame
- * of the mean heading u, lengths in L24 (Q24 of 2^k m, osh = 8 - k). */
+ * of the mean heading u, lengths in L24 (Q24 of 2^k m). Powers of two of the scale are kept
+ * as numbers (variable shifts are slow loops on the MSP430). */
 typedef struct {
     int32_t p, q, aq;   /* L24; aq = |q| */
     int32_t eta;        /* binary angle, 0 <= eta <= quarter / 2 */
@@ -80,8 +66,9 @@ typedef struct {
     int32_t pc, qs;     /* p cos eta, q sin eta */
     int32_t sp, cq;     /* p sin eta, |q| cos eta */
     int32_t e2;         /* |E|^2, L24 m^2 */
-    int8_t k;           /* scale 2^k m */
-    uint8_t osh;        /* 8 - k */
+    int8_t k;           /* scale 2^k m, -5..4 */
+    int32_t up;         /* 2^(8 - k): one Q16 LSB in L24 */
+    int32_t down;       /* 2^(22 + k): L24 -> Q16 is fx_mul_q30(v, down) */
     fx_q16_t rmin;      /* metres Q16 */
     drive_case_t kase;  /* result: case */
     int32_t curv;       /* result: first arc's curvature, Q4.28 /m, canonical sign */
@@ -96,7 +83,7 @@ static bool arc_and_straight(canon_t *z)
 {
     int32_t l, lc, arc;
     int32_t eta30 = drive_angle_to_rad_q30(z->eta);
-    if (z->eta < SMALL_HALF_SWEEP) {
+    if (z->eta < TAU_SMALL) {
         if (!fx_div_shift(z->aq, z->s, 30, &l))
             return false;
         lc = z->p - fx_mul_q30(l, z->c);
@@ -113,7 +100,9 @@ static bool arc_and_straight(canon_t *z)
     /* The straight next to the arc can be long: make the arc's heading change exact in the
      * units it is driven in. Length rounded up, curvature = sweep / length (never above the
      * true one), and that curvature checked against the minimum radius. */
-    int32_t arc_q16 = (int32_t)(((uint32_t)arc + (((uint32_t)1 << z->osh) - 1u)) >> z->osh);
+    int32_t arc_q16 = fx_mul_q30(arc, z->down);
+    if (arc_q16 * z->up < arc)
+        arc_q16++;
     if (!fx_div_shift(eta30, arc_q16, 15, &z->curv) ||
         fx_mul_q16(z->curv, z->rmin) > DRIVE_CURV_ONE)
         return false;
@@ -129,6 +118,17 @@ static bool arc_and_straight(canon_t *z)
     return true;
 }
 
+/* For |tau|, |g| < 0.03 rad, from the squares of the binary angles scaled by 32
+ * (a' = (32 tau)^2 / 2^30, so that tau^2 = a' pi^2 / 4096 in Q30): sec(g) tau / sin(tau) =
+ * 1 + g^2/2 + tau^2/6 + O(4) = 1 + (a' + 3 b') pi^2 / 24576; the fourth-order terms stay
+ * below 3e-7. */
+#define PI2_OVER_24576_Q30 431210l
+
+static int32_t chord_factor_tiny(int32_t a, int32_t b)
+{
+    return (int32_t)(FX_Q30_ONE + fx_mul_q30(a + 3 * b, PI2_OVER_24576_Q30));
+}
+
 /* Cases 1, 2 and 3: a double arc of equal radii, first turn sigma = sign(q).
  * X = sqrt(q^2 + (p sin eta)^2) + |q| cos eta, curvature 2 X / |E|^2, radius r = |E|^2 / (2 X),
  * rho = r sin(eta), junction 2J = (p + 2 sigma rho, q), half-sweeps gamma + eta and -gamma
@@ -136,7 +136,11 @@ static bool arc_and_straight(canon_t *z)
 static drive_status_t double_arc(canon_t *z, int32_t *needed)
 {
     int32_t sigma = z->q >= 0 ? 1 : -1;
-    int32_t x = (int32_t)fx_hypot(z->q, z->sp) + z->cq;
+    /* W = hypot(q, p sin eta) as a projection on its own direction (cheaper than the 64-bit
+     * square root on the MSP430; exact but for the rounding of the two products). */
+    fx_q30_t zs, zc;
+    fx_sincos(fx_atan2(z->sp, z->aq), &zs, &zc);
+    int32_t x = fx_mul_q30(z->aq, zc) + fx_mul_q30(z->sp, zs) + z->cq;
     bool fits = fx_div_shift(x, z->e2, (uint8_t)(29 - z->k), &z->curv);
     if (!fits || fx_mul_q16(z->curv, z->rmin) > DRIVE_CURV_ONE) {
         if (needed != NULL)
@@ -163,20 +167,26 @@ static drive_status_t double_arc(canon_t *z, int32_t *needed)
     int32_t tau0 = gamma + z->eta, tau1 = -gamma;
     if (sigma < 0 && tau0 > 0)
         return DRIVE_ERR_SWEEP;
-    if (drive_abs32(tau0) < (uint32_t)SMALL_HALF_SWEEP &&
-        drive_abs32(tau1) < (uint32_t)SMALL_HALF_SWEEP) {
-        /* From the chords: arc 1 from O to J (at angle gamma = -tau1 from u), arc 2 from J to
-         * E (at gamma + eta = tau0): s = (chord along u) sec(chord angle) tau / sin(tau). */
+    uint32_t big = drive_abs32(tau0) > drive_abs32(tau1) ? drive_abs32(tau0) : drive_abs32(tau1);
+    /* Lengths. From the radius, s = 2 |tau| r, unless the radius is large: an error d in tau
+     * (fx_atan2: 1.3e-6 rad) costs 2 r d, so below |tau| = 0.03 rad (r > 16 |E|; and, for legs
+     * over 8 m, below 0.2 rad) they come from the chords: arc 1 from O to J at angle
+     * gamma = -tau1 from u, arc 2 from J to E at gamma + eta = tau0: s = (chord along u)
+     * sec(chord angle) tau / sin(tau), as series in the angles. */
+    if (big < (uint32_t)TAU_TINY) {
+        int32_t a0 = fx_mul_q30(tau0 * 32, tau0 * 32), a1 = fx_mul_q30(tau1 * 32, tau1 * 32);
+        z->len0 = fx_mul_q30(jx2 / 2, chord_factor_tiny(a0, a1));
+        z->len1 = fx_mul_q30(kx2 / 2, chord_factor_tiny(a1, a0));
+    } else if (z->k >= 2 && big < (uint32_t)TAU_SMALL) {
         int32_t t0 = drive_angle_to_rad_q30(tau0), t1 = drive_angle_to_rad_q30(tau1);
         z->len0 = fx_mul_q30(fx_mul_q30(jx2 / 2, drive_sec_small(t1)), drive_x_over_sin_small(t0));
         z->len1 = fx_mul_q30(fx_mul_q30(kx2 / 2, drive_sec_small(t0)), drive_x_over_sin_small(t1));
     } else {
-        /* From the radius: s = 2 |tau| r (r is below about 2.5 |E| here). */
-        if (!have_r || r20 >= (1l << 27))
-            return DRIVE_ERR_SWEEP;
-        int32_t r24 = r20 * 16;
-        z->len0 = fx_mul_q30(r24, drive_angle_to_rad_q28((int32_t)drive_abs32(tau0)) * 2) * 4;
-        z->len1 = fx_mul_q30(r24, drive_angle_to_rad_q28((int32_t)drive_abs32(tau1)) * 2) * 4;
+        /* r <= |E| / (2 sin 0.03) < 95 * 2^k m here. 2 |tau| r = |tau (binary)| pi r / 2^30:
+         * rp = pi r / 4 (L24), s = fx_mul_q30(rp, |tau|) * 4. */
+        int32_t rp = fx_mul_q30(r20 * 16, 843314857l); /* pi / 4, Q30 */
+        z->len0 = fx_mul_q30(rp, (int32_t)drive_abs32(tau0)) * 4;
+        z->len1 = fx_mul_q30(rp, (int32_t)drive_abs32(tau1)) * 4;
     }
     if (z->len0 < 0 || z->len1 < 0)
         return DRIVE_ERR_SWEEP;
@@ -208,20 +218,31 @@ drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_
     z.rmin = min_radius;
 
     /* D and its scale 2^k: |dx|, |dy| <= 4 * 2^k m (Q16: 2^(18 + k)), -5 <= k <= 4. */
-    int64_t dx64 = (int64_t)to->x - from->x, dy64 = (int64_t)to->y - from->y;
-    uint64_t mx = (uint64_t)(dx64 < 0 ? -dx64 : dx64), my = (uint64_t)(dy64 < 0 ? -dy64 : dy64);
-    if (mx > (uint64_t)DRIVE_MAX_DIST || my > (uint64_t)DRIVE_MAX_DIST)
+    int32_t dx = (int32_t)((uint32_t)to->x - (uint32_t)from->x);
+    int32_t dy = (int32_t)((uint32_t)to->y - (uint32_t)from->y);
+    if (((to->x ^ from->x) & (to->x ^ dx)) < 0 || ((to->y ^ from->y) & (to->y ^ dy)) < 0)
+        return DRIVE_ERR_TOO_FAR; /* the difference overflows: over 32768 m */
+    uint32_t mx = drive_abs32(dx), my = drive_abs32(dy), m = mx > my ? mx : my;
+    if (m > (uint32_t)DRIVE_MAX_DIST)
         return DRIVE_ERR_TOO_FAR;
-    uint32_t m = (uint32_t)(mx > my ? mx : my);
+    uint32_t lim = (uint32_t)1 << 13;
     z.k = -5;
-    while (m > ((uint32_t)1 << (18 + z.k)))
+    z.up = (int32_t)1 << 13;
+    z.down = (int32_t)1 << 17;
+    int32_t rlim = INT32_MAX >> 13; /* INT32_MAX / up */
+    while (m > lim) {
+        lim <<= 1;
+        z.up >>= 1;
+        z.down <<= 1;
+        rlim = (rlim << 1) | 1;
         z.k++;
-    z.osh = (uint8_t)(8 - z.k);
+    }
 
     /* E in the u frame: p along u, q to its left. */
     fx_q30_t cu, su;
     fx_sincos(a1 + (fx_angle_t)z.eta, &su, &cu);
-    int32_t dx = shl((int32_t)dx64, z.osh), dy = shl((int32_t)dy64, z.osh); /* |.| <= 2^26 */
+    dx *= z.up; /* L24, |.| <= 2^26 */
+    dy *= z.up;
     z.p = fx_mul_q30(dx, cu) + fx_mul_q30(dy, su);
     z.q = fx_mul_q30(dy, cu) - fx_mul_q30(dx, su);
 
@@ -249,7 +270,7 @@ drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_
     z.sweep0 = 0;
     z.arc_q16 = 0;
 
-    if (dl < STRAIGHT_ANGLE && dl > -STRAIGHT_ANGLE && z.aq <= ((int32_t)1 << z.osh)) {
+    if (dl < STRAIGHT_ANGLE && dl > -STRAIGHT_ANGLE && z.aq <= z.up) {
         /* Straight case: two halves along A. */
         z.kase = DRIVE_CASE_STRAIGHT;
         z.len0 = pp / 2;
@@ -262,11 +283,15 @@ drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_
          * fallback, the double arc). */
         z.sp = fx_mul_q30(z.p, z.s);
         z.cq = fx_mul_q30(z.aq, z.c);
-        int32_t a5 = z.sp - z.cq;
-        int32_t rs = fx_mul_q30(min_radius, z.s), thr = INT32_MAX; /* rmin sin(eta), Q16 m */
-        if (rs < (INT32_MAX >> (z.osh + 1)))
-            thr = fx_mul_q30(shl(rs, (uint8_t)(z.osh + 1)), z.s);
-        if (!(a5 > 0 && z.s > 0 && a5 >= thr && arc_and_straight(&z))) {
+        int32_t a5 = z.sp - z.cq, rs = INT32_MAX; /* rmin sin(eta), L24 */
+        if (a5 > 0 && z.s > 0) {
+            if (min_radius <= rlim)
+                rs = fx_mul_q30(min_radius * z.up, z.s);
+            else if (!fx_mul_shift(min_radius, z.s, (uint8_t)(22 + z.k), &rs))
+                rs = INT32_MAX;
+        }
+        bool line = rs < INT32_MAX / 2 && a5 >= fx_mul_q30(rs * 2, z.s) && arc_and_straight(&z);
+        if (!line) {
             drive_status_t st = double_arc(&z, needed);
             if (st != DRIVE_OK)
                 return st;
@@ -283,21 +308,21 @@ drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_
     out->kase = z.kase;
     switch (z.kase) {
     case DRIVE_CASE_STRAIGHT:
-        s0->length = shr_round(z.len0, z.osh);
-        s1->length = shr_round(z.len1, z.osh);
+        s0->length = fx_mul_q30(z.len0, z.down);
+        s1->length = fx_mul_q30(z.len1, z.down);
         s0->curvature = s1->curvature = 0;
         s0->sweep = s1->sweep = 0;
         break;
     case DRIVE_CASE_4:
         s0->length = z.arc_q16;
-        s1->length = shr_round(z.len1, z.osh);
+        s1->length = fx_mul_q30(z.len1, z.down);
         s0->curvature = steer;
         s0->sweep = (fx_angle_t)dl;
         s1->curvature = 0;
         s1->sweep = 0;
         break;
     case DRIVE_CASE_5:
-        s0->length = shr_round(z.len0, z.osh);
+        s0->length = fx_mul_q30(z.len0, z.down);
         s1->length = z.arc_q16;
         s0->curvature = 0;
         s0->sweep = 0;
@@ -305,8 +330,8 @@ drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_
         s1->sweep = (fx_angle_t)dl;
         break;
     default:
-        s0->length = shr_round(z.len0, z.osh);
-        s1->length = shr_round(z.len1, z.osh);
+        s0->length = fx_mul_q30(z.len0, z.down);
+        s1->length = fx_mul_q30(z.len1, z.down);
         s0->curvature = steer;
         s0->sweep = sweep0;
         s1->curvature = -steer;
@@ -343,7 +368,7 @@ drive_pose_t drive_pose_advance(const drive_pose_t *pose, int32_t curvature, fx_
     int32_t half28 = d28 / 2;
     fx_angle_t half = drive_rad_q28_to_angle(half28);
     int32_t ratio; /* Q30 */
-    if (drive_abs32((int32_t)half) < (uint32_t)SMALL_HALF_SWEEP) {
+    if (drive_abs32((int32_t)half) < (uint32_t)TAU_SMALL) {
         ratio = drive_sin_over_x_small(drive_angle_to_rad_q28((int32_t)half) * 4);
     } else {
         /* sin x / x in Q30: negative beyond half a turn (the chord points back) */

@@ -15,9 +15,14 @@
 
 #include "cy_test.h"
 #include "drive/drive.h"
+#include "drive/drive_cmd.h"
+#include "drive/drive_path.h"
+#include "drive/drive_proto.h"
+#include "drive/drive_seq.h"
 #include "fx/fx.h"
 
 #define DOMAIN_N 300u
+#define NEAR_N   100u
 #define WIDE_N   100u
 
 static uint32_t rng = 0x2545F491u;
@@ -43,6 +48,8 @@ static void out_hex(uint32_t v)
 }
 
 static cy_bench_stat_t st_solve = {"doublearc", 0, 0, 0};
+static cy_bench_stat_t st_cmd = {"drive_cmd", 0, 0, 0};
+static const drive_board_t board = DRIVE_BOARD_SEED;
 
 /* Operands through volatiles so that the timed call cannot be hoisted. */
 static volatile drive_pose_t v_from, v_to;
@@ -95,6 +102,25 @@ static void print_solution(const char *tag, const drive_pose_t *f, const drive_p
             out_hex((uint32_t)sol.seg[i].length);
             out_hex(sol.seg[i].sweep);
         }
+        drive_cmd_t cmd;
+        drive_status_t cs;
+        if (timed)
+            CY_BENCH(&st_cmd, cs = drive_cmd_build(&sol, &board, 32768, rev, &cmd));
+        else
+            cs = drive_cmd_build(&sol, &board, 32768, rev, &cmd);
+        cy_print(" cmd ");
+        cy_print_dec((int32_t)cs);
+        if (cs == DRIVE_OK) {
+            for (uint8_t i = 0; i < 2u; i++) {
+                out_hex(cmd.steer[i]);
+                out_hex(cmd.arc[i]);
+                out_hex(cmd.alpha[i]);
+            }
+            cy_print(" ");
+            cy_print_dec(cmd.speed);
+            cy_print(" ");
+            cy_print_dec(cmd.pulses);
+        }
     } else if (st == DRIVE_ERR_RADIUS) {
         out_hex((uint32_t)need);
     }
@@ -132,6 +158,20 @@ static void solver_vectors(void)
         drive_pose_t f, t;
         make_config(dist, bearing, dth, rev, &f, &t);
         print_solution("solve", &f, &t, rmin, rev, true);
+    }
+    /* Near straight, what full travel solves most: lateral offsets up to 5 cm, heading
+     * errors up to 2 degrees, 0.3 - 1.5 m, timed too. */
+    const uint32_t lat_span = (uint32_t)(0.1 * 65536), dth_span = (uint32_t)DEG(4.0);
+    for (uint16_t i = 0; i < NEAR_N; i++) {
+        uint32_t dist = (uint32_t)(0.3 * 65536) + rnd_span((uint32_t)(1.2 * 65536));
+        int32_t lat = (int32_t)(rnd_span(lat_span) >> (rnd32() & 15u)) - (int32_t)(lat_span >> 1);
+        int32_t bearing = (int32_t)fx_atan2(lat, (int32_t)dist);
+        int32_t dth = ((int32_t)rnd_span(dth_span) - DEG(2.0)) >> (rnd32() & 15u);
+        fx_q16_t rmin = (fx_q16_t)((uint32_t)(0.25 * 65536) + rnd_span((uint32_t)(0.75 * 65536)));
+        bool rev = (rnd32() & 3u) == 0;
+        drive_pose_t f, t;
+        make_config(dist, bearing, dth, rev, &f, &t);
+        print_solution("near", &f, &t, rmin, rev, true);
     }
     /* Wider: any bearing and heading change, 1 cm - 70 m, radii 0.1 - 120 m. */
     for (uint16_t i = 0; i < WIDE_N; i++) {
@@ -180,11 +220,161 @@ static void solver_vectors(void)
     }
 }
 
+static void print_wseq(const char *tag, const drive_wseq_t *w)
+{
+    cy_print(tag);
+    for (uint8_t i = 0; i < w->n; i++) {
+        cy_print(" ");
+        cy_print_dec(w->w[i].reg);
+        cy_print(":");
+        cy_print_dec(w->w[i].value);
+    }
+    cy_println();
+}
+
+/* Both port protocols and the decoder on the target. */
+static void proto_vectors(void)
+{
+    drive_decoder_t d;
+    drive_decoder_init(&d, board.dac_center);
+    drive_wseq_t w;
+    drive_event_t ev;
+    drive_ppi_init(&w);
+    print_wseq("ppi-init", &w);
+    for (uint8_t i = 0; i < w.n; i++)
+        (void)drive_decoder_feed(&d, w.w[i].reg, w.w[i].value, &ev);
+    for (uint16_t n = 0; n < 40u; n++) {
+        drive_cmd_t c = {{(uint8_t)rnd32(), (uint8_t)rnd32()},
+                         {(uint8_t)rnd32(), (uint8_t)rnd32()},
+                         (int8_t)rnd32(),
+                         2,
+                         {0, 0}};
+        drive_ppi_load(&c, &w);
+        print_wseq("ppi-load", &w);
+        for (uint8_t i = 0; i < w.n; i++) {
+            if (drive_decoder_feed(&d, w.w[i].reg, w.w[i].value, &ev)) {
+                cy_print("event ");
+                cy_print_dec(ev.type);
+                out_hex(ev.mask);
+                out_hex(ev.cmd.steer[0]);
+                out_hex(ev.cmd.arc[0]);
+                out_hex(ev.cmd.steer[1]);
+                out_hex(ev.cmd.arc[1]);
+                out_hex((uint8_t)ev.cmd.speed);
+                out_hex(ev.cmd.alpha[0]);
+                cy_println();
+            }
+        }
+        fx_angle_t a = rnd32() >> 2;
+        drive_dac_set(drive_dac_angle_byte(a, board.dac_center), drive_dac_speed_byte(c.speed), &w);
+        print_wseq("dac", &w);
+        for (uint8_t i = 0; i < w.n; i++) {
+            if (drive_decoder_feed(&d, w.w[i].reg, w.w[i].value, &ev)) {
+                cy_print("event ");
+                cy_print_dec(ev.type);
+                out_hex(ev.value);
+                out_hex(ev.alpha);
+                cy_println();
+            }
+        }
+    }
+    drive_ppi_speed(0, &w);
+    print_wseq("ppi-stop", &w);
+    drive_dac_start(board.dac_center, &w);
+    print_wseq("dac-start", &w);
+    drive_dac_stop(board.dac_center, &w);
+    print_wseq("dac-stop", &w);
+}
+
+/* The seed's typical run (thesis table 6-1, inches) as a path, prepared and driven through
+ * the state table with the vehicle placed exactly on each pose it is asked for. */
+#define IN(v) ((int32_t)((v)*1664.6016)) /* inches to Q16 metres (0.0254 * 65536) */
+static drive_path_point_t pts[6];
+
+static void path_vectors(void)
+{
+    static const int16_t seed[7][3] = {{36, 142, 270}, {42, 108, 300}, {36, 60, 270}, {48, 36, 315},
+                                       {72, 30, 0},    {108, 30, 0},   {144, 30, 0}};
+    drive_pose_t start = {IN(seed[0][0]), IN(seed[0][1]), (fx_angle_t)(270ul * 11930465ul)};
+    for (uint8_t i = 0; i < 6u; i++) {
+        pts[i].pose.x = IN(seed[i + 1][0]);
+        pts[i].pose.y = IN(seed[i + 1][1]);
+        pts[i].pose.heading = (fx_angle_t)((uint32_t)seed[i + 1][2] * 11930465ul);
+        pts[i].speed = 32768; /* 0.5 m/s */
+    }
+    drive_path_config_t cfg = {26214 /* 0.4 m */, 52429 /* 0.8 m */, false};
+    drive_path_t path;
+    drive_status_t st = drive_path_prepare(&path, &start, pts, 6, &cfg, &board);
+    cy_print("path ");
+    cy_print_dec((int32_t)st);
+    for (uint8_t i = 0; i < 6u; i++) {
+        cy_print(" ");
+        cy_print_dec(pts[i].nsub);
+    }
+    cy_println();
+    drive_path_cursor_t c = drive_path_first(&path);
+    for (;;) {
+        drive_pose_t tp;
+        fx_q16_t sp;
+        st = drive_path_target(&path, c, &tp, &sp);
+        cy_print("target ");
+        cy_print_dec(c.leg);
+        cy_print(" ");
+        cy_print_dec(c.sub);
+        cy_print(" ");
+        cy_print_dec((int32_t)st);
+        out_hex((uint32_t)tp.x);
+        out_hex((uint32_t)tp.y);
+        out_hex(tp.heading);
+        cy_println();
+        if (drive_path_is_last(&path, c))
+            break;
+        c = drive_path_next(&path, c);
+    }
+    /* Simplified travel with synthetic events: the vehicle reaches each target exactly. */
+    drive_seq_config_t sc = {DRIVE_MODE_SIMPLIFIED, 35, 50, 9830, 26214, 3};
+    drive_seq_t seq;
+    drive_seq_init(&seq, &path, &sc);
+    drive_seq_event_t ev = {DRIVE_EVT_START, start};
+    drive_seq_out_t out;
+    drive_pose_t here = start;
+    for (uint16_t step = 0;
+         step < 400u && seq.state != DRIVE_ST_DONE && seq.state != DRIVE_ST_FAULT; step++) {
+        drive_seq_step(&seq, &ev, &out);
+        cy_print("seq ");
+        cy_print_dec(seq.state);
+        out_hex(out.actions);
+        if (out.actions & DRIVE_ACT_LOAD) {
+            out_hex(out.cmd.steer[0]);
+            out_hex(out.cmd.arc[0]);
+            out_hex(out.cmd.steer[1]);
+            out_hex(out.cmd.arc[1]);
+        }
+        cy_println();
+        /* The next event the world would raise. */
+        if (out.actions & DRIVE_ACT_REQUEST_FIX) {
+            ev.type = DRIVE_EVT_FIX_READY;
+            ev.pose = here;
+        } else if (seq.state == DRIVE_ST_S_SKIP_INDEX || seq.state == DRIVE_ST_S_WAIT_INDEX) {
+            ev.type = DRIVE_EVT_INDEX;
+        } else if (seq.state == DRIVE_ST_S_ARC1 || seq.state == DRIVE_ST_S_ARC2) {
+            if (out.actions & DRIVE_ACT_LOAD) {
+                fx_q16_t sp;
+                (void)drive_path_target(&path, seq.target, &here, &sp);
+            }
+            ev.type = DRIVE_EVT_DELTA_S;
+        }
+    }
+}
+
 int main(void)
 {
     cy_bench_init();
     solver_vectors();
+    proto_vectors();
+    path_vectors();
     cy_bench_report(&st_solve);
+    cy_bench_report(&st_cmd);
     cy_test_end();
     return 0;
 }
