@@ -169,15 +169,17 @@ static drive_status_t double_arc(canon_t *z, int32_t *needed)
         return DRIVE_ERR_SWEEP;
     uint32_t big = drive_abs32(tau0) > drive_abs32(tau1) ? drive_abs32(tau0) : drive_abs32(tau1);
     /* Lengths. From the radius, s = 2 |tau| r, unless the radius is large: an error d in tau
-     * (fx_atan2: 1.3e-6 rad) costs 2 r d, so below |tau| = 0.03 rad (r > 16 |E|; and, for legs
-     * over 8 m, below 0.2 rad) they come from the chords: arc 1 from O to J at angle
-     * gamma = -tau1 from u, arc 2 from J to E at gamma + eta = tau0: s = (chord along u)
-     * sec(chord angle) tau / sin(tau), as series in the angles. */
+     * (fx_atan2: 1.3e-6 rad) costs 2 r d, so below |tau| = 0.03 rad (r > 16 |E|: at most
+     * 190 m for legs up to 8 m) and, for longer legs, for radii over 256 m below 0.2 rad, they
+     * come from the chords: arc 1 from O to J at angle gamma = -tau1 from u, arc 2 from J to
+     * E at gamma + eta = tau0: s = (chord along u) sec(chord angle) tau / sin(tau), as series
+     * in the angles. */
     if (big < (uint32_t)TAU_TINY) {
         int32_t a0 = fx_mul_q30(tau0 * 32, tau0 * 32), a1 = fx_mul_q30(tau1 * 32, tau1 * 32);
         z->len0 = fx_mul_q30(jx2 / 2, chord_factor_tiny(a0, a1));
         z->len1 = fx_mul_q30(kx2 / 2, chord_factor_tiny(a1, a0));
-    } else if (z->k >= 2 && big < (uint32_t)TAU_SMALL) {
+    } else if (z->k >= 2 && big < (uint32_t)TAU_SMALL &&
+               (!have_r || r20 >= ((int32_t)1 << (28 - z->k)))) {
         int32_t t0 = drive_angle_to_rad_q30(tau0), t1 = drive_angle_to_rad_q30(tau1);
         z->len0 = fx_mul_q30(fx_mul_q30(jx2 / 2, drive_sec_small(t1)), drive_x_over_sin_small(t0));
         z->len1 = fx_mul_q30(fx_mul_q30(kx2 / 2, drive_sec_small(t0)), drive_x_over_sin_small(t1));

@@ -97,13 +97,14 @@ const char *drive_status_text(drive_status_t st);
  * @p min_radius: metres Q16 in [DRIVE_MIN_RADIUS_MIN, DRIVE_MIN_RADIUS_MAX].
  * @p reverse: the vehicle drives tail first (both poses keep the vehicle's heading).
  * On DRIVE_OK, @p out holds the case and the segments: following them from @p from ends at
- * @p to within 0.1 mm and 0.001 degrees for distances up to 8 m (twice that up to 16 m, and
- * so on: longer legs are solved at a coarser scale); every arc's radius is >= @p min_radius
- * (up to 1 LSB of the curvature). Otherwise @p out is left with kase and the needed radius
- * (see drive_solve_needed_curvature) undefined, and the status says why.
- * On DRIVE_ERR_RADIUS, @p needed (if not NULL) receives the curvature the best double arc
- * would need (Q4.28, saturated at 8 /m), so that callers can report the radius.
- * Cost on the MSP430: see docs/drive.md (cycles.json entry "doublearc").
+ * @p to within 0.05 mm and 0.003 degrees in the issue's domain (0.3 - 5 m; within 0.3 mm and
+ * 0.005 degrees up to 64 m; tests/unit/drive_test.cpp), every arc's radius is >= @p
+ * min_radius (exactly: curvature * min_radius <= 1 in the fixed-point values returned).
+ * Otherwise the status says why and @p out is unspecified; on DRIVE_ERR_RADIUS, @p needed (if
+ * not NULL) receives the curvature the double arc would need (Q4.28; INT32_MAX when over 8 /m),
+ * so that callers can report the radius. Reentrant; no state.
+ * Cost on the MSP430: about 9,000 cycles at most, measured over the vector set (cycles.json
+ * "doublearc", and "doublearc_wide" for legs up to 64 m; docs/drive.md).
  */
 drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_q16_t min_radius,
                            bool reverse, drive_solution_t *out, int32_t *needed);
