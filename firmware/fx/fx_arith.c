@@ -14,15 +14,14 @@ uint64_t fx_umul64(uint32_t a, uint32_t b)
 
 uint32_t fx_udiv64_32(uint32_t hi, uint32_t lo, uint32_t d, uint32_t *rem)
 {
-    /* Restoring division: the dividend shifts through the remainder one bit per step; a
-     * carry out of the remainder means it is certainly >= d. */
+    /* Restoring division: the dividend shifts through the remainder one bit per step; the
+     * remainder stays below d <= 2^31, so doubled it still fits 32 bits. */
     uint32_t r = hi, q = 0;
     for (uint8_t k = 0; k < 32u; k++) {
-        uint32_t carry = r >> 31;
         r = (r << 1) | (lo >> 31);
         lo <<= 1;
         q <<= 1;
-        if (carry || r >= d) {
+        if (r >= d) {
             r -= d;
             q |= 1u;
         }
@@ -90,9 +89,14 @@ fx_angle_t fx_angle_from_counts(uint32_t counts, uint16_t counts_per_turn)
     uint16_t d = counts_per_turn, r;
     if (d == 0)
         return 0;
-    /* counts mod d, then round(r * 2^32 / d) as two 16-bit quotient digits. */
-    (void)fx_udiv32_16(counts >> 16, d, &r);
-    (void)fx_udiv32_16(((uint32_t)r << 16) | (counts & 0xFFFFu), d, &r);
+    /* counts mod d (counts itself in the normal range), then round(r * 2^32 / d) as two
+     * 16-bit quotient digits. */
+    if (counts < d) {
+        r = (uint16_t)counts;
+    } else {
+        (void)fx_udiv32_16(counts >> 16, d, &r);
+        (void)fx_udiv32_16(((uint32_t)r << 16) | (counts & 0xFFFFu), d, &r);
+    }
     uint16_t hi = fx_udiv32_16((uint32_t)r << 16, d, &r);
     uint16_t lo = fx_udiv32_16((uint32_t)r << 16, d, &r);
     fx_angle_t a = ((uint32_t)hi << 16) | lo;

@@ -13,8 +13,8 @@
 uint64_t fx_umul64(uint32_t a, uint32_t b);
 
 /**
- * floor((hi * 2^32 + lo) / d) and the remainder into *rem, for hi < d (the quotient fits 32
- * bits, which the caller checks first).
+ * floor((hi * 2^32 + lo) / d) and the remainder into *rem, for hi < d <= 2^31 (the quotient
+ * fits 32 bits, which the caller checks first; every caller's d is a magnitude of an int32).
  */
 uint32_t fx_udiv64_32(uint32_t hi, uint32_t lo, uint32_t d, uint32_t *rem);
 

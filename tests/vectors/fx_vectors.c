@@ -57,7 +57,8 @@ static cy_bench_stat_t st_sin = {"fx_sin", 0, 0, 0}, st_cos = {"fx_cos", 0, 0, 0
                        st_mulq30 = {"fx_mul_q30", 0, 0, 0}, st_mulq16 = {"fx_mul_q16", 0, 0, 0},
                        st_mulsh = {"fx_mul_shift", 0, 0, 0}, st_div32 = {"fx_div32", 0, 0, 0},
                        st_divsh = {"fx_div_shift", 0, 0, 0}, st_recip = {"fx_recip", 0, 0, 0},
-                       st_counts = {"fx_angle_from_counts", 0, 0, 0};
+                       st_counts = {"fx_angle_from_counts", 0, 0, 0},
+                       st_counts_in = {"fx_angle_from_counts_in_turn", 0, 0, 0};
 
 static void out_head(const char *name, uint32_t a)
 {
@@ -198,6 +199,8 @@ static void counts_fn(uint32_t counts, uint16_t cpt)
     va = counts;
     vb = cpt;
     CY_BENCH(&st_counts, a = fx_angle_from_counts(va, (uint16_t)vb));
+    if (counts < cpt) /* again, for the figure of the normal range (no wrap) */
+        CY_BENCH(&st_counts_in, a = fx_angle_from_counts(va, (uint16_t)vb));
     out_head("counts", counts);
     out_next(cpt);
     out_next(a);
@@ -465,10 +468,11 @@ int main(void)
     muls();
     divs();
     counts();
-    const cy_bench_stat_t *st[] = {
-        &st_sin,    &st_cos,    &st_sincos, &st_tan,    &st_cot,        &st_atan2,  &st_atanr,
-        &st_atanq,  &st_asin,   &st_acos,   &st_sqrt32, &st_sqrt32_top, &st_sqrt64, &st_hypot,
-        &st_mulq30, &st_mulq16, &st_mulsh,  &st_div32,  &st_divsh,      &st_recip,  &st_counts};
+    const cy_bench_stat_t *st[] = {&st_sin,    &st_cos,        &st_sincos, &st_tan,   &st_cot,
+                                   &st_atan2,  &st_atanr,      &st_atanq,  &st_asin,  &st_acos,
+                                   &st_sqrt32, &st_sqrt32_top, &st_sqrt64, &st_hypot, &st_mulq30,
+                                   &st_mulq16, &st_mulsh,      &st_div32,  &st_divsh, &st_recip,
+                                   &st_counts, &st_counts_in};
     for (uint16_t i = 0; i < sizeof st / sizeof st[0]; i++)
         cy_bench_report(st[i]);
     cy_test_end();

@@ -48,10 +48,11 @@ fx_umul64:
 /*
  * uint32_t fx_udiv64_32(uint32_t hi, uint32_t lo, uint32_t d, uint32_t *rem):
  * R13:R12 = hi, R15:R14 = lo, d and rem on the stack (2(SP) d low word, 4(SP) d high word,
- * 6(SP) rem) -> R13:R12 = floor((hi 2^32 + lo) / d), *rem the remainder; hi < d.
- * Restoring division, 32 steps: the remainder R13:R12 doubles with the next dividend bit
- * (from R15, then from R14); a carry out of it means it is certainly >= d. The quotient
- * collects in R9 behind a sentinel bit whose carry-out ends each 16-step half.
+ * 6(SP) rem) -> R13:R12 = floor((hi 2^32 + lo) / d), *rem the remainder; hi < d <= 2^31.
+ * Restoring division, 32 steps: the remainder R13:R12 (< d <= 2^31, so doubled it still
+ * fits) doubles with the next dividend bit (from R15, then from R14), d is subtracted and
+ * added back on a borrow. The quotient collects in R9 behind a sentinel bit whose carry-out
+ * ends each 16-step half. When hi = 0 and lo >> 16 < d the first half is skipped.
  */
     .section .text.fx_udiv64_32,"ax",@progbits
     .global fx_udiv64_32
@@ -76,7 +77,6 @@ fx_udiv64_32:
 1:  rla     r15
     rlc     r12
     rlc     r13
-    jc      3f
     sub     r10, r12
     subc    r11, r13
     jc      2f                      ; no borrow: quotient bit 1
@@ -87,18 +87,11 @@ fx_udiv64_32:
     jmp     4f
 2:  rlc     r9
     jnc     1b
-    jmp     4f
-3:  sub     r10, r12                ; 33-bit remainder: subtract, quotient bit 1
-    subc    r11, r13
-    setc
-    rlc     r9
-    jnc     1b
 4:  mov     r9, r15                 ; quotient high word (R15 is used up)
     mov     #1, r9                  ; quotient bits 15..0 from the dividend bits of R14
 5:  rla     r14
     rlc     r12
     rlc     r13
-    jc      7f
     sub     r10, r12
     subc    r11, r13
     jc      6f
@@ -108,12 +101,6 @@ fx_udiv64_32:
     jnc     5b
     jmp     8f
 6:  rlc     r9
-    jnc     5b
-    jmp     8f
-7:  sub     r10, r12
-    subc    r11, r13
-    setc
-    rlc     r9
     jnc     5b
 8:  mov     10(r1), r14             ; *rem
     mov     r12, 0(r14)
