@@ -102,11 +102,13 @@ typedef enum {
 /** Timing and stopping parameters. */
 typedef struct {
     drive_mode_t mode;
-    uint16_t load_ms;         /**< full: from the fix to the load (seed: t1 + dt1)        */
-    uint16_t settle_ms;       /**< full: servo settling after a load (seed: dt2)           */
-    fx_q16_t stop_speed;      /**< full: speed on the last arc of the stopping routine     */
-    fx_q16_t advance;         /**< full: next target when the one ahead is nearer than this
-                                   along its direction (metres Q16)                          */
+    uint16_t load_ms;    /**< full: from the fix to the load (seed: t1 + dt1)        */
+    uint16_t settle_ms;  /**< full: servo settling after a load (seed: dt2)           */
+    fx_q16_t stop_speed; /**< full: speed on the last arc of the stopping routine     */
+    /** full: move to the next target when the one ahead is nearer than this along its
+     * direction (metres Q16). Double arcs then span up to spacing + advance, which must stay
+     * within the drive board's 8-bit arc length (1.47 m of front wheel). */
+    fx_q16_t advance;
     uint8_t max_fix_failures; /**< consecutive failed fixes tolerated                       */
 } drive_seq_config_t;
 
