@@ -9,6 +9,7 @@
 
 #include "hal/capture.h"
 #include "hal/edge.h"
+#include "hal_posix/drive_port_posix.h"
 
 typedef struct {
     hal_edge_cb_t cb;
@@ -26,10 +27,19 @@ typedef struct {
 } posix_capture_slot_t;
 
 typedef struct {
+    posix_drive_sink_fn sink;
+    void *ctx;
+    uint32_t count;
+    uint8_t last[HAL_DRIVE_REG_COUNT];
+    posix_drive_write_t log[POSIX_DRIVE_PORT_LOG];
+} posix_drive_port_state_t;
+
+typedef struct {
     uint8_t critical_depth;
     bool critical_saved;
     posix_edge_slot_t edge[HAL_EDGE_COUNT];
     posix_capture_slot_t capture[HAL_CAPTURE_COUNT];
+    posix_drive_port_state_t drive_port;
 } posix_board_state_t;
 
 posix_board_state_t *posix_board_state(int board);

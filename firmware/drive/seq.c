@@ -1,0 +1,330 @@
+/*
+ * seq.c - the travel state table (drive_seq.h) and the delta-S pulse counter.
+ */
+#include <stddef.h>
+
+#include "drive/drive_seq.h"
+#include "hal/edge.h"
+#include "hal/irq.h"
+
+/* Guards: conditions a row needs besides its state and event. */
+enum {
+    G_ANY = 0,
+    G_FULL,         /* START: full travel, path ready                         */
+    G_SIMPLIFIED,   /* START: simplified travel, path ready                   */
+    G_NOT_READY,    /* START: the path is not ready                           */
+    G_ARRIVED,      /* pose/fix: the last point is reached, nothing to drive  */
+    G_SOLVED_LAST,  /* pose/fix: a double arc to the last point is ready      */
+    G_SOLVED,       /* pose/fix: a double arc to a point before it is ready   */
+    G_FAILED,       /* pose/fix: no double arc (or command) to the target     */
+    G_PULSE_MORE,   /* delta-S: more pulses of the loaded double arc to come  */
+    G_PULSE_FINAL,  /* delta-S: the last pulse of the loaded double arc       */
+    G_FINAL_LAST,   /* delta-S: ... and it was driving to the last point      */
+    G_FINAL_PLAST,  /* delta-S: final pulse; the pending double arc is last   */
+    G_PENDING_LAST, /* timer: the pending double arc goes to the last point   */
+    G_FIX_RETRY,    /* fix failed: still within the tolerated failures        */
+    G_FIX_GIVE_UP   /* fix failed: too many in a row                          */
+};
+
+/* Internal actions, translated by the step (above the public DRIVE_ACT_* bits). */
+#define X_TIMER_SETTLE 0x1000u /* DRIVE_ACT_TIMER with settle_ms   */
+#define X_TIMER_LOAD   0x2000u /* DRIVE_ACT_TIMER with load_ms     */
+#define X_POSE_PREDICT 0x4000u /* DRIVE_ACT_REQUEST_POSE at load_ms */
+#define X_NEXT_TARGET  0x8000u /* advance to the next path point    */
+#define X_UNDERRUN     0x0800u /* count a double arc that ran out   */
+#define PUBLIC_ACTIONS 0x07FFu
+
+#define SAME 0xFEu /* next state: unchanged */
+
+#define ROW(st, ev, g, nx, act)                                                                    \
+    {                                                                                              \
+        (uint8_t)(st), (uint8_t)(ev), (uint8_t)(g), (uint8_t)(nx), (act)                           \
+    }
+
+/* clang-format off */
+static const drive_seq_row_t table[] = {
+    /* start */
+    ROW(DRIVE_ST_IDLE,         DRIVE_EVT_START,      G_NOT_READY,    DRIVE_ST_FAULT,        DRIVE_ACT_FAULT),
+    ROW(DRIVE_ST_IDLE,         DRIVE_EVT_START,      G_FULL,         DRIVE_ST_F_START,      DRIVE_ACT_REQUEST_POSE | DRIVE_ACT_INDEX_ON),
+    ROW(DRIVE_ST_IDLE,         DRIVE_EVT_START,      G_SIMPLIFIED,   DRIVE_ST_S_SKIP_INDEX, DRIVE_ACT_INDEX_ON),
+    /* full travel: the first double arc starts the run */
+    ROW(DRIVE_ST_F_START,      DRIVE_EVT_POSE,       G_ARRIVED,      DRIVE_ST_DONE,         DRIVE_ACT_STOP | DRIVE_ACT_DONE),
+    ROW(DRIVE_ST_F_START,      DRIVE_EVT_POSE,       G_SOLVED_LAST,  DRIVE_ST_F_STOP1,      DRIVE_ACT_LOAD),
+    ROW(DRIVE_ST_F_START,      DRIVE_EVT_POSE,       G_SOLVED,       DRIVE_ST_F_SETTLE,     DRIVE_ACT_LOAD | X_TIMER_SETTLE),
+    ROW(DRIVE_ST_F_START,      DRIVE_EVT_POSE,       G_FAILED,       DRIVE_ST_FAULT,        DRIVE_ACT_STOP | DRIVE_ACT_FAULT),
+    /* full travel: settle, fix at the index pulse, correct, predict, next target, load */
+    ROW(DRIVE_ST_F_SETTLE,     DRIVE_EVT_TIMER,      G_ANY,          DRIVE_ST_F_WAIT_INDEX, 0),
+    ROW(DRIVE_ST_F_WAIT_INDEX, DRIVE_EVT_INDEX,      G_ANY,          DRIVE_ST_F_FIX,        DRIVE_ACT_REQUEST_FIX),
+    ROW(DRIVE_ST_F_FIX,        DRIVE_EVT_FIX_READY,  G_ANY,          DRIVE_ST_F_PREDICT,    DRIVE_ACT_CORRECT_NAV | X_POSE_PREDICT),
+    ROW(DRIVE_ST_F_FIX,        DRIVE_EVT_FIX_FAILED, G_FIX_RETRY,    DRIVE_ST_F_PREDICT,    X_POSE_PREDICT),
+    ROW(DRIVE_ST_F_FIX,        DRIVE_EVT_FIX_FAILED, G_FIX_GIVE_UP,  DRIVE_ST_FAULT,        DRIVE_ACT_STOP | DRIVE_ACT_FAULT),
+    ROW(DRIVE_ST_F_PREDICT,    DRIVE_EVT_POSE,       G_ARRIVED,      DRIVE_ST_DONE,         DRIVE_ACT_STOP | DRIVE_ACT_DONE),
+    ROW(DRIVE_ST_F_PREDICT,    DRIVE_EVT_POSE,       G_SOLVED_LAST,  DRIVE_ST_F_LOAD,       X_TIMER_LOAD),
+    ROW(DRIVE_ST_F_PREDICT,    DRIVE_EVT_POSE,       G_SOLVED,       DRIVE_ST_F_LOAD,       X_TIMER_LOAD),
+    ROW(DRIVE_ST_F_PREDICT,    DRIVE_EVT_POSE,       G_FAILED,       DRIVE_ST_FAULT,        DRIVE_ACT_STOP | DRIVE_ACT_FAULT),
+    ROW(DRIVE_ST_F_LOAD,       DRIVE_EVT_TIMER,      G_PENDING_LAST, DRIVE_ST_F_STOP1,      DRIVE_ACT_LOAD),
+    ROW(DRIVE_ST_F_LOAD,       DRIVE_EVT_TIMER,      G_ANY,          DRIVE_ST_F_SETTLE,     DRIVE_ACT_LOAD | X_TIMER_SETTLE),
+    /* D1: the loaded double arc ends; the next one is ready: load it now */
+    ROW(DRIVE_ST_F_LOAD,       DRIVE_EVT_DELTA_S,    G_FINAL_PLAST,  DRIVE_ST_F_STOP1,      DRIVE_ACT_LOAD),
+    ROW(DRIVE_ST_F_LOAD,       DRIVE_EVT_DELTA_S,    G_PULSE_FINAL,  DRIVE_ST_F_SETTLE,     DRIVE_ACT_LOAD | X_TIMER_SETTLE),
+    /* ... or it is not ready yet: the drive board stops at the end, the next load restarts */
+    ROW(DRIVE_ST_F_SETTLE,     DRIVE_EVT_DELTA_S,    G_PULSE_FINAL,  SAME,                  X_UNDERRUN),
+    ROW(DRIVE_ST_F_WAIT_INDEX, DRIVE_EVT_DELTA_S,    G_PULSE_FINAL,  SAME,                  X_UNDERRUN),
+    ROW(DRIVE_ST_F_FIX,        DRIVE_EVT_DELTA_S,    G_PULSE_FINAL,  SAME,                  X_UNDERRUN),
+    ROW(DRIVE_ST_F_PREDICT,    DRIVE_EVT_DELTA_S,    G_PULSE_FINAL,  SAME,                  X_UNDERRUN),
+    /* full travel: the stopping routine */
+    ROW(DRIVE_ST_F_STOP1,      DRIVE_EVT_DELTA_S,    G_PULSE_FINAL,  DRIVE_ST_DONE,         DRIVE_ACT_STOP | DRIVE_ACT_DONE),
+    ROW(DRIVE_ST_F_STOP1,      DRIVE_EVT_DELTA_S,    G_PULSE_MORE,   DRIVE_ST_F_STOP2,      DRIVE_ACT_SET_SPEED),
+    ROW(DRIVE_ST_F_STOP2,      DRIVE_EVT_DELTA_S,    G_PULSE_FINAL,  DRIVE_ST_DONE,         DRIVE_ACT_STOP | DRIVE_ACT_DONE),
+    /* simplified travel */
+    ROW(DRIVE_ST_S_SKIP_INDEX, DRIVE_EVT_INDEX,      G_ANY,          DRIVE_ST_S_WAIT_INDEX, 0),
+    ROW(DRIVE_ST_S_WAIT_INDEX, DRIVE_EVT_INDEX,      G_ANY,          DRIVE_ST_S_FIX,        DRIVE_ACT_REQUEST_FIX | DRIVE_ACT_INDEX_OFF),
+    ROW(DRIVE_ST_S_FIX,        DRIVE_EVT_FIX_READY,  G_ARRIVED,      DRIVE_ST_DONE,         DRIVE_ACT_DONE),
+    ROW(DRIVE_ST_S_FIX,        DRIVE_EVT_FIX_READY,  G_SOLVED_LAST,  DRIVE_ST_S_ARC1,       DRIVE_ACT_LOAD),
+    ROW(DRIVE_ST_S_FIX,        DRIVE_EVT_FIX_READY,  G_SOLVED,       DRIVE_ST_S_ARC1,       DRIVE_ACT_LOAD),
+    ROW(DRIVE_ST_S_FIX,        DRIVE_EVT_FIX_READY,  G_FAILED,       DRIVE_ST_FAULT,        DRIVE_ACT_STOP | DRIVE_ACT_FAULT),
+    ROW(DRIVE_ST_S_FIX,        DRIVE_EVT_FIX_FAILED, G_FIX_RETRY,    DRIVE_ST_S_SKIP_INDEX, DRIVE_ACT_INDEX_ON),
+    ROW(DRIVE_ST_S_FIX,        DRIVE_EVT_FIX_FAILED, G_FIX_GIVE_UP,  DRIVE_ST_FAULT,        DRIVE_ACT_FAULT),
+    ROW(DRIVE_ST_S_ARC1,       DRIVE_EVT_DELTA_S,    G_FINAL_LAST,   DRIVE_ST_DONE,         DRIVE_ACT_STOP | DRIVE_ACT_DONE),
+    ROW(DRIVE_ST_S_ARC1,       DRIVE_EVT_DELTA_S,    G_PULSE_FINAL,  DRIVE_ST_S_SKIP_INDEX, DRIVE_ACT_STOP | DRIVE_ACT_INDEX_ON | X_NEXT_TARGET),
+    ROW(DRIVE_ST_S_ARC1,       DRIVE_EVT_DELTA_S,    G_PULSE_MORE,   DRIVE_ST_S_ARC2,       0),
+    ROW(DRIVE_ST_S_ARC2,       DRIVE_EVT_DELTA_S,    G_FINAL_LAST,   DRIVE_ST_DONE,         DRIVE_ACT_STOP | DRIVE_ACT_DONE),
+    ROW(DRIVE_ST_S_ARC2,       DRIVE_EVT_DELTA_S,    G_PULSE_FINAL,  DRIVE_ST_S_SKIP_INDEX, DRIVE_ACT_STOP | DRIVE_ACT_INDEX_ON | X_NEXT_TARGET),
+    /* expected pulses of the loaded double arc that need no action */
+    ROW(DRIVE_ST_ANY,          DRIVE_EVT_DELTA_S,    G_PULSE_MORE,   SAME,                  0),
+    /* stop request */
+    ROW(DRIVE_ST_ANY,          DRIVE_EVT_STOP,       G_ANY,          DRIVE_ST_DONE,         DRIVE_ACT_STOP | DRIVE_ACT_DONE),
+};
+/* clang-format on */
+
+const drive_seq_row_t *drive_seq_table(uint16_t *n)
+{
+    *n = (uint16_t)(sizeof table / sizeof table[0]);
+    return table;
+}
+
+const char *drive_seq_state_name(drive_state_t st)
+{
+    static const char *const names[DRIVE_ST_COUNT] = {"idle",
+                                                      "full/start",
+                                                      "full/settle",
+                                                      "full/wait-index",
+                                                      "full/fix",
+                                                      "full/predict",
+                                                      "full/load",
+                                                      "full/stop1",
+                                                      "full/stop2",
+                                                      "simple/skip-index",
+                                                      "simple/wait-index",
+                                                      "simple/fix",
+                                                      "simple/arc1",
+                                                      "simple/arc2",
+                                                      "done",
+                                                      "fault"};
+    return (unsigned)st < DRIVE_ST_COUNT ? names[st] : "?";
+}
+
+void drive_seq_init(drive_seq_t *seq, drive_path_t *path, const drive_seq_config_t *cfg)
+{
+    seq->cfg = *cfg;
+    seq->path = path;
+    seq->state = DRIVE_ST_IDLE;
+    seq->target = drive_path_first(path);
+    seq->pending_last = seq->loaded_last = false;
+    seq->pulses_seen = 0;
+    seq->fix_failures = 0;
+    seq->solve_status = DRIVE_OK;
+    seq->ignored = seq->underruns = seq->loads = 0;
+    seq->loaded.pulses = 0;
+    seq->pending.pulses = 0;
+}
+
+/* Outcome of picking a target and solving toward it. */
+enum { PICK_NONE = 0, PICK_ARRIVED, PICK_SOLVED, PICK_FAILED };
+
+/* Distance from @p pose to @p target along the target's direction of travel, Q16 m. */
+static int32_t along(const drive_pose_t *pose, const drive_pose_t *target, bool reverse)
+{
+    fx_q30_t s, c;
+    fx_sincos(target->heading + (reverse ? FX_ANGLE_HALF : 0u), &s, &c);
+    return fx_mul_q30(target->x - pose->x, c) + fx_mul_q30(target->y - pose->y, s);
+}
+
+/*
+ * From @p pose: skip targets nearer than cfg.advance along their direction (full travel),
+ * solve toward the target, and on failure (or nothing left to drive) move on to the next
+ * point; the last point reached with nothing to drive means arrived.
+ */
+static uint8_t pick(drive_seq_t *seq, const drive_pose_t *pose)
+{
+    drive_path_t *path = seq->path;
+    bool rev = path->cfg.reverse;
+    for (uint8_t tries = 0; tries < 4u; tries++) {
+        drive_pose_t tp;
+        fx_q16_t speed;
+        drive_status_t st = drive_path_target(path, seq->target, &tp, &speed);
+        if (st != DRIVE_OK) {
+            seq->solve_status = st;
+            return PICK_FAILED;
+        }
+        bool last = drive_path_is_last(path, seq->target);
+        if (!last && seq->cfg.mode == DRIVE_MODE_FULL && along(pose, &tp, rev) < seq->cfg.advance) {
+            seq->target = drive_path_next(path, seq->target);
+            continue;
+        }
+        drive_solution_t sol;
+        st = drive_solve(pose, &tp, path->board->min_radius, rev, &sol, NULL);
+        if (st == DRIVE_OK)
+            st = drive_cmd_build(&sol, path->board, speed, rev, &seq->pending);
+        seq->solve_status = st;
+        bool reached = st == DRIVE_ERR_TOO_CLOSE || st == DRIVE_ERR_BEHIND ||
+                       (st == DRIVE_OK && seq->pending.pulses == 0);
+        if (st == DRIVE_OK && !reached) {
+            seq->pending_last = last;
+            return PICK_SOLVED;
+        }
+        if (reached && last)
+            return PICK_ARRIVED;
+        if (reached || !last) {
+            seq->target = drive_path_next(path, seq->target);
+            continue;
+        }
+        return PICK_FAILED;
+    }
+    return PICK_FAILED;
+}
+
+static bool guard(const drive_seq_t *seq, uint8_t g, uint8_t picked)
+{
+    bool final = seq->pulses_seen == seq->loaded.pulses;
+    switch (g) {
+    case G_ANY:
+        return true;
+    case G_FULL:
+        return seq->path->ready && seq->cfg.mode == DRIVE_MODE_FULL;
+    case G_SIMPLIFIED:
+        return seq->path->ready && seq->cfg.mode == DRIVE_MODE_SIMPLIFIED;
+    case G_NOT_READY:
+        return !seq->path->ready;
+    case G_ARRIVED:
+        return picked == PICK_ARRIVED;
+    case G_SOLVED_LAST:
+        return picked == PICK_SOLVED && seq->pending_last;
+    case G_SOLVED:
+        return picked == PICK_SOLVED && !seq->pending_last;
+    case G_FAILED:
+        return picked == PICK_FAILED;
+    case G_PULSE_MORE:
+        return seq->pulses_seen < seq->loaded.pulses;
+    case G_PULSE_FINAL:
+        return final;
+    case G_FINAL_LAST:
+        return final && seq->loaded_last;
+    case G_FINAL_PLAST:
+        return final && seq->pending_last;
+    case G_PENDING_LAST:
+        return seq->pending_last;
+    case G_FIX_RETRY:
+        return seq->fix_failures <= seq->cfg.max_fix_failures;
+    case G_FIX_GIVE_UP:
+        return seq->fix_failures > seq->cfg.max_fix_failures;
+    default:
+        return false;
+    }
+}
+
+void drive_seq_step(drive_seq_t *seq, const drive_seq_event_t *ev, drive_seq_out_t *out)
+{
+    out->actions = 0;
+    out->timer_ms = 0;
+    out->pose_ms = 0;
+    out->speed = 0;
+    out->fault = DRIVE_FAULT_NONE;
+    out->status = DRIVE_OK;
+
+    /* Effects of the event that guards look at. */
+    uint8_t picked = PICK_NONE;
+    bool picks = (ev->type == DRIVE_EVT_POSE &&
+                  (seq->state == DRIVE_ST_F_START || seq->state == DRIVE_ST_F_PREDICT)) ||
+                 (ev->type == DRIVE_EVT_FIX_READY && seq->state == DRIVE_ST_S_FIX);
+    if (picks)
+        picked = pick(seq, &ev->pose);
+    if (ev->type == DRIVE_EVT_DELTA_S && seq->pulses_seen < 255u)
+        seq->pulses_seen++;
+    if (ev->type == DRIVE_EVT_FIX_FAILED && seq->fix_failures < 255u)
+        seq->fix_failures++;
+    if (ev->type == DRIVE_EVT_FIX_READY)
+        seq->fix_failures = 0;
+
+    const drive_seq_row_t *row = NULL;
+    for (uint16_t i = 0; i < sizeof table / sizeof table[0]; i++) {
+        const drive_seq_row_t *r = &table[i];
+        if ((r->state == (uint8_t)seq->state || r->state == DRIVE_ST_ANY) &&
+            r->event == (uint8_t)ev->type && guard(seq, r->guard, picked)) {
+            row = r;
+            break;
+        }
+    }
+    if (row == NULL) {
+        if (seq->ignored < UINT16_MAX)
+            seq->ignored++;
+        return;
+    }
+
+    uint16_t act = row->actions;
+    bool rev = seq->path->cfg.reverse;
+    if (act & DRIVE_ACT_LOAD) {
+        seq->loaded = seq->pending;
+        seq->loaded_last = seq->pending_last;
+        seq->pulses_seen = 0;
+        seq->loads++;
+        out->cmd = seq->loaded;
+    }
+    if (act & DRIVE_ACT_SET_SPEED)
+        (void)drive_speed_counts(seq->cfg.stop_speed, rev, seq->path->board, &out->speed);
+    if (act & (X_TIMER_SETTLE | X_TIMER_LOAD)) {
+        act |= DRIVE_ACT_TIMER;
+        out->timer_ms = (act & X_TIMER_LOAD) ? seq->cfg.load_ms : seq->cfg.settle_ms;
+    }
+    if (act & X_POSE_PREDICT) {
+        act |= DRIVE_ACT_REQUEST_POSE;
+        out->pose_ms = seq->cfg.load_ms;
+    }
+    if ((act & X_UNDERRUN) && seq->underruns < UINT16_MAX)
+        seq->underruns++;
+    if (act & X_NEXT_TARGET)
+        seq->target = drive_path_next(seq->path, seq->target);
+    if (act & DRIVE_ACT_FAULT) {
+        out->fault = row->guard == G_NOT_READY     ? DRIVE_FAULT_NOT_READY
+                     : row->guard == G_FIX_GIVE_UP ? DRIVE_FAULT_FIXES
+                                                   : DRIVE_FAULT_SOLVE;
+        out->status = seq->solve_status;
+    }
+    out->actions = (uint16_t)(act & PUBLIC_ACTIONS);
+    if (row->next != SAME)
+        seq->state = (drive_state_t)row->next;
+}
+
+/* ------------------------------------------------------------------ delta-S pulse (D1) */
+
+void drive_ds_handler(void *arg)
+{
+    drive_ds_t *ds = arg;
+    if (ds->count < UINT16_MAX)
+        ds->count++;
+}
+
+int drive_ds_init(drive_ds_t *ds)
+{
+    ds->count = 0;
+    return hal_edge_init(HAL_EDGE_DELTA_S, HAL_EDGE_RISING, drive_ds_handler, ds);
+}
+
+uint16_t drive_ds_take(drive_ds_t *ds)
+{
+    hal_critical_enter();
+    uint16_t n = ds->count;
+    ds->count = 0;
+    hal_critical_exit();
+    return n;
+}

@@ -1,0 +1,385 @@
+/*
+ * drive_vectors.c - firmware/drive on both worlds: the same inputs through the solver, the
+ * drive-board command builder, both port encoders, the decoder, path preparation and the
+ * travel state table, one line per result (hex), compared line by line between the host
+ * build and the MSP430 image (bit-identical). On the target the solver is timed:
+ * "@cycles doublearc max mean n" (the solve alone) and "@cycles doublearc_cmd" (solve plus
+ * steering angles and drive-board bytes) for build/msp430/cycles.json.
+ *
+ * Inputs: pseudo-random configurations of the issue's test domain (target ahead, heading
+ * change under 90 degrees, 0.3 - 5 m, minimum radius 0.25 - 1 m, forward and reverse;
+ * xorshift32, fixed seed) and of a wider domain with refusals, plus fixed edge cases.
+ */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cy_test.h"
+#include "drive/drive.h"
+#include "drive/drive_cmd.h"
+#include "drive/drive_path.h"
+#include "drive/drive_proto.h"
+#include "drive/drive_seq.h"
+#include "fx/fx.h"
+
+#define DOMAIN_N 300u
+#define NEAR_N   100u
+#define WIDE_N   100u
+
+static uint32_t rng = 0x2545F491u;
+
+static uint32_t rnd32(void)
+{
+    rng ^= rng << 13;
+    rng ^= rng >> 17;
+    rng ^= rng << 5;
+    return rng;
+}
+
+/* Uniform in [lo, lo + span) for span < 2^32. */
+static uint32_t rnd_span(uint32_t span)
+{
+    return (uint32_t)(((uint64_t)rnd32() * span) >> 32);
+}
+
+static void out_hex(uint32_t v)
+{
+    cy_print(" ");
+    cy_print_hex32(v);
+}
+
+static cy_bench_stat_t st_solve = {"doublearc", 0, 0, 0};
+static cy_bench_stat_t st_cmd = {"drive_cmd", 0, 0, 0};
+static cy_bench_stat_t st_wide = {"doublearc_wide", 0, 0, 0};
+static const drive_board_t board = DRIVE_BOARD_SEED;
+
+/* Operands through volatiles so that the timed call cannot be hoisted. */
+static volatile drive_pose_t v_from, v_to;
+static volatile int32_t v_rmin;
+static volatile uint8_t v_rev;
+
+static drive_status_t solve_one(const drive_pose_t *f, const drive_pose_t *t, fx_q16_t rmin,
+                                bool rev, drive_solution_t *sol, int32_t *need,
+                                cy_bench_stat_t *timed)
+{
+    v_from = *f;
+    v_to = *t;
+    v_rmin = rmin;
+    v_rev = rev;
+    drive_status_t st;
+    drive_pose_t a, b;
+    a.x = v_from.x;
+    a.y = v_from.y;
+    a.heading = v_from.heading;
+    b.x = v_to.x;
+    b.y = v_to.y;
+    b.heading = v_to.heading;
+    if (timed)
+        CY_BENCH(timed, st = drive_solve(&a, &b, v_rmin, v_rev != 0, sol, need));
+    else
+        st = drive_solve(&a, &b, v_rmin, v_rev != 0, sol, need);
+    return st;
+}
+
+static void print_solution(const char *tag, const drive_pose_t *f, const drive_pose_t *t,
+                           fx_q16_t rmin, bool rev, cy_bench_stat_t *timed)
+{
+    drive_solution_t sol;
+    int32_t need = 0;
+    drive_status_t st = solve_one(f, t, rmin, rev, &sol, &need, timed);
+    cy_print(tag);
+    out_hex((uint32_t)f->x);
+    out_hex((uint32_t)f->y);
+    out_hex(f->heading);
+    out_hex((uint32_t)t->x);
+    out_hex((uint32_t)t->y);
+    out_hex(t->heading);
+    out_hex((uint32_t)rmin);
+    cy_print(rev ? " r " : " f ");
+    cy_print_dec((int32_t)st);
+    if (st == DRIVE_OK) {
+        cy_print(" case ");
+        cy_print_dec((int32_t)sol.kase);
+        for (uint8_t i = 0; i < 2u; i++) {
+            out_hex((uint32_t)sol.seg[i].curvature);
+            out_hex((uint32_t)sol.seg[i].length);
+            out_hex(sol.seg[i].sweep);
+        }
+        drive_cmd_t cmd;
+        drive_status_t cs;
+        if (timed == &st_solve)
+            CY_BENCH(&st_cmd, cs = drive_cmd_build(&sol, &board, 32768, rev, &cmd));
+        else
+            cs = drive_cmd_build(&sol, &board, 32768, rev, &cmd);
+        cy_print(" cmd ");
+        cy_print_dec((int32_t)cs);
+        if (cs == DRIVE_OK) {
+            for (uint8_t i = 0; i < 2u; i++) {
+                out_hex(cmd.steer[i]);
+                out_hex(cmd.arc[i]);
+                out_hex(cmd.alpha[i]);
+            }
+            cy_print(" ");
+            cy_print_dec(cmd.speed);
+            cy_print(" ");
+            cy_print_dec(cmd.pulses);
+        }
+    } else if (st == DRIVE_ERR_RADIUS) {
+        out_hex((uint32_t)need);
+    }
+    cy_println();
+}
+
+/* A target at distance dist (Q16) and bearing (from the direction of travel) with heading
+ * change dth, from a pose near the origin. */
+static void make_config(uint32_t dist, int32_t bearing, int32_t dth, bool rev, drive_pose_t *f,
+                        drive_pose_t *t)
+{
+    f->x = (fx_q16_t)rnd_span(40ul << 16) - (20l << 16);
+    f->y = (fx_q16_t)rnd_span(40ul << 16) - (20l << 16);
+    f->heading = rnd32();
+    fx_angle_t dir = f->heading + (rev ? FX_ANGLE_HALF : 0u) + (fx_angle_t)bearing;
+    fx_q30_t s, c;
+    fx_sincos(dir, &s, &c);
+    t->x = f->x + fx_mul_q30((int32_t)dist, c);
+    t->y = f->y + fx_mul_q30((int32_t)dist, s);
+    t->heading = f->heading + (fx_angle_t)dth;
+}
+
+#define DEG(d) ((int32_t)((d)*11930464.7111)) /* degrees to a binary angle (constants only) */
+
+static void solver_vectors(void)
+{
+    /* The domain, timed. */
+    const uint32_t span89 = (uint32_t)DEG(179.8);
+    for (uint16_t i = 0; i < DOMAIN_N; i++) {
+        uint32_t dist = (uint32_t)(0.3 * 65536) + rnd_span((uint32_t)(4.7 * 65536));
+        int32_t bearing = (int32_t)rnd_span(span89) - DEG(89.9);
+        int32_t dth = (int32_t)rnd_span(span89) - DEG(89.9);
+        fx_q16_t rmin = (fx_q16_t)((uint32_t)(0.25 * 65536) + rnd_span((uint32_t)(0.75 * 65536)));
+        bool rev = (rnd32() & 3u) == 0;
+        drive_pose_t f, t;
+        make_config(dist, bearing, dth, rev, &f, &t);
+        print_solution("solve", &f, &t, rmin, rev, &st_solve);
+    }
+    /* Near straight, what full travel solves most: lateral offsets up to 5 cm, heading
+     * errors up to 2 degrees, 0.3 - 1.5 m, timed too. */
+    const uint32_t lat_span = (uint32_t)(0.1 * 65536), dth_span = (uint32_t)DEG(4.0);
+    for (uint16_t i = 0; i < NEAR_N; i++) {
+        uint32_t dist = (uint32_t)(0.3 * 65536) + rnd_span((uint32_t)(1.2 * 65536));
+        int32_t lat = (int32_t)(rnd_span(lat_span) >> (rnd32() & 15u)) - (int32_t)(lat_span >> 1);
+        int32_t bearing = (int32_t)fx_atan2(lat, (int32_t)dist);
+        int32_t dth = ((int32_t)rnd_span(dth_span) - DEG(2.0)) >> (rnd32() & 15u);
+        fx_q16_t rmin = (fx_q16_t)((uint32_t)(0.25 * 65536) + rnd_span((uint32_t)(0.75 * 65536)));
+        bool rev = (rnd32() & 3u) == 0;
+        drive_pose_t f, t;
+        make_config(dist, bearing, dth, rev, &f, &t);
+        print_solution("near", &f, &t, rmin, rev, &st_solve);
+    }
+    /* Wider: any bearing and heading change, 1 cm - 70 m, radii 0.1 - 120 m. */
+    for (uint16_t i = 0; i < WIDE_N; i++) {
+        uint32_t dist = rnd_span(70ul << 16) >> (rnd32() & 7u);
+        int32_t bearing = (int32_t)rnd32();
+        int32_t dth = (int32_t)rnd32() >> (rnd32() & 3u);
+        fx_q16_t rmin = (fx_q16_t)(rnd_span(120ul << 16) >> (rnd32() & 7u));
+        bool rev = (rnd32() & 1u) != 0;
+        drive_pose_t f, t;
+        make_config(dist, bearing, dth, rev, &f, &t);
+        print_solution("wide", &f, &t, rmin, rev, &st_wide);
+    }
+    /* Edge cases: straight ahead, pure lateral offsets, exact single arcs, 90 degrees. */
+    static const struct {
+        int32_t dist_mm, bearing_mdeg, dth_mdeg, rmin_mm;
+    } edges[] = {
+        {1000, 0, 0, 250},
+        {1000, 1, 0, 250},
+        {1000, 0, 1, 250},
+        {1000, 5000, 0, 250},
+        {1000, -5000, 0, 250},
+        {1000, 45000, 90000, 250},
+        {1000, -45000, -90000, 250},
+        {1000, 30000, 60000, 1000},
+        {2000, 10000, 20000, 250},
+        {500, 89000, 0, 250},
+        {300, 0, 90000, 250},
+        {5000, 0, -1, 1000},
+        {15, 0, 0, 250},
+        {64000, 0, 0, 250},
+        {64000, 1000, 3000, 250},
+        {1000, 90000, 0, 250},
+        {1000, 0, 90001, 250},
+        {1000, 0, 0, 124},
+    };
+    for (uint16_t i = 0; i < sizeof edges / sizeof edges[0]; i++) {
+        drive_pose_t f, t;
+        uint32_t dist = (uint32_t)(((int64_t)edges[i].dist_mm << 16) / 1000);
+        int32_t bearing = (int32_t)(((int64_t)edges[i].bearing_mdeg * 11930465) / 1000);
+        int32_t dth = (int32_t)(((int64_t)edges[i].dth_mdeg * 11930465) / 1000);
+        fx_q16_t rmin = (fx_q16_t)(((int64_t)edges[i].rmin_mm << 16) / 1000);
+        make_config(dist, bearing, dth, false, &f, &t);
+        print_solution("edge", &f, &t, rmin, false, NULL);
+        make_config(dist, bearing, dth, true, &f, &t);
+        print_solution("edge", &f, &t, rmin, true, NULL);
+    }
+}
+
+static void print_wseq(const char *tag, const drive_wseq_t *w)
+{
+    cy_print(tag);
+    for (uint8_t i = 0; i < w->n; i++) {
+        cy_print(" ");
+        cy_print_dec(w->w[i].reg);
+        cy_print(":");
+        cy_print_dec(w->w[i].value);
+    }
+    cy_println();
+}
+
+/* Both port protocols and the decoder on the target. */
+static void proto_vectors(void)
+{
+    drive_decoder_t d;
+    drive_decoder_init(&d, board.dac_center);
+    drive_wseq_t w;
+    drive_event_t ev;
+    drive_ppi_init(&w);
+    print_wseq("ppi-init", &w);
+    for (uint8_t i = 0; i < w.n; i++)
+        (void)drive_decoder_feed(&d, w.w[i].reg, w.w[i].value, &ev);
+    for (uint16_t n = 0; n < 40u; n++) {
+        drive_cmd_t c = {{(uint8_t)rnd32(), (uint8_t)rnd32()},
+                         {(uint8_t)rnd32(), (uint8_t)rnd32()},
+                         (int8_t)rnd32(),
+                         2,
+                         {0, 0}};
+        drive_ppi_load(&c, &w);
+        print_wseq("ppi-load", &w);
+        for (uint8_t i = 0; i < w.n; i++) {
+            if (drive_decoder_feed(&d, w.w[i].reg, w.w[i].value, &ev)) {
+                cy_print("event ");
+                cy_print_dec(ev.type);
+                out_hex(ev.mask);
+                out_hex(ev.cmd.steer[0]);
+                out_hex(ev.cmd.arc[0]);
+                out_hex(ev.cmd.steer[1]);
+                out_hex(ev.cmd.arc[1]);
+                out_hex((uint8_t)ev.cmd.speed);
+                out_hex(ev.cmd.alpha[0]);
+                cy_println();
+            }
+        }
+        fx_angle_t a = rnd32() >> 2;
+        drive_dac_set(drive_dac_angle_byte(a, board.dac_center), drive_dac_speed_byte(c.speed), &w);
+        print_wseq("dac", &w);
+        for (uint8_t i = 0; i < w.n; i++) {
+            if (drive_decoder_feed(&d, w.w[i].reg, w.w[i].value, &ev)) {
+                cy_print("event ");
+                cy_print_dec(ev.type);
+                out_hex(ev.value);
+                out_hex(ev.alpha);
+                cy_println();
+            }
+        }
+    }
+    drive_ppi_speed(0, &w);
+    print_wseq("ppi-stop", &w);
+    drive_dac_start(board.dac_center, &w);
+    print_wseq("dac-start", &w);
+    drive_dac_stop(board.dac_center, &w);
+    print_wseq("dac-stop", &w);
+}
+
+/* The seed's typical run (thesis table 6-1, inches) as a path, prepared and driven through
+ * the state table with the vehicle placed exactly on each pose it is asked for. */
+#define IN(v) ((int32_t)((v)*1664.6016)) /* inches to Q16 metres (0.0254 * 65536) */
+static drive_path_point_t pts[6];
+
+static void path_vectors(void)
+{
+    static const int16_t seed[7][3] = {{36, 142, 270}, {42, 108, 300}, {36, 60, 270}, {48, 36, 315},
+                                       {72, 30, 0},    {108, 30, 0},   {144, 30, 0}};
+    drive_pose_t start = {IN(seed[0][0]), IN(seed[0][1]), (fx_angle_t)(270ul * 11930465ul)};
+    for (uint8_t i = 0; i < 6u; i++) {
+        pts[i].pose.x = IN(seed[i + 1][0]);
+        pts[i].pose.y = IN(seed[i + 1][1]);
+        pts[i].pose.heading = (fx_angle_t)((uint32_t)seed[i + 1][2] * 11930465ul);
+        pts[i].speed = 32768; /* 0.5 m/s */
+    }
+    drive_path_config_t cfg = {26214 /* 0.4 m */, 52429 /* 0.8 m */, false};
+    drive_path_t path;
+    drive_status_t st = drive_path_prepare(&path, &start, pts, 6, &cfg, &board);
+    cy_print("path ");
+    cy_print_dec((int32_t)st);
+    for (uint8_t i = 0; i < 6u; i++) {
+        cy_print(" ");
+        cy_print_dec(pts[i].nsub);
+    }
+    cy_println();
+    drive_path_cursor_t c = drive_path_first(&path);
+    for (;;) {
+        drive_pose_t tp;
+        fx_q16_t sp;
+        st = drive_path_target(&path, c, &tp, &sp);
+        cy_print("target ");
+        cy_print_dec(c.leg);
+        cy_print(" ");
+        cy_print_dec(c.sub);
+        cy_print(" ");
+        cy_print_dec((int32_t)st);
+        out_hex((uint32_t)tp.x);
+        out_hex((uint32_t)tp.y);
+        out_hex(tp.heading);
+        cy_println();
+        if (drive_path_is_last(&path, c))
+            break;
+        c = drive_path_next(&path, c);
+    }
+    /* Simplified travel with synthetic events: the vehicle reaches each target exactly. */
+    drive_seq_config_t sc = {DRIVE_MODE_SIMPLIFIED, 35, 50, 9830, 26214, 3};
+    drive_seq_t seq;
+    drive_seq_init(&seq, &path, &sc);
+    drive_seq_event_t ev = {DRIVE_EVT_START, start};
+    drive_seq_out_t out;
+    drive_pose_t here = start;
+    for (uint16_t step = 0;
+         step < 400u && seq.state != DRIVE_ST_DONE && seq.state != DRIVE_ST_FAULT; step++) {
+        drive_seq_step(&seq, &ev, &out);
+        cy_print("seq ");
+        cy_print_dec(seq.state);
+        out_hex(out.actions);
+        if (out.actions & DRIVE_ACT_LOAD) {
+            out_hex(out.cmd.steer[0]);
+            out_hex(out.cmd.arc[0]);
+            out_hex(out.cmd.steer[1]);
+            out_hex(out.cmd.arc[1]);
+        }
+        cy_println();
+        /* The next event the world would raise. */
+        if (out.actions & DRIVE_ACT_REQUEST_FIX) {
+            ev.type = DRIVE_EVT_FIX_READY;
+            ev.pose = here;
+        } else if (seq.state == DRIVE_ST_S_SKIP_INDEX || seq.state == DRIVE_ST_S_WAIT_INDEX) {
+            ev.type = DRIVE_EVT_INDEX;
+        } else if (seq.state == DRIVE_ST_S_ARC1 || seq.state == DRIVE_ST_S_ARC2) {
+            if (out.actions & DRIVE_ACT_LOAD) {
+                fx_q16_t sp;
+                (void)drive_path_target(&path, seq.target, &here, &sp);
+            }
+            ev.type = DRIVE_EVT_DELTA_S;
+        }
+    }
+}
+
+int main(void)
+{
+    cy_bench_init();
+    solver_vectors();
+    proto_vectors();
+    path_vectors();
+    cy_bench_report(&st_solve);
+    cy_bench_report(&st_cmd);
+    cy_bench_report(&st_wide);
+    cy_check(st_solve.max <= 10000u, "doublearc within 10,000 cycles (0 on the host)");
+    cy_test_end();
+    return 0;
+}
