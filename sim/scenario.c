@@ -132,7 +132,7 @@ static int parse_root(json_t *root, sim_scenario_t *sc, char *err, size_t errlen
         return -1;
     for (size_t i = 0; i < json_array_size(arr); i++) {
         json_t *b = json_array_get(arr, i);
-        char path[32];
+        char path[48];
         snprintf(path, sizeof path, "beacons[%zu].", i);
         warn_unknown(b, path, known_xy);
         sim_beacon_t *bc = &sc->world.beacon[i];
@@ -147,7 +147,7 @@ static int parse_root(json_t *root, sim_scenario_t *sc, char *err, size_t errlen
         return -1;
     for (size_t i = 0; arr && i < json_array_size(arr); i++) {
         json_t *b = json_array_get(arr, i);
-        char path[32];
+        char path[48];
         snprintf(path, sizeof path, "spurious[%zu].", i);
         warn_unknown(b, path, known_xy);
         sim_spurious_t *s = &sc->world.spurious[i];
@@ -164,7 +164,7 @@ static int parse_root(json_t *root, sim_scenario_t *sc, char *err, size_t errlen
         return -1;
     for (size_t i = 0; arr && i < json_array_size(arr); i++) {
         json_t *b = json_array_get(arr, i);
-        char path[32];
+        char path[48];
         snprintf(path, sizeof path, "occluders[%zu].", i);
         sim_occluder_t *o = &sc->world.occluder[i];
         if (num(b, path, "x1", -FIELD, FIELD, 1, 0, &o->x1, err, errlen) ||
@@ -214,7 +214,7 @@ static int parse_root(json_t *root, sim_scenario_t *sc, char *err, size_t errlen
         return -1;
     for (size_t i = 0; i < json_array_size(arr); i++) {
         json_t *p = json_array_get(arr, i);
-        char path[32];
+        char path[48];
         snprintf(path, sizeof path, "path[%zu].", i);
         warn_unknown(p, path, known_pose);
         sim_waypoint_t *w = &sc->path[i];

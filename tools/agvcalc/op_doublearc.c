@@ -10,7 +10,6 @@
  * rear-axle path lengths; steering angles are atan(wheelbase / radius). Following the
  * segments from "from" ends at "to" (docs/drive.md gives the precision).
  */
-#define _DEFAULT_SOURCE /* M_PI in fx_host.h */
 #include <math.h>
 #include <stdio.h>
 
