@@ -25,6 +25,58 @@
 #include "hal/irq.h"
 #include "hal/preempt.h"
 
+#ifdef GNAV_ASM
+/* msp430/gnav_dl.S addresses these fields by offset. */
+#define GNAV_AT(field, off) _Static_assert(offsetof(gnav_t, field) == (off), #field)
+GNAV_AT(x, 0);
+GNAV_AT(y, 8);
+GNAV_AT(xp, 16);
+GNAV_AT(yp, 24);
+GNAV_AT(inc, 32);
+GNAV_AT(n_lo, 48);
+GNAV_AT(n_hi, 50);
+GNAV_AT(nq, 52);
+GNAV_AT(n_p, 54);
+GNAV_AT(rho_p, 56);
+GNAV_AT(x_p, 58);
+GNAV_AT(g_p, 60);
+GNAV_AT(resid, 62);
+GNAV_AT(d15_c, 66);
+GNAV_AT(d15_s, 68);
+GNAV_AT(pending, 74);
+GNAV_AT(dc_due, 76);
+GNAV_AT(rho_due, 77);
+GNAV_AT(nxt_c, 80);
+GNAV_AT(nxt_s, 84);
+GNAV_AT(n15_c, 88);
+GNAV_AT(n15_s, 90);
+GNAV_AT(cell, 102);
+GNAV_AT(cell_int, 104);
+GNAV_AT(h_p, 106);
+GNAV_AT(h_first, 108);
+GNAV_AT(h_last, 110);
+GNAV_AT(version, 112);
+GNAV_AT(stop_lo, 70);
+GNAV_AT(stop_hi, 72);
+GNAV_AT(reverse, 75);
+GNAV_AT(stop_armed, 78);
+GNAV_AT(stop, 79);
+GNAV_AT(heading, 92);
+GNAV_AT(pub_seq, 116);
+GNAV_AT(pub, 118);
+GNAV_AT(stop_fn, 158);
+GNAV_AT(stop_ctx, 160);
+GNAV_AT(m_q16, 180);
+GNAV_AT(m_q11, 184);
+GNAV_AT(n0, 186);
+GNAV_AT(tab_end, 188);
+GNAV_AT(tab_e, 194);
+GNAV_AT(tab_rho, 322);
+GNAV_AT(closings, 386);
+_Static_assert(sizeof(gnav_pub_t) == 20, "gnav_pub_t");
+_Static_assert(offsetof(gnav_pub_t, heading) == 16, "gnav_pub_t.heading");
+#endif
+
 /* ------------------------------------------------------------------ small arithmetic */
 
 static uint32_t umul16(uint16_t a, uint16_t b)
@@ -74,6 +126,8 @@ static int32_t mul_rho(int16_t rho, int32_t v)
 }
 
 /* ------------------------------------------------------------------ the arc's deficit */
+
+#ifndef GNAV_ASM
 
 /*
  * Front-wheel deficit of a one-step arc over m >= n0 pulses, E(m) = m - sqrt(m^2 - M^2),
@@ -125,19 +179,15 @@ static int32_t deficit(gnav_t *g, uint32_t m)
     g->rho_due = 1;
     return (int32_t)((hi + 1u) >> 1);
 }
+#endif
 
 /* ------------------------------------------------------------------ publishing */
-
-static fx_angle_t q48_to_angle(uint64_t h)
-{
-    return (fx_angle_t)((h + 0x8000u) >> 16);
-}
 
 /* Fill the free slot, then flip: a reader (the NMI included) only ever sees complete slots. */
 static void publish(gnav_t *g)
 {
     uint16_t s = g->pub_seq;
-    gnav_pub_t *w = &g->pub[(s + 1u) & 1u];
+    gnav_pub_t *w = (s & 1u) ? &g->pub[0] : &g->pub[1];
     w->x = g->x;
     HAL_PREEMPT_POINT();
     w->y = g->y;
@@ -149,8 +199,8 @@ static void publish(gnav_t *g)
 
 /* ------------------------------------------------------------------ dl handler */
 
-/* Deferred from the closing to the next pulse: the deficit per pulse and its vector. */
-static void finish_interval(gnav_t *g)
+/* Deferred from the closing to the next pulse: the deficit per pulse and the curved step. */
+void gnav_finish_interval(gnav_t *g)
 {
     if (g->rho_due) {
         uint32_t r = (umul16(g->x_p, g->g_p) + 0x20000u) >> 18; /* Q33 -> Q15 */
@@ -158,16 +208,25 @@ static void finish_interval(gnav_t *g)
         g->rho_due = 0;
     }
     int16_t rho = (int16_t)g->rho_p;
-    g->dc_c = mul_rho(rho, g->dir_c);
+    g->inc[0][0] = g->inc[1][0] - mul_rho(rho, g->inc[1][0]);
     HAL_PREEMPT_POINT();
-    g->dc_s = mul_rho(rho, g->dir_s);
+    g->inc[0][1] = g->inc[1][1] - mul_rho(rho, g->inc[1][1]);
     g->dc_due = 0;
 }
 
-/* The gyro left the interval's cell: close the arc at this pulse (seed situations 1 and 3). */
-static void close_arc(gnav_t *g)
+#ifndef GNAV_ASM
+static int32_t pulses_since_p(const gnav_t *g)
 {
-    int32_t n = g->n;
+    return (int32_t)(((uint32_t)(uint16_t)g->n_hi << 16) | g->n_lo);
+}
+
+/*
+ * The gyro left the interval's cell: close the arc at this pulse (seed situations 1 and 3).
+ * On the MSP430 msp430/gnav_dl.S performs the very same steps (GNAV_ASM).
+ */
+void gnav_close_arc(gnav_t *g)
+{
+    int32_t n = pulses_since_p(g);
     uint32_t m = n < 0 ? (uint32_t)(-n) : (uint32_t)n;
     int16_t k = (int16_t)(g->h_first - g->h_p);
     if (k < 0)
@@ -175,7 +234,6 @@ static void close_arc(gnav_t *g)
     /* what the provisional pose assumed: min(m, n_p) pulses of rho_p */
     uint16_t nc = m < g->n_p ? (uint16_t)m : g->n_p;
     int32_t dprov = (int32_t)(umul16(nc, g->rho_p) << 1); /* Q15 -> Q16 */
-    uint16_t np = m > 65535u ? 65535u : (uint16_t)m;
     int32_t e = 0;
     uint8_t sit1 = 0;
     if (k == 0) {
@@ -225,7 +283,7 @@ static void close_arc(gnav_t *g)
         g->yp = g->y;
     }
     HAL_PREEMPT_POINT();
-    g->n_p = np;
+    g->n_p = m > 32000u ? 32000u : (uint16_t)m;
     if (g->h_last != g->h_first) {
         /* more edges inside this pulse: zero-length intervals (situation 1) */
         g->n_p = 0;
@@ -233,55 +291,69 @@ static void close_arc(gnav_t *g)
         g->closings[3]++;
     }
     g->h_p = g->h_last;
-    g->n = 0;
+    g->n_lo = 0;
+    g->n_hi = 0;
+    g->nq = 0;
     g->cell_int = g->cell;
-    g->dir_c = g->nxt_c;
-    g->dir_s = g->nxt_s;
+    g->inc[1][0] = g->nxt_c;
+    g->inc[1][1] = g->nxt_s;
     g->d15_c = g->n15_c;
     g->d15_s = g->n15_s;
     g->pending = 0;
     g->dc_due = 1;
     g->version++;
 }
+#endif
 
+#ifndef GNAV_ASM
+/* The dl handler. On the MSP430 msp430/gnav_dl.S performs the very same steps (GNAV_ASM). */
 void gnav_on_delta_l(void *arg)
 {
     gnav_t *g = arg;
-    if (g->dc_due)
-        finish_interval(g);
-    int32_t n = g->n;
-    uint32_t m;
-    int32_t ic = g->dir_c, is = g->dir_s;
+    if (g->dc_due) {
+        /* an interval that closes at its first pulse has no curved part (its step is
+         * replaced by the closing anyway); otherwise set the curved step up now */
+        if (g->pending)
+            g->n_p = 0;
+        else
+            gnav_finish_interval(g);
+    }
+    /* the step: curved for the first n_p pulses away from P, straight beyond (moving back,
+     * the same steps in reverse order, so the pose is a function of n alone) */
+    int16_t q = g->nq;
+    uint16_t m;
     if (!g->reverse) {
-        m = n >= 0 ? (uint32_t)n : (uint32_t)(-n - 1);
-        g->n = n + 1;
+        m = q >= 0 ? (uint16_t)q : (uint16_t)~q;
+        if (q < 32767)
+            g->nq = (int16_t)(q + 1);
+        if (++g->n_lo == 0u)
+            g->n_hi++;
+        gnav_add64x2(&g->x, g->inc[m >= g->n_p]);
     } else {
-        m = n > 0 ? (uint32_t)(n - 1) : (uint32_t)(-n);
-        g->n = n - 1;
+        m = q > 0 ? (uint16_t)(q - 1) : (uint16_t)-q;
+        if (q > -32767)
+            g->nq = (int16_t)(q - 1);
+        if (g->n_lo-- == 0u)
+            g->n_hi--;
+        gnav_sub64x2(&g->x, g->inc[m >= g->n_p]);
     }
-    if (m < g->n_p) {
-        ic -= g->dc_c;
-        is -= g->dc_s;
-    }
-    if (g->reverse) {
-        ic = -ic;
-        is = -is;
-    }
-    gnav_add64(&g->x, ic);
-    HAL_PREEMPT_POINT();
-    gnav_add64(&g->y, is);
     HAL_PREEMPT_POINT();
     if (g->pending)
-        close_arc(g);
-    if (g->since_fix != 0xFFFFFFFFu)
-        g->since_fix++;
-    if (g->since_fix == g->stop_pulses && !g->stop) {
-        g->stop = 1;
-        if (g->stop_fn)
-            g->stop_fn(g->stop_ctx);
+        gnav_close_arc(g);
+    /* travel without a fix: stop_hi * 2^16 + stop_lo pulses left (stop_lo 0 meaning 2^16) */
+    if (--g->stop_lo == 0u && g->stop_armed) {
+        if (g->stop_hi == 0u) {
+            g->stop_armed = 0;
+            g->stop = 1;
+            if (g->stop_fn)
+                g->stop_fn(g->stop_ctx);
+        } else {
+            g->stop_hi--;
+        }
     }
     publish(g);
 }
+#endif
 
 /* ------------------------------------------------------------------ gyro handlers */
 
@@ -289,12 +361,16 @@ static void gyro_edge(gnav_t *g, int8_t up)
 {
     uint16_t h;
     if (up > 0) {
+        uint32_t f = (uint32_t)g->hd_frac + g->step_frac;
+        g->hd_frac = (uint16_t)f;
+        g->hd += g->step_whole + (f >> 16);
         g->cell++;
-        g->head_q48 += g->step_q48;
         h = (uint16_t)(2u * g->cell - 1u);
     } else {
+        uint16_t f = g->hd_frac;
+        g->hd_frac = (uint16_t)(f - g->step_frac);
+        g->hd -= g->step_whole + (f < g->step_frac ? 1u : 0u);
         g->cell--;
-        g->head_q48 -= g->step_q48;
         h = (uint16_t)(2u * g->cell + 1u);
     }
     HAL_PREEMPT_POINT();
@@ -303,7 +379,7 @@ static void gyro_edge(gnav_t *g, int8_t up)
         g->pending = 1;
     }
     g->h_last = h;
-    g->heading = q48_to_angle(g->head_q48);
+    g->heading = g->hd + (g->hd_frac >> 15);
     fx_q30_t s, c;
     fx_sincos(g->heading, &s, &c);
     g->nxt_c = q30_to_q25(c);
@@ -481,6 +557,17 @@ const char *gnav_strerror(int err)
 
 /* ------------------------------------------------------------------ frames and fixes */
 
+/* Count the stop distance down from now: N pulses as (N - 1) >> 16 and ((N - 1) & 0xFFFF) + 1
+ * (so that the dl handler's 16-bit count reaches zero exactly at the N-th pulse). */
+static void arm_stop(gnav_t *g)
+{
+    uint32_t n1 = g->stop_pulses - 1u;
+    g->stop_hi = (uint16_t)(n1 >> 16);
+    g->stop_lo = (uint16_t)((n1 & 0xFFFFu) + 1u);
+    g->stop_armed = g->stop_pulses != 0u;
+    g->stop = 0;
+}
+
 #define GNAV_POS_LIMIT_Q16 (30000l * 65536l)
 
 /* metres Q16 to pulses Q4: v * per_m / 2^28, rounded */
@@ -593,7 +680,7 @@ int gnav_fix(gnav_t *g, const gnav_pose_t *fix, const gnav_latch_t *ref)
         uint16_t version = g->version;
         uint8_t gen = g->gen;
         int64_t x = g->x, y = g->y, xp = g->xp, yp = g->yp;
-        uint64_t head = g->head_q48;
+        uint64_t head = ((uint64_t)g->hd << 16) | g->hd_frac;
         uint16_t dcell = (uint16_t)(g->cell - g->cell_int);
         hal_critical_exit();
         /* 2. the correction, its reference brought into the current frame */
@@ -607,7 +694,7 @@ int gnav_fix(gnav_t *g, const gnav_pose_t *fix, const gnav_latch_t *ref)
         } else {
             kk.lx4 = q25_to_q4(x);
             kk.ly4 = q25_to_q4(y);
-            lh = q48_to_angle(head);
+            lh = g->heading;
         }
         kk.turn = fix->heading - lh;
         fx_sincos(kk.turn, &kk.s, &kk.c);
@@ -616,11 +703,13 @@ int gnav_fix(gnav_t *g, const gnav_pose_t *fix, const gnav_latch_t *ref)
         if (!transform_q25(&kk, &nx, &ny) || !transform_q25(&kk, &nxp, &nyp))
             return GNAV_ERR_POSE;
         uint64_t nhead = head + ((uint64_t)kk.turn << 16);
-        uint64_t ihead = nhead - (uint64_t)(int64_t)(int16_t)dcell * g->step_q48;
-        fx_angle_t nh = q48_to_angle(nhead);
+        uint64_t step = ((uint64_t)g->step_whole << 16) | g->step_frac;
+        uint64_t ihead = nhead - (uint64_t)(int64_t)(int16_t)dcell * step;
+        fx_angle_t nh = (fx_angle_t)(nhead >> 16) + (fx_angle_t)((nhead >> 15) & 1u);
+        fx_angle_t ih = (fx_angle_t)(ihead >> 16) + (fx_angle_t)((ihead >> 15) & 1u);
         fx_q30_t ns, nc, is, ic;
         fx_sincos(nh, &ns, &nc);
-        fx_sincos(q48_to_angle(ihead), &is, &ic);
+        fx_sincos(ih, &is, &ic);
         int16_t r15c = q30_to_q15(kk.c), r15s = q30_to_q15(kk.s);
         /* 4. install, unless a closing or a gyro edge came in between */
         hal_critical_enter();
@@ -635,21 +724,21 @@ int gnav_fix(gnav_t *g, const gnav_pose_t *fix, const gnav_latch_t *ref)
         g->y = ny + my;
         g->xp = nxp;
         g->yp = nyp;
-        g->head_q48 = nhead;
+        g->hd = (uint32_t)(nhead >> 16);
+        g->hd_frac = (uint16_t)nhead;
         g->heading = nh;
         g->nxt_c = q30_to_q25(nc);
         g->nxt_s = q30_to_q25(ns);
         g->n15_c = q30_to_q15(nc);
         g->n15_s = q30_to_q15(ns);
-        g->dir_c = q30_to_q25(ic);
-        g->dir_s = q30_to_q25(is);
+        g->inc[1][0] = q30_to_q25(ic);
+        g->inc[1][1] = q30_to_q25(is);
         g->d15_c = q30_to_q15(ic);
         g->d15_s = q30_to_q15(is);
         g->dc_due = 1;
         g->gen = (uint8_t)(gen + 1u);
         g->corr[g->gen % GNAV_CORR_N] = kk;
-        g->since_fix = 0;
-        g->stop = 0;
+        arm_stop(g);
         g->version++;
         publish(g);
         hal_critical_exit();
@@ -697,7 +786,8 @@ int gnav_init(gnav_t *g, const gnav_config_t *cfg, const gnav_pose_t *start)
         raw[i] = 0;
     g->dl_q40 = cfg->dl_q40;
     g->per_m_q16 = (int32_t)((((uint64_t)1 << 56) + cfg->dl_q40 / 2u) / cfg->dl_q40);
-    g->step_q48 = cfg->gyro_step_q48;
+    g->step_whole = (uint32_t)(cfg->gyro_step_q48 >> 16);
+    g->step_frac = (uint16_t)cfg->gyro_step_q48;
     g->m_q24 = m;
     g->m_q16 = (m + 128u) >> 8;
     g->m_q11 = (uint16_t)((m + 4096u) >> 13);
@@ -723,17 +813,18 @@ int gnav_init(gnav_t *g, const gnav_config_t *cfg, const gnav_pose_t *start)
         uint64_t d = (uint64_t)(uint32_t)cfg->stop_distance << 24; /* Q40 */
         g->stop_pulses = (uint32_t)((d + cfg->dl_q40 - 1u) / cfg->dl_q40);
     }
+    arm_stop(g);
     /* the start pose: the gyro's reading is the centre of cell 0 */
     g->x = (int64_t)start->x * g->per_m_q16 / 128; /* Q32 -> Q25 */
     g->y = (int64_t)start->y * g->per_m_q16 / 128;
     g->xp = g->x;
     g->yp = g->y;
-    g->head_q48 = (uint64_t)start->heading << 16;
+    g->hd = start->heading;
     g->heading = start->heading;
     fx_q30_t s, c;
     fx_sincos(start->heading, &s, &c);
-    g->dir_c = g->nxt_c = q30_to_q25(c);
-    g->dir_s = g->nxt_s = q30_to_q25(s);
+    g->inc[0][0] = g->inc[1][0] = g->nxt_c = q30_to_q25(c);
+    g->inc[0][1] = g->inc[1][1] = g->nxt_s = q30_to_q25(s);
     g->d15_c = g->n15_c = q30_to_q15(c);
     g->d15_s = g->n15_s = q30_to_q15(s);
     g->pub[0].x = g->pub[1].x = g->x;

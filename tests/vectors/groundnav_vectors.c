@@ -93,7 +93,7 @@ static void print_pose_raw(const char *tag)
     cy_print(" ");
     cy_print_hex32(p->heading);
     cy_print(" n ");
-    cy_print_dec(nav.n);
+    cy_print_dec((int32_t)(((uint32_t)(uint16_t)nav.n_hi << 16) | nav.n_lo));
     for (unsigned k = 0; k < 4u; k++) {
         cy_print(" ");
         cy_print_dec((int32_t)gnav_closings(&nav, k));

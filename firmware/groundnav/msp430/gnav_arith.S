@@ -1,11 +1,11 @@
 /*
- * gnav_arith.S - MSP430 versions of gnav_add64 and gnav_mac64 (gnav_arith.h; the portable
+ * gnav_arith.S - MSP430 versions of gnav_add64x2, gnav_sub64x2 and gnav_mac64 (gnav_arith.h; the portable
  * C in gnav_arith.c defines the results, tests/vectors/groundnav_vectors.c checks the two
  * bit for bit).
  *
- * Registers as clang emits the calls (TI EABI): R12 = the pointer, then the 32-bit v in
- * R14:R13 (R13 the low word), or the 16-bit a, b in R13, R14.
- * R11..R15 may be clobbered. The hardware multiplier (MPYS 0x132, OP2 0x138, RESLO 0x13A,
+ * Registers as clang emits the calls (TI EABI): R12 = the first pointer, R13 the second
+ * pointer or the 16-bit a, R14 the 16-bit b. R11..R15 may be clobbered.
+ * The hardware multiplier (MPYS 0x132, OP2 0x138, RESLO 0x13A,
  * RESHI 0x13C) is used with interrupts held off (SR saved on the stack, restored by POP SR),
  * as the compiler's multiply helpers do; the instruction after DINT does not touch it.
  */
@@ -14,21 +14,61 @@
     .set RESLO, 0x013a
     .set RESHI, 0x013c
 
-/* void gnav_add64(int64_t *acc, int32_t v): *acc += v, 4 words with carries. */
-    .section .text.gnav_add64,"ax",@progbits
-    .global gnav_add64
-    .type gnav_add64,@function
-gnav_add64:
-    mov     r14, r15                ; sign extension of v: 0 or 0xffff
-    rla     r15
-    subc    r15, r15
-    inv     r15
-    add     r13, 0(r12)
-    addc    r14, 2(r12)
-    addc    r15, 4(r12)
-    addc    r15, 6(r12)
+/* void gnav_add64x2(int64_t *xy, const int32_t *v): xy[0] += v[0], xy[1] += v[1]. */
+    .section .text.gnav_add64x2,"ax",@progbits
+    .global gnav_add64x2
+    .type gnav_add64x2,@function
+gnav_add64x2:
+    mov     @r13+, r14              ; v[0]
+    mov     @r13+, r15
+    mov     r15, r11                ; its sign extension: 0 or 0xffff
+    rla     r11
+    subc    r11, r11
+    inv     r11
+    add     r14, 0(r12)
+    addc    r15, 2(r12)
+    addc    r11, 4(r12)
+    addc    r11, 6(r12)
+    mov     @r13+, r14              ; v[1]
+    mov     @r13, r15
+    mov     r15, r11
+    rla     r11
+    subc    r11, r11
+    inv     r11
+    add     r14, 8(r12)
+    addc    r15, 10(r12)
+    addc    r11, 12(r12)
+    addc    r11, 14(r12)
     ret
-    .size gnav_add64, .-gnav_add64
+    .size gnav_add64x2, .-gnav_add64x2
+
+/* void gnav_sub64x2(int64_t *xy, const int32_t *v): xy[0] -= v[0], xy[1] -= v[1]. */
+    .section .text.gnav_sub64x2,"ax",@progbits
+    .global gnav_sub64x2
+    .type gnav_sub64x2,@function
+gnav_sub64x2:
+    mov     @r13+, r14
+    mov     @r13+, r15
+    mov     r15, r11
+    rla     r11
+    subc    r11, r11
+    inv     r11
+    sub     r14, 0(r12)
+    subc    r15, 2(r12)
+    subc    r11, 4(r12)
+    subc    r11, 6(r12)
+    mov     @r13+, r14
+    mov     @r13, r15
+    mov     r15, r11
+    rla     r11
+    subc    r11, r11
+    inv     r11
+    sub     r14, 8(r12)
+    subc    r15, 10(r12)
+    subc    r11, 12(r12)
+    subc    r11, 14(r12)
+    ret
+    .size gnav_sub64x2, .-gnav_sub64x2
 
 /* void gnav_mac64(int64_t *acc, int16_t a, int16_t b): *acc += a * b (signed 16 x 16). */
     .section .text.gnav_mac64,"ax",@progbits

@@ -104,11 +104,41 @@ typedef struct {
 } gnav_corr_t;
 
 typedef struct gnav {
+    /* dead reckoning, the dl handler's part (x, y adjacent: one call adds a step to both) */
+    int64_t x, y;      /* provisional position, pulses Q25 */
+    int64_t xp, yp;    /* closing point P of the interval */
+    int32_t inc[2][2]; /* step per pulse, Q25: [0] curved (dir - rho_p dir), [1] dir */
+    uint16_t n_lo;     /* signed pulses since P: n_hi:n_lo (negative: backwards) */
+    int16_t n_hi;
+    int16_t nq;                /* the same, saturated at +-32767 */
+    uint16_t n_p;              /* curved pulses of this interval: the last one's length */
+    uint16_t rho_p;            /* deficit per pulse of the last interval, Q15 */
+    uint16_t x_p, g_p;         /* x = M / n_p (Q16) and g(x) (Q17) while rho_p is due */
+    int32_t resid;             /* rounding carried between closings, pulses Q16 */
+    int16_t d15_c, d15_s;      /* unit vector of the interval's cell, Q15 */
+    uint16_t stop_lo, stop_hi; /* pulses left before the stop request */
+    uint8_t pending, reverse, dc_due, rho_due, stop_armed, stop;
+    /* gyro: the current cell */
+    int32_t nxt_c, nxt_s;    /* its unit vector, Q25 */
+    int16_t n15_c, n15_s;    /* and in Q15 */
+    fx_angle_t heading;      /* its centre, rounded */
+    uint32_t hd;             /* its centre, turns * 2^32 (floor) ... */
+    uint16_t hd_frac;        /* ... and the next 16 bits: the step is not a whole binary angle */
+    uint16_t cell, cell_int; /* gyro count now and of the interval (both wrap) */
+    uint16_t h_p, h_first, h_last; /* half-step indices of P and of the edges since */
+    uint16_t version;              /* bumped by every closing and gyro edge (fix installation) */
+    uint8_t gen;                   /* fixes applied (mod 256): the frame generation */
+    /* the published pose: the writer fills pub[(seq + 1) & 1], then bumps seq */
+    volatile uint16_t pub_seq;
+    gnav_pub_t pub[2];
+    gnav_stop_fn stop_fn;
+    void *stop_ctx;
     /* configuration and derived constants (init) */
     uint32_t dl_q40;
-    int32_t per_m_q16; /* pulses per metre, Q16 */
-    uint64_t step_q48; /* turns * 2^48 per gyro step */
-    uint32_t m_q24;    /* M = L * step / dl, pulses, Q24 */
+    int32_t per_m_q16;   /* pulses per metre, Q16 */
+    uint32_t step_whole; /* the gyro step: turns * 2^32 (floor) and the next 16 bits */
+    uint16_t step_frac;
+    uint32_t m_q24; /* M = L * step / dl, pulses, Q24 */
     uint32_t m_q16;
     uint16_t m_q11;
     uint16_t n0;      /* smallest pulse count with n >= M */
@@ -116,31 +146,7 @@ typedef struct gnav {
     uint32_t stop_pulses;
     int32_t tab_e[GNAV_TABLE_N];    /* E(n), pulses Q16 */
     uint16_t tab_rho[GNAV_TABLE_N]; /* E(n) / n, Q15 */
-    /* dead reckoning: dl and gyro handlers */
-    int64_t x, y;         /* provisional position, pulses Q25 */
-    int64_t xp, yp;       /* closing point P of the interval */
-    int32_t n;            /* signed pulses since P (negative: backwards) */
-    int32_t resid;        /* rounding carried between closings, pulses Q16 */
-    uint16_t n_p;         /* pulses of the last interval (curvature continuation) */
-    uint16_t rho_p;       /* its deficit per pulse, Q15 */
-    uint16_t x_p, g_p;    /* x = M / n_p (Q16) and g(x) (Q17) while rho_p is due */
-    int32_t dir_c, dir_s; /* unit vector of the interval's cell, Q25 (per-pulse step) */
-    int32_t dc_c, dc_s;   /* deficit per curved pulse, rho_p * dir, Q25 */
-    int16_t d15_c, d15_s; /* the unit vector in Q15 */
-    int32_t nxt_c, nxt_s; /* unit vector of the current cell, Q25 */
-    int16_t n15_c, n15_s;
-    fx_angle_t heading;      /* centre of the current cell */
-    uint64_t head_q48;       /* the same, turns * 2^48 (the step is not a whole binary angle) */
-    uint16_t cell, cell_int; /* gyro count now and of the interval (both wrap) */
-    uint16_t h_p, h_first, h_last; /* half-step indices of P and of the edges since */
-    uint8_t pending, dc_due, rho_due, reverse, stop;
-    uint8_t gen;
-    uint16_t version;     /* bumped by every closing and gyro edge (fix installation) */
-    uint32_t since_fix;   /* pulses since the last fix */
-    uint32_t closings[4]; /* situation 1, arcs, reversals, extra edges */
-    /* the published pose: the writer fills pub[(seq + 1) & 1], then bumps seq */
-    volatile uint16_t pub_seq;
-    gnav_pub_t pub[2];
+    uint32_t closings[4];           /* situation 1, arcs, reversals, extra edges */
     /* latches and frames */
     uint16_t latch_seq;
     gnav_latch_raw_t latch[GNAV_LATCH_N];
@@ -149,8 +155,6 @@ typedef struct gnav {
     gnav_pose_t coord;
     gnav_coord_fn coord_fn;
     void *coord_ctx;
-    gnav_stop_fn stop_fn;
-    void *stop_ctx;
 } gnav_t;
 
 /**
