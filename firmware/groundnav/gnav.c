@@ -234,11 +234,21 @@ void gnav_close_arc(gnav_t *g)
     /* what the provisional pose assumed: min(m, n_p) pulses of rho_p */
     uint16_t nc = m < g->n_p ? (uint16_t)m : g->n_p;
     int32_t dprov = (int32_t)(umul16(nc, g->rho_p) << 1); /* Q15 -> Q16 */
+    uint16_t np = m > 32000u ? 32000u : (uint16_t)m;
     int32_t e = 0;
     uint8_t sit1 = 0;
     if (k == 0) {
-        /* back through the same threshold: no net heading change, no deficit */
-        g->rho_p = 0;
+        /* back through the same threshold: the turn reversed inside one cell (an S-curve's
+         * inflection). The last arc's curvature went on, over at most 2 n_p pulses (an
+         * excursion below one step); a longer interval means the vehicle had straightened. */
+        uint16_t n2 = (uint16_t)(2u * g->n_p);
+        e = (int32_t)(umul16(m < n2 ? (uint16_t)m : n2, g->rho_p) << 1);
+        if (m <= n2) {
+            np = g->n_p; /* the curvature goes on */
+        } else {
+            np = 0;
+            g->rho_p = 0;
+        }
         g->rho_due = 0;
         g->closings[2]++;
     } else {
@@ -283,7 +293,7 @@ void gnav_close_arc(gnav_t *g)
         g->yp = g->y;
     }
     HAL_PREEMPT_POINT();
-    g->n_p = m > 32000u ? 32000u : (uint16_t)m;
+    g->n_p = np;
     if (g->h_last != g->h_first) {
         /* more edges inside this pulse: zero-length intervals (situation 1) */
         g->n_p = 0;

@@ -301,13 +301,46 @@ gnav_close_arc:
     pop     r2
     rla     r4
     rlc     r5
-    clr     r14                     ; e = 0 in R15:R14
+    /* n_p of the next interval in R11: min(m, 32000) */
+    mov     #32000, r11
+    tst     r9
+    jnz     31f
+    cmp     r11, r8
+    jhs     31f
+    mov     r8, r11
+31: clr     r14                     ; e = 0 in R15:R14
     clr     r15
     tst     r6
     jnz     4f
-    /* k = 0: back through the same threshold */
+    /* k = 0: the turn reversed inside one cell; the curvature went on over at most 2 n_p
+     * pulses: e = 2 min(m, 2 n_p) rho_p; kept when m <= 2 n_p, else straightened */
+    mov     OFF_N_P(r10), r13
+    rla     r13                     ; n2 = 2 n_p (< 2^16)
+    mov     r13, r12
+    tst     r9
+    jnz     32f
+    cmp     r13, r8
+    jhs     32f
+    mov     r8, r12                 ; min(m, n2)
+32: push    r2
+    dint
+    mov     OFF_RHO_P(r10), r15     ; (not the multiplier right after DINT)
+    mov     r12, &MPY
+    mov     r15, &OP2
+    mov     &RESLO, r14
+    mov     &RESHI, r15
+    pop     r2
+    rla     r14
+    rlc     r15
+    tst     r9                      ; m <= n2: the curvature goes on
+    jnz     33f
+    cmp     r8, r13                 ; n2 - m
+    jlo     33f
+    mov     OFF_N_P(r10), r11
+    jmp     34f
+33: clr     r11
     clr     OFF_RHO_P(r10)
-    clr.b   OFF_RHO_DUE(r10)
+34: clr.b   OFF_RHO_DUE(r10)
     add     #1, OFF_CLOSINGS+8(r10)
     adc     OFF_CLOSINGS+10(r10)
     jmp     .Lapply
@@ -342,7 +375,9 @@ gnav_close_arc:
     adc     OFF_CLOSINGS+2(r10)
     jmp     .Lnp
 .Ldef:
+    push    r11
     call    #gnav_deficit_asm
+    pop     r11
     cmp     #1, r6
     jne     6f
     add     #1, r14                 ; half a step: (E + 1) >> 1
@@ -424,16 +459,16 @@ gnav_close_arc:
     mov     &RESLO, r4
     mov     &RESHI, r5
     pop     r2
-    SEXT    r15, r11
+    SEXT    r15, r13
     add     r14, OFF_X(r10)
     addc    r15, OFF_X+2(r10)
-    addc    r11, OFF_X+4(r10)
-    addc    r11, OFF_X+6(r10)
-    SEXT    r5, r11
+    addc    r13, OFF_X+4(r10)
+    addc    r13, OFF_X+6(r10)
+    SEXT    r5, r13
     add     r4, OFF_Y(r10)
     addc    r5, OFF_Y+2(r10)
-    addc    r11, OFF_Y+4(r10)
-    addc    r11, OFF_Y+6(r10)
+    addc    r13, OFF_Y+4(r10)
+    addc    r13, OFF_Y+6(r10)
     /* P = the closed point */
     mov     OFF_X(r10), OFF_XP(r10)
     mov     OFF_X+2(r10), OFF_XP+2(r10)
@@ -444,14 +479,7 @@ gnav_close_arc:
     mov     OFF_Y+4(r10), OFF_YP+4(r10)
     mov     OFF_Y+6(r10), OFF_YP+6(r10)
 .Lnp:
-    /* n_p = min(m, 32000) */
-    mov     #32000, r13
-    tst     r9
-    jnz     8f
-    cmp     r13, r8
-    jhs     8f
-    mov     r8, r13
-8:  mov     r13, OFF_N_P(r10)
+    mov     r11, OFF_N_P(r10)
     /* more edges inside this pulse: zero-length intervals */
     mov     OFF_H_LAST(r10), r13
     cmp     OFF_H_FIRST(r10), r13
