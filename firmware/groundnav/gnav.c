@@ -427,12 +427,19 @@ void gnav_on_beacon_sighted(void *arg)
     g->latch_seq++;
 }
 
+/* Pulses Q4 to metres Q15.16: round(v dl_q40 / 2^28), saturating; 16 x 16 products only
+ * (the coordinate request runs this in the NMI). */
 static fx_q16_t q4_to_m(const gnav_t *g, int32_t v)
 {
-    int32_t r;
-    if (!fx_mul_shift(v, (int32_t)g->dl_q40, 28, &r))
-        r = v < 0 ? INT32_MIN : INT32_MAX;
-    return r;
+    uint32_t a = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+    uint16_t ah = (uint16_t)(a >> 16), al = (uint16_t)a;
+    uint16_t dh = (uint16_t)(g->dl_q40 >> 16), dlo = (uint16_t)g->dl_q40;
+    uint64_t p = ((uint64_t)umul16(ah, dh) << 32) + ((uint64_t)umul16(ah, dlo) << 16) +
+                 ((uint64_t)umul16(al, dh) << 16) + umul16(al, dlo);
+    uint64_t r = (p + (1ul << 27)) >> 28;
+    if (r > 0x7FFFFFFFu)
+        return v < 0 ? INT32_MIN : INT32_MAX;
+    return v < 0 ? -(int32_t)r : (int32_t)r;
 }
 
 static void pub_to_pose(const gnav_t *g, const gnav_pub_t *p, gnav_pose_t *out)

@@ -202,23 +202,46 @@ static void latches_and_fix(void)
              "the reference latch now reads as the fix");
 }
 
-/* Closings after m pulses straight, for every branch of the deficit (direct calls). */
+/*
+ * Closings after m pulses, for every branch of the deficit (the pulses before the closing as
+ * direct calls, the closing itself through the interrupt): the first edge after init (half a
+ * step), a standard step forwards and backwards, two edges inside one pulse, and a reversal.
+ */
 static void long_intervals(void)
 {
     static const uint32_t ms[] = {14, 20, 32, 33, 500, 1023, 1024, 3000, 16384, 70000, 262144};
     static const gnav_pose_t origin = {0, 0, 0};
     for (unsigned i = 0; i < sizeof ms / sizeof ms[0]; i++) {
-        gnav_init(&nav, &cfg, &origin);
-        gnav_on_gyro_up(&nav); /* first edge: half a step from the start */
-        gnav_on_delta_l(&nav);
-        for (uint32_t j = 1; j < ms[i]; j++)
-            gnav_on_delta_l(&nav);
-        gnav_on_gyro_up(&nav);
-        gnav_on_delta_l(&nav);
-        cy_print("m ");
-        cy_print_dec((int32_t)ms[i]);
-        cy_print(" ");
-        print_pose_raw("");
+        for (unsigned variant = 0; variant < 4u; variant++) {
+            gnav_init(&nav, &cfg, &origin);
+            cy_check(gnav_attach(&nav) == 0, "attach");
+            gnav_set_reverse(&nav, variant == 1u);
+            if (variant == 3u) { /* reversal: an arc's curvature goes on across a threshold */
+                for (unsigned j = 0; j < 40u; j++)
+                    gnav_on_delta_l(&nav);
+                gnav_on_gyro_up(&nav);
+                gnav_on_delta_l(&nav);
+                for (unsigned j = 0; j < 40u; j++)
+                    gnav_on_delta_l(&nav);
+                gnav_on_gyro_up(&nav);
+            } else if (variant != 0u) {
+                gnav_on_gyro_up(&nav); /* leave the start cell: P on a threshold */
+            }
+            for (uint32_t j = 1; j < ms[i]; j++)
+                gnav_on_delta_l(&nav);
+            if (variant == 3u)
+                gnav_on_gyro_down(&nav); /* back through the same threshold */
+            else
+                gnav_on_gyro_up(&nav);
+            if (variant == 2u)
+                gnav_on_gyro_up(&nav); /* two edges inside one pulse */
+            pulse();
+            cy_print("m ");
+            cy_print_dec((int32_t)ms[i]);
+            cy_print(" v");
+            cy_print_dec((int32_t)variant);
+            print_pose_raw("");
+        }
     }
 }
 
@@ -234,7 +257,6 @@ int main(void)
 #endif
     replay();
     latches_and_fix();
-    hal_irq_disable();
     long_intervals();
     cy_bench_report(&st_dl);
     cy_bench_report(&st_close);
