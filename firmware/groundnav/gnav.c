@@ -97,9 +97,27 @@ static int32_t q25_to_q4(int64_t v)
     return (int32_t)((hi << 11) | (lo >> 21));
 }
 
+/* v * 2^n and round(v / 2^n) (ties up), 1 <= n < 32, for the cold paths (fixes, init): a
+ * loop keeps the code small where the compiler would inline long 64-bit shift sequences. */
+__attribute__((noinline)) static int64_t shl64(int64_t v, uint8_t n)
+{
+    uint64_t u = (uint64_t)v;
+    while (n--)
+        u <<= 1;
+    return (int64_t)u;
+}
+
+__attribute__((noinline)) static int64_t sar64r(int64_t v, uint8_t n)
+{
+    v += shl64(1, (uint8_t)(n - 1u));
+    while (n--)
+        v >>= 1;
+    return v;
+}
+
 static int64_t q4_to_q25(int32_t v)
 {
-    return (int64_t)v * (1l << 21);
+    return shl64(v, 21);
 }
 
 /* Q1.30 to Q1.15, rounded, +1 saturating at 32767. */
@@ -654,17 +672,18 @@ static bool transform_q25(const gnav_corr_t *k, int64_t *px, int64_t *py)
     const int64_t lim = (int64_t)1 << 47; /* 2^22 pulses: 1 km at 0.254 mm */
     if (dx >= lim || dx <= -lim || dy >= lim || dy <= -lim)
         return false;
-    int32_t dx8 = (int32_t)((dx + (1l << 16)) >> 17), dy8 = (int32_t)((dy + (1l << 16)) >> 17);
-    int64_t restx = dx - (int64_t)dx8 * (1l << 17), resty = dy - (int64_t)dy8 * (1l << 17);
+    int32_t dx8 = (int32_t)sar64r(dx, 17), dy8 = (int32_t)sar64r(dy, 17);
+    int64_t restx = dx - shl64(dx8, 17), resty = dy - shl64(dy8, 17);
     int32_t rx, ry;
     rotate(k->c, k->s, dx8, dy8, &rx, &ry);
-    *px = q4_to_q25(k->fx4) + (int64_t)rx * (1l << 17) + restx;
-    *py = q4_to_q25(k->fy4) + (int64_t)ry * (1l << 17) + resty;
+    *px = q4_to_q25(k->fx4) + shl64(rx, 17) + restx;
+    *py = q4_to_q25(k->fy4) + shl64(ry, 17) + resty;
     return true;
 }
 
 /* Rotate a small motion (Q25, |m| < 2^15 pulses) by (c, s) Q1.15, keeping the sub-Q10 rest. */
-static void rotate_small(int16_t c, int16_t s, int64_t mx, int64_t my, int64_t *ox, int64_t *oy)
+__attribute__((noinline)) static void rotate_small(int16_t c, int16_t s, int64_t mx, int64_t my,
+                                                   int64_t *ox, int64_t *oy)
 {
     int32_t x10 = (int32_t)((mx + (1l << 14)) >> 15), y10 = (int32_t)((my + (1l << 14)) >> 15);
     int16_t xh = (int16_t)(x10 >> 15), yh = (int16_t)(y10 >> 15);
@@ -832,8 +851,8 @@ int gnav_init(gnav_t *g, const gnav_config_t *cfg, const gnav_pose_t *start)
     }
     arm_stop(g);
     /* the start pose: the gyro's reading is the centre of cell 0 */
-    g->x = (int64_t)start->x * g->per_m_q16 / 128; /* Q32 -> Q25 */
-    g->y = (int64_t)start->y * g->per_m_q16 / 128;
+    g->x = sar64r((int64_t)start->x * g->per_m_q16, 7); /* Q32 -> Q25 */
+    g->y = sar64r((int64_t)start->y * g->per_m_q16, 7);
     g->xp = g->x;
     g->yp = g->y;
     g->hd = start->heading;
