@@ -86,7 +86,12 @@ fx_q16_t fx_cot(fx_angle_t a)
     return ratio_q16(fx_cos(a), fx_sin(a), a, false);
 }
 
-#ifndef FX_ASM
+static uint32_t magnitude(int32_t v)
+{
+    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+}
+
+#ifndef FX_ASM /* MSP430: msp430/fx_trig.S */
 /* atan of the ratio q / 2^24 in [0, 0.5], binary angle: table of 1/256 steps, chord. */
 static uint32_t atan_interp(uint32_t q)
 {
@@ -95,10 +100,9 @@ static uint32_t atan_interp(uint32_t q)
     uint32_t d = fx_atan_tab[i + 1u] - t0; /* < 2^22 */
     return t0 + (uint32_t)(uint16_t)(d >> 16) * u + (((uint32_t)(uint16_t)d * u) >> 16);
 }
-#endif
 
 /*
- * Octant reduction shared by both arctangents, for 0 <= ay <= ax, 0 < ax <= 2^31: both are
+ * Octant reduction of the arctangent, for 0 <= ay <= ax, 0 < ax <= 2^31: both are
  * halved when ax >= 2^30 (so that ax + ay <= 2^31; the ratio keeps 29 bits), and a ratio
  * above 1/2 (ay > ax - ay) is turned by 45 degrees, atan(r) = 45 deg - atan((1-r) / (1+r)),
  * so the table only spans [0, 1/2]. Leaves num <= den / 2, 0 < den <= 2^31 in *num, *den
@@ -117,7 +121,6 @@ static bool octant_ratio(uint32_t ay, uint32_t ax, uint32_t *num, uint32_t *den)
     return turned;
 }
 
-#ifndef FX_ASM /* MSP430: msp430/fx_trig.S */
 fx_angle_t fx_atan_q1(uint32_t ay, uint32_t ax)
 {
     bool swap = ay > ax;
@@ -128,6 +131,7 @@ fx_angle_t fx_atan_q1(uint32_t ay, uint32_t ax)
     }
     uint32_t num, den, rem;
     bool turned = octant_ratio(ay, ax, &num, &den);
+    /* q = floor(num 2^24 / den) <= 2^23 */
     uint32_t t = atan_interp(fx_udiv64_32(num >> 8, num << 24, den, &rem));
     if (turned)
         t = 0x20000000u - t;
@@ -135,67 +139,21 @@ fx_angle_t fx_atan_q1(uint32_t ay, uint32_t ax)
         t = FX_ANGLE_QUARTER - t;
     return t;
 }
-#endif
 
-static uint32_t magnitude(int32_t v)
+fx_angle_t fx_atan2(int32_t y, int32_t x)
 {
-    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
-}
-
-/* The first-quadrant angle t of (|x|, |y|) placed in the quadrant of (x, y). */
-static fx_angle_t unfold(fx_angle_t t, int32_t y, int32_t x)
-{
+    uint32_t ax = magnitude(x), ay = magnitude(y);
+    if ((ax | ay) == 0)
+        return 0;
+    /* The first-quadrant angle placed in the quadrant of (x, y). */
+    fx_angle_t t = fx_atan_q1(ay, ax);
     if (x < 0)
         t = FX_ANGLE_HALF - t;
     if (y < 0)
         t = 0u - t;
     return t;
 }
-
-#ifndef FX_ASM /* MSP430: msp430/fx_trig.S */
-fx_angle_t fx_atan2(int32_t y, int32_t x)
-{
-    uint32_t ax = magnitude(x), ay = magnitude(y);
-    if ((ax | ay) == 0)
-        return 0;
-    return unfold(fx_atan_q1(ay, ax), y, x);
-}
 #endif
-
-fx_angle_t fx_atan2_fast(int32_t y, int32_t x)
-{
-    uint32_t ax = magnitude(x), ay = magnitude(y);
-    if ((ax | ay) == 0)
-        return 0;
-    bool swap = ay > ax;
-    if (swap) {
-        uint32_t t = ax;
-        ax = ay;
-        ay = t;
-    }
-    uint32_t num, den;
-    bool turned = octant_ratio(ay, ax, &num, &den);
-    /* Cut both to the 16 significant bits of den, then a 15-bit ratio. */
-    if (den >> 24) {
-        num >>= 8;
-        den >>= 8;
-    }
-    while (den >> 16) {
-        num >>= 1;
-        den >>= 1;
-    }
-    uint16_t rem;
-    uint16_t q = fx_udiv32_16(num << 15, (uint16_t)den, &rem); /* <= 2^14 */
-    uint16_t i = (uint16_t)(q >> 9), u = (uint16_t)(q & 511u);
-    uint16_t t0 = fx_atan_fast_tab[i];
-    uint16_t d = (uint16_t)(fx_atan_fast_tab[i + 1u] - t0); /* < 2^11 */
-    uint32_t t = (((uint32_t)t0 << 9) + (uint32_t)d * u) << 4;
-    if (turned)
-        t = 0x20000000u - t;
-    if (swap)
-        t = FX_ANGLE_QUARTER - t;
-    return unfold(t, y, x);
-}
 
 fx_angle_t fx_atan_ratio(int32_t num, int32_t den)
 {

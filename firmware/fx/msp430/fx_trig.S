@@ -1,7 +1,8 @@
 /*
- * fx_trig.S - MSP430 versions of fx_sin, fx_cos and the first-quadrant arctangent core
- * fx_atan_q1 (firmware/fx/fx_trig.c holds the portable C that defines the results; these
- * perform the very same integer steps, which tests/vectors/fx_vectors.c checks bit for bit).
+ * fx_trig.S - MSP430 versions of fx_sin, fx_cos, fx_atan2 and the first-quadrant
+ * arctangent fx_atan_q1 (firmware/fx/fx_trig.c holds the portable C that defines the
+ * results; these perform the very same integer steps, which tests/vectors/fx_vectors.c
+ * checks bit for bit).
  *
  * Registers as clang emits calls (TI EABI): 32-bit arguments in R13:R12 and R15:R14 (high
  * word first here: R12 is the low word), 32-bit result in R13:R12; R11..R15 may be
@@ -29,7 +30,7 @@
  *   u = (xr >> 7) mod 2^16, e = T[i+1] - T[i] + 2 ((G[i] ((2^16 - u) mod 2^16)) >> 16),
  *   s = T[i] + ((e u) >> 16), negated in the lower half turn.
  * The body is assembled twice (SIN_BODY), for the upper and the lower half turn, so that
- * the sign needs no register. Interrupts are held off for 75 cycles.
+ * the sign needs no register. Interrupts are held off for 58 cycles.
  */
     .macro SIN_BODY
     bit     #0x4000, r13            ; odd quadrant: xr = (2^30 - 1 - x) + 65
