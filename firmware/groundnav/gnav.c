@@ -7,13 +7,15 @@
  *    drift is the step's rounding, 2^-26 pulse per pulse, 1.5 um per 100 m);
  *  - deficits (E, D, delta): int32 pulses Q16, applied in Q10 with the rounding carried to
  *    the next closing (so it never accumulates); deficit per pulse rho: Q15;
- *  - heading of the current gyro cell: uint64 turns * 2^48 (the step is not a whole binary
- *    angle: 0.25 degrees is 2982616.18 LSB), published as a binary angle;
+ *  - heading of the current gyro cell: a binary angle with 16 more fraction bits (the step is
+ *    not a whole binary angle: 0.25 degrees is 2982616.18 LSB), published rounded;
  *  - latches and frame corrections: int32 pulses Q4 (8 um, +-34 km);
  *  - the outside world (gnav_pose_t): metres Q15.16.
  *
  * The dl handler uses 16 x 16 products only (the MSP430's multiplier); the one sin/cos per
- * gyro edge is in the gyro handler, which knows the new cell first.
+ * gyro edge is in the gyro handler, which knows the new cell first. On the MSP430 the dl
+ * handler, the arc closing and the 64-bit accumulations are assembly (the .S files in msp430/)
+ * doing the very steps of the C here (GNAV_ASM leaves the C out there).
  */
 #include "groundnav/gnav.h"
 
