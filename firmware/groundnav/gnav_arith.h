@@ -1,6 +1,7 @@
 /*
- * gnav_arith.h - the 64-bit accumulations of the dl handler's hot path (internal).
- * Portable C in gnav_arith.c defines the results; on the MSP430 msp430/gnav_arith.S does the
+ * gnav_arith.h - internals shared by gnav.c and the MSP430 assembly: the 64-bit accumulations
+ * of the dl handler's hot path, the arc closing and its deferred part.
+ * Portable C in gnav_arith.c defines the accumulations; on the MSP430 msp430/gnav_arith.S does the
  * very same integer steps with ADDC chains and the hardware multiplier (the compiler spends
  * some 40 instructions on one 64-bit add); tests/vectors/groundnav_vectors.c checks both
  * worlds bit for bit.
