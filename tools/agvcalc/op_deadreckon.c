@@ -16,7 +16,7 @@
  * arrive at once). n_pulses < 0 drives backwards (|n_pulses| pulses). The answer is the pose
  * the nav board publishes after the last run.
  */
-#define _XOPEN_SOURCE 700 /* M_PI (fx_host.h) */
+
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>

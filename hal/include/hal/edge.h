@@ -21,10 +21,10 @@ extern "C" {
 
 /** Logical pulse lines. */
 typedef enum {
-    HAL_EDGE_DELTA_L = 0,    /**< nav board: odometer pulse (front-wheel travel dl)     P1.0 */
-    HAL_EDGE_GYRO_UP,        /**< nav board: gyro heading +1 step (counter-clockwise)   P1.1 */
-    HAL_EDGE_GYRO_DOWN,      /**< nav board: gyro heading -1 step (clockwise)           P1.2 */
-    HAL_EDGE_BEACON_SIGHTED, /**< nav board: main board latched a beacon sighting       P1.3 */
+    HAL_EDGE_DELTA_L = 0,    /**< nav board: odometer pulse (front-wheel travel dl)     P1.4 */
+    HAL_EDGE_GYRO_UP,        /**< nav board: gyro heading +1 step (counter-clockwise)   P1.5 */
+    HAL_EDGE_GYRO_DOWN,      /**< nav board: gyro heading -1 step (clockwise)           P1.6 */
+    HAL_EDGE_BEACON_SIGHTED, /**< nav board: main board photodetector pulse (sighting) P1.7 */
     HAL_EDGE_DELTA_S,        /**< main board: drive board's segment-almost-done pulse   P2.0 */
     HAL_EDGE_TEST,           /**< free line for tests                                   P2.7 */
     HAL_EDGE_COORD_REQUEST,  /**< nav board: coordinate request, NON-MASKABLE    RST/NMI pin */
