@@ -77,6 +77,7 @@ void posix_reset(void)
     preempt_ctx = NULL;
     posix_console_redirect(NULL, NULL);
     posix_link_reset();
+    posix_clock_signal_reset();
 }
 
 int posix_board_create(const char *name)

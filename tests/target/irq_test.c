@@ -9,6 +9,7 @@
 #include "cy_test.h"
 #include "f249.h"
 #include "hal/capture.h"
+#include "hal/clock.h"
 #include "hal/cpu.h"
 #include "hal/edge.h"
 #include "hal/irq.h"
@@ -139,6 +140,13 @@ int main(void)
     cy_check(nmi_count == 2, "NMI re-armed after its handler");
     hal_critical_exit();
     sim("wdt nmi 1");
+
+    /* 6. The 1 ms clock: Timer_B CCR0 every 16,000 cycles of SMCLK. */
+    hal_clock_init();
+    uint32_t t0 = hal_clock_ms();
+    while (hal_clock_ms() - t0 < 3u)
+        ;
+    cy_check(hal_clock_ms() - t0 == 3u, "the clock ticks");
 
     cy_print("# handler calls: test ");
     cy_print_dec(test_count);

@@ -8,11 +8,13 @@
 
 extern "C" {
 #include "hal/capture.h"
+#include "hal/clock.h"
 #include "hal/cpu.h"
 #include "hal/edge.h"
 #include "hal/irq.h"
 #include "hal/pinmap.h"
 #include "hal/preempt.h"
+#include "hal/signal.h"
 #include "hal_posix/harness.h"
 }
 
@@ -371,6 +373,43 @@ TEST_F(Harness, WakeIsTakenOnce)
     hal_cpu_wake();
     EXPECT_TRUE(posix_board_take_wake(board));
     EXPECT_FALSE(posix_board_take_wake(board));
+}
+
+TEST_F(Harness, ClockTicksEveryMillisecondOnItsBoardAndWakesIt)
+{
+    hal_clock_init();
+    hal_irq_enable();
+    EXPECT_EQ(hal_clock_ms(), 0u);
+    posix_run_until(999999);
+    EXPECT_EQ(hal_clock_ms(), 0u);
+    posix_run_until(1000000);
+    EXPECT_EQ(hal_clock_ms(), 1u);
+    EXPECT_TRUE(posix_board_take_wake(board));
+    posix_run_until(250000000);
+    EXPECT_EQ(hal_clock_ms(), 250u);
+    int other = posix_board_create("other");
+    posix_board_select(other);
+    EXPECT_EQ(hal_clock_ms(), 0u); // not started there
+}
+
+TEST_F(Harness, SignalPulseReachesTheWiredLineOfTheOtherBoard)
+{
+    int nav = posix_board_create("nav");
+    static int requests;
+    requests = 0;
+    posix_board_select(nav);
+    ASSERT_EQ(hal_edge_init(
+                  HAL_EDGE_COORD_REQUEST, HAL_EDGE_FALLING, [](void *) { requests++; }, nullptr),
+              0);
+    posix_board_select(board);
+    hal_signal_init(HAL_SIGNAL_COORD_REQUEST);
+    hal_signal_pulse(HAL_SIGNAL_COORD_REQUEST); // not wired yet: nothing
+    posix_dispatch();
+    EXPECT_EQ(requests, 0);
+    posix_signal_connect(board, HAL_SIGNAL_COORD_REQUEST, nav, HAL_EDGE_COORD_REQUEST);
+    hal_signal_pulse(HAL_SIGNAL_COORD_REQUEST);
+    posix_dispatch(); // non-maskable: taken although the nav board never enabled interrupts
+    EXPECT_EQ(requests, 1);
 }
 
 } // namespace

@@ -28,6 +28,7 @@
 #include "hal/capture.h"
 #include "hal/edge.h"
 #include "hal/link.h"
+#include "hal/signal.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -155,6 +156,14 @@ uint32_t posix_capture_overflows(int board, hal_capture_channel_t ch);
  */
 typedef void (*posix_console_sink_fn)(void *ctx, int board, char c);
 void posix_console_redirect(posix_console_sink_fn sink, void *ctx);
+
+/* ---- output lines (hal/signal.h) and the 1 ms clock (hal/clock.h) ---- */
+
+/** Wire output line @p s of @p from_board to edge line @p line of @p to_board. */
+void posix_signal_connect(int from_board, hal_signal_t s, int to_board, hal_edge_line_t line);
+
+/** Forget clocks and wiring (posix_reset() calls it). */
+void posix_clock_signal_reset(void);
 
 /* ---- the inter-board link (hal/link.h) ---- */
 
