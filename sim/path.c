@@ -33,6 +33,20 @@ int sim_path_append(sim_path_t *p, sim_pose_t start, double kappa, double length
     return 0;
 }
 
+int sim_path_append_from(sim_path_t *p, sim_pose_t start, double kappa, double length, int reverse)
+{
+    if (p->n >= SIM_MAX_PIECES)
+        return -1;
+    sim_piece_t *pc = &p->piece[p->n++];
+    pc->x0 = start.x;
+    pc->y0 = start.y;
+    pc->th0 = start.th;
+    pc->kappa = kappa;
+    pc->length = length;
+    pc->reverse = reverse;
+    return 0;
+}
+
 sim_pose_t sim_path_end(const sim_path_t *p)
 {
     return sim_piece_end(&p->piece[p->n - 1]);

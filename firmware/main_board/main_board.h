@@ -1,32 +1,106 @@
 /*
- * main_board.h - the main board application (the original 8086 computer): goniometer,
- * optical fix, drive routine and drive-board I/O. Portable: the MSP430 main() and the host
- * harness both drive it through these two calls.
+ * main_board.h - the main board (the original 8086 computer): goniometer capture and the
+ * optical fix (firmware/optical), the drive routine and its travel sequence (firmware/drive),
+ * the drive-board port, and the link to the nav board (firmware/link). Portable: the MSP430
+ * main() and the host harness drive it through these calls.
+ *
+ * One revolution in full travel (seed 000, 5.1; docs/integration.md): the index pulse ends a
+ * revolution; the sequencer asks for its fix; the board asks the nav board for the poses it
+ * latched at the revolution's sightings (brought into one frame), runs optical_fix() with the
+ * last sighting's latch as the reference instant, sends the fix (Buffer Full) referring to
+ * that latch, waits for the nav board's acknowledgement, pulses the coordinate request,
+ * predicts the pose at load time along the loaded arc, and the sequencer picks the next
+ * target, solves the double arc and loads it at its time. Simplified travel stops at every
+ * point and fixes standing still (5.2).
  */
 #ifndef MAIN_BOARD_H
 #define MAIN_BOARD_H
 
+#include <stdbool.h>
 #include <stdint.h>
+
+#include "drive/drive.h"
+#include "drive/drive_cmd.h"
+#include "drive/drive_path.h"
+#include "drive/drive_seq.h"
+#include "optical/optical.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/** Counters kept by the interrupt handlers, for diagnostics. */
+/** Most primary path points the board holds (18 bytes of RAM each). */
+#define MAIN_BOARD_MAX_PATH 32
+
+/** What the board is told before a run (the base station's download, seed 5.1 step 1). */
 typedef struct {
-    uint32_t index_pulses; /**< goniometer index pulses (mirror revolutions) */
-    uint32_t edges;        /**< photodetector edges captured */
-    uint32_t delta_s;      /**< drive-board delta-S pulses */
+    const optical_xy_t *beacons; /**< the beacon map, 3..OPTICAL_MAX_BEACONS */
+    uint8_t n_beacons;
+    const drive_path_point_t *path; /**< primary points with their speeds (copied) */
+    uint8_t n_path;                 /**< 1..MAIN_BOARD_MAX_PATH */
+    drive_pose_t start;             /**< the initial vector */
+    drive_board_t board;            /**< the vehicle and its drive board */
+    drive_path_config_t path_cfg;   /**< nominal radius, point spacing, direction */
+    drive_seq_config_t seq_cfg;     /**< travel mode and its times */
+    uint16_t counts_per_turn;       /**< goniometer angle clock per mirror turn */
+    optical_config_t optical;       /**< identification and checking parameters */
+} main_board_config_t;
+
+/** One fix attempt, as the observer sees it. */
+typedef struct {
+    int8_t status;        /**< optical_status_t; OPTICAL_E_REV also for missing latches */
+    uint8_t n;            /**< sightings of the revolution */
+    uint16_t ref_latch;   /**< the latch (photodetector rising edge number) it refers to */
+    optical_fix_t fix;    /**< the pipeline's result */
+    optical_pose_t approx; /**< the dead-reckoning pose at the reference instant */
+    const optical_sighting_t *s; /**< the sightings (sorted by angle), valid during the call */
+} main_board_fix_event_t;
+
+/** Observers (host harness, telemetry); every member may be NULL. */
+typedef struct {
+    void *ctx;
+    void (*on_fix)(void *ctx, const main_board_fix_event_t *ev);
+    void (*on_load)(void *ctx, const drive_cmd_t *cmd);
+    void (*on_state)(void *ctx, drive_state_t state);
+} main_board_observer_t;
+
+/** Counters for diagnostics. */
+typedef struct {
+    uint32_t revolutions;    /**< index pulses */
+    uint16_t fixes_ok, fixes_failed;
+    uint16_t fixes_acked;    /**< fixes the nav board installed */
+    uint16_t latch_timeouts; /**< fixes abandoned waiting for latches */
+    uint16_t loads;          /**< double arcs loaded */
+    uint16_t link_errors;
+    uint8_t done, fault;
+    uint8_t fault_why;       /**< drive_fault_t */
+    uint8_t stop_requested;  /**< the nav board asked for a stop (G6) */
 } main_board_stats_t;
 
-/** Register the portable interrupt handlers; interrupts stay disabled. */
-void main_board_init(void);
+/**
+ * Set the board up for @p cfg: capture handlers, delta-S line, drive port, link, clock;
+ * prepares the path. Interrupts stay disabled. Returns DRIVE_OK, or why the path or the
+ * configuration is not acceptable (the board then refuses to start).
+ */
+drive_status_t main_board_init(const main_board_config_t *cfg);
+
+/** Where the path preparation failed (valid after main_board_init() returned an error). */
+const drive_path_t *main_board_path(void);
+
+/** The operator's go: starts the travel sequence (needs interrupts enabled). */
+void main_board_start(void);
 
 /** One pass of the main loop: does the work the handlers left and returns. */
 void main_board_poll(void);
 
-/** A consistent copy of the counters (taken with interrupts disabled). */
+/** Set the observers (NULL removes them). */
+void main_board_set_observer(const main_board_observer_t *obs);
+
+/** A copy of the counters. */
 void main_board_stats(main_board_stats_t *out);
+
+/** The travel sequencer's state. */
+drive_state_t main_board_state(void);
 
 #ifdef __cplusplus
 }
