@@ -42,6 +42,14 @@ extern "C" {
 /** Map coordinates and poses must lie within +-OPTICAL_COORD_LIMIT metres (Q15.16). */
 #define OPTICAL_COORD_LIMIT (8192l * FX_Q16_ONE)
 
+/**
+ * Quality limit of optical_triangulate() where its result is still within 1 mm of the exact
+ * solution of the same inputs (Q16 m per mrad: 2 m per mrad, 0.25 m per count). Beyond it the
+ * geometry, not the arithmetic, has made the fix meaningless: one count of bearing error
+ * moves it by more than 25 cm (docs/optical.md, "The refused region").
+ */
+#define OPTICAL_QUALITY_LIMIT (2ul * 65536ul)
+
 /** A point in the world frame (x east, y north), Q15.16 metres. */
 typedef struct {
     fx_q16_t x, y;
