@@ -21,6 +21,9 @@
 
 #include "optical/optical.h"
 
+/** Largest disagreement of the three bearings of a solution (2e-4 rad). */
+#define CONSISTENT 136707l
+
 /** Offsets beyond this (Q16, 2048 m) are refused: the scaling needs them below 2^27. */
 #define SPAN_LIMIT (1l << 27)
 
@@ -268,8 +271,21 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3],
     fx_angle_t h[3];
     for (uint8_t i = 0; i < 3; i++)
         h[i] = fx_atan2(bk[i]->y - out->pose.y, bk[i]->x - out->pose.x) - th[i];
-    int32_t dsum = (int32_t)(h[1] - h[0]) + (int32_t)(h[2] - h[0]);
-    out->pose.heading = h[0] + (fx_angle_t)fx_mul_q30(dsum, 357913941l);
+    /* Each beacon must lie along its own sighting: a solution on the other arc of a circle
+     * (which the circles alone cannot tell apart) leaves one direction off by about 180
+     * degrees. Near the beacons' circle a quantised input can land there. */
+    int32_t d1 = (int32_t)(h[1] - h[0]), d2 = (int32_t)(h[2] - h[0]);
+    int32_t mean = fx_mul_q30(d1, 357913941l) + fx_mul_q30(d2, 357913941l);
+    int32_t e0 = mean, e1 = d1 - mean, e2 = d2 - mean;
+    if (e0 < 0)
+        e0 = -e0;
+    if (e1 < 0)
+        e1 = -e1;
+    if (e2 < 0)
+        e2 = -e2;
+    if (e0 > CONSISTENT || e1 > CONSISTENT || e2 > CONSISTENT)
+        return OPTICAL_E_SINGULAR;
+    out->pose.heading = h[0] + (fx_angle_t)mean;
     out->quality = qual;
     return qual > quality_max ? OPTICAL_E_SINGULAR : OPTICAL_OK;
 }
