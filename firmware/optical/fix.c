@@ -1,72 +1,212 @@
 /*
  * fix.c - one revolution's fix (SPEC O2-O7, O11, O6): the pipeline of optical/optical.h.
  *
- * Identification works on 16-bit angles (2^-16 turn, 0.0055 degrees): the expected angle of
- * a beacon comes from the fast arctangent, and every window is a bound of what the pose
- * uncertainty allows, so a sighting of beacon j always lies in j's window and an identification
- * is safe when it is unique both ways (one beacon for the sighting, one sighting for the
- * beacon). The bound for beacon k is
- *     offset interval (heading)  +-  asin((eps + |c_i|) / r_k)  + margin
- * with eps the position uncertainty, c_i the sighting's parallax lever (moving vehicle) and
- * r_k the range from the approximate position. 1 / r_k is bounded from above cheaply by the
- * octagonal norm and its leading bit (at most 1.5 times the true value), so the windows are
- * never too narrow. Every safe match shrinks the heading interval (it must contain the match's
- * offset +- its position part), which narrows all windows for the next pass. Only when fewer
- * than three remain are the windows widened beyond the bounds (the seed's computed step, a
- * bounded number of times); then the seed's overlapping-window rule applies too.
+ * Identification works on 16-bit angles (2^-16 turn, 0.0055 degrees) and bounds: the window
+ * of beacon k for sighting i is
+ *     heading interval  +-  asin((eps + |c_i|) / r_k)  + margin
+ * with eps the position uncertainty of the approximate pose, c_i the sighting's parallax
+ * lever (vehicle moving) and r_k the beacon's range from the approximate position (its
+ * reciprocal bounded from above cheaply: octagonal norm and leading bit, at most 1.5 times
+ * too wide). A sighting of beacon j then always lies in j's window, so a match that is unique
+ * both ways (one beacon for the sighting, one sighting for the beacon) is safe. Every safe
+ * match shrinks the heading interval (the true heading offset lies within its position part
+ * of its own offset), which narrows all windows for the next pass. Only when fewer than three
+ * remain are the windows widened beyond the bounds, by the seed's computed step a bounded
+ * number of times; widened matches are checked with the seed's overlapping-window rule.
+ *
+ * Cost on the MSP430 (the budget is 20,000 cycles for 15 sightings and 32 beacons): per beacon
+ * one 16-bit arctangent (optical_angle16) and a few compares; per candidate pair a few 16-bit
+ * operations; the precise fixed-point work is left to the selected triplet.
  */
 #include <stdbool.h>
 #include <stddef.h>
 
 #include "optical/optical.h"
 
-#define NONE  0xFFu /* no match */
-#define MULTI 0xFEu /* more than one match */
+#define NONE    0xFFu /* no match */
+#define MULTI   0xFEu /* more than one match */
+#define DROPPED 0xFDu /* sighting dropped by the width threshold (O4) */
 
-/* Identification margin, 2^-16 turn: fast arctangent (1), rounding to 16 bits (1), the
- * centre of a pulse quantised to half a count (0.7). */
-#define MARGIN 4
+/* Identification margin, 2^-16 turn: optical_angle16 (2), the sighting angle rounded to 16
+ * bits (0.5), the centre of a pulse from two edges quantised to counts (0.7), spare. */
+#define MARGIN 6
 
-/* Refinement passes of the heading interval, and the shrink that makes one worth it. */
+/* Heading-interval refinement passes at most. */
 #define MAX_PASSES 6
 
-/* 2^16 / (2 pi) * asin(x) <= 10923 x for x <= 1/2; times 1.118 for the octagonal norm. */
-#define GK_NUM 12212ul
+/* Candidate (sighting, beacon) pairs kept between passes. */
+#define MAX_CAND 40
+
+typedef struct {
+    uint8_t j, k; /* sorted sighting, beacon */
+    int16_t off;  /* th[j] - psi[k], 2^-16 turn */
+    uint16_t e;   /* position part of the window + MARGIN */
+} cand_t;
 
 /* Work area of optical_fix (not reentrant). */
 static struct {
-    uint16_t psi[OPTICAL_MAX_BEACONS];  /* expected angle, 2^-16 turn, relative to approx */
-    uint16_t g[OPTICAL_MAX_BEACONS];    /* bound of 2^16/(2 pi) asin(1 m / r), 0: gated out */
-    uint8_t bm[OPTICAL_MAX_BEACONS];    /* per beacon: sighting matched, NONE or MULTI */
+    uint16_t psi[OPTICAL_MAX_BEACONS];  /* expected angle, 2^-16 turn, vehicle frame */
+    uint16_t g[OPTICAL_MAX_BEACONS];    /* bound of 2^16/(2 pi) asin(1 m / r); 0 gated out */
+    uint8_t bm[OPTICAL_MAX_BEACONS];    /* per beacon: sorted sighting matched, NONE, MULTI */
     uint16_t th[OPTICAL_MAX_SIGHTINGS]; /* sighting angles in the reference frame, sorted */
     uint8_t ord[OPTICAL_MAX_SIGHTINGS]; /* input index of th[j] */
-    uint8_t sm[OPTICAL_MAX_SIGHTINGS];  /* per sorted sighting: beacon matched, NONE, MULTI */
-    uint8_t keep[OPTICAL_MAX_SIGHTINGS];
-    uint16_t lever[OPTICAL_MAX_SIGHTINGS]; /* |c_i| in 2^-8 m (moving), 0 standing */
-    int32_t c[OPTICAL_MAX_SIGHTINGS];      /* c_i = cross(u_i, o_i), Q16 m (moving) */
-    fx_angle_t d[OPTICAL_MAX_SIGHTINGS];   /* precise angles in the reference frame */
-    uint8_t bstart[17];                    /* first sorted sighting of each 1/16 turn */
+    uint8_t sm[OPTICAL_MAX_SIGHTINGS];  /* per sorted sighting: beacon, NONE, MULTI, DROPPED */
+    int32_t c[OPTICAL_MAX_SIGHTINGS];   /* parallax lever c = cross(u, o), Q16 m */
+    uint8_t bstart[16];                 /* first sorted sighting of each 1/16 turn */
+    cand_t cand[MAX_CAND];
+    uint8_t ncand;
 } W;
 
 void optical_config_default(optical_config_t *cfg)
 {
     cfg->beacon_diameter = 5243; /* 0.08 m */
     cfg->beacon_flat = 0;
-    cfg->window = 59652324ul;    /* 5 degrees */
-    cfg->window_pos = 19661;     /* 0.3 m */
+    cfg->window = 59652324ul;     /* 5 degrees */
+    cfg->window_pos = 19661;      /* 0.3 m */
     cfg->widen_max = 119304647ul; /* 10 degrees */
     cfg->widen_steps = 2;
     cfg->reject_overlap = 0;
     cfg->range = 30l * FX_Q16_ONE;
     cfg->range_max = 60l * FX_Q16_ONE;
     cfg->range_steps = 2;
-    cfg->dist_tol = 32768; /* 0.5 m */
-    cfg->dist_rel = 19661; /* 0.3 */
-    cfg->jump_max = 32768; /* 0.5 m */
+    cfg->dist_tol = 32768;      /* 0.5 m */
+    cfg->dist_rel = 19661;      /* 0.3 */
+    cfg->jump_max = 32768;      /* 0.5 m */
     cfg->turn_max = 83513454ul; /* 7 degrees */
     cfg->resid_max = 2386093ul; /* 0.2 degrees */
-    cfg->quality_max = 16384; /* 0.25 m per mrad: 3.1 cm per count */
+    cfg->quality_max = 16384;   /* 0.25 m per mrad: 3.1 cm per count */
     cfg->motion_passes = 3;
+}
+
+/* ------------------------------------------------------------------ small helpers */
+
+static uint32_t umag(int32_t v)
+{
+    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+}
+
+static uint16_t a16(fx_angle_t a)
+{
+    return (uint16_t)((a + 0x8000ul) >> 16);
+}
+
+static uint16_t abs16(uint16_t d)
+{
+    return (int16_t)d < 0 ? (uint16_t)(0u - d) : d;
+}
+
+/* round(atan(i / 64) * 2^16 / (2 pi)), i = 0..64 */
+static const uint16_t atan_tab[65] = {
+    0,    163,  326,  489,  651,  813,  975,  1136, 1297, 1457, 1617, 1775, 1933,
+    2090, 2246, 2401, 2555, 2708, 2860, 3010, 3159, 3307, 3453, 3599, 3742, 3884,
+    4025, 4164, 4302, 4438, 4572, 4705, 4836, 4966, 5094, 5220, 5344, 5467, 5589,
+    5708, 5826, 5943, 6058, 6171, 6282, 6392, 6500, 6607, 6712, 6815, 6917, 7018,
+    7117, 7214, 7310, 7405, 7498, 7589, 7679, 7768, 7856, 7942, 8026, 8110, 8192};
+
+uint16_t optical_angle16(int32_t dx, int32_t dy)
+{
+    uint32_t ax = umag(dx), ay = umag(dy);
+    bool swap = ay > ax;
+    if (swap) {
+        uint32_t t = ax;
+        ax = ay;
+        ay = t;
+    }
+    if (ax == 0)
+        return 0;
+    while (ax >= 0x8000u) {
+        ax >>= 1;
+        ay >>= 1;
+    }
+    uint16_t a;
+    uint16_t den = (uint16_t)ax, rem = (uint16_t)ay;
+    if (rem >= den) {
+        a = 8192;
+    } else {
+        /* q = round(2^14 ay / ax) by restoring division (15 quotient bits, last rounds) */
+        uint16_t q = 0;
+        for (uint8_t i = 0; i < 15; i++) {
+            rem <<= 1;
+            q <<= 1;
+            if (rem >= den) {
+                rem -= den;
+                q |= 1u;
+            }
+        }
+        q = (uint16_t)((q + 1u) >> 1); /* 0..16384 */
+        uint16_t i = q >> 8, f = q & 255u;
+        a = atan_tab[i];
+        if (f)
+            a = (uint16_t)(a + (((uint16_t)(atan_tab[i + 1u] - a) * f + 128u) >> 8));
+    }
+    if (swap)
+        a = (uint16_t)(16384u - a);
+    if (dx < 0)
+        a = (uint16_t)(32768u - a);
+    if (dy < 0)
+        a = (uint16_t)(0u - a);
+    return a;
+}
+
+/* ceil(2^20 / j), j = 16..31 */
+static const uint32_t recip_tab[16] = {65536, 61681, 58255, 55189, 52429, 49933, 47663, 45591,
+                                       43691, 41944, 40330, 38837, 37450, 36158, 34953, 33826};
+
+/*
+ * g_k: an upper bound of 2^16 / (2 pi) * asin(a / r) / a for every lever a (metres) up to
+ * @p amax (Q16), r the true range of a beacon at (dx, dy) (Q16) from the approximate
+ * position, so that win_part(a, g) bounds the angle a position error a can cause. The range
+ * is bounded from below by max(|dx|, |dy|, (|dx| + |dy|) / sqrt 2) (at most 8.2 % short) and
+ * its reciprocal from above by a 16-step table per octave (at most 6.3 % high); asin(x) <=
+ * 1.0472 x for x <= 1/2 and <= (pi / 2) x for x <= 1. 0xFFFF (no bound) when the beacon may
+ * lie within amax (or 0.3 m) of the vehicle.
+ */
+static uint16_t g_bound(int32_t dx, int32_t dy, uint32_t amax)
+{
+    uint32_t ax = umag(dx), ay = umag(dy);
+    uint32_t m = ax > ay ? ax : ay;
+    uint32_t d = (((ax + ay) >> 8) * 181u); /* (|dx| + |dy|) * 0.70703 <= true range */
+    uint32_t r = d > m ? d : m;
+    if (r <= amax || r < 19661u)
+        return 0xFFFFu;
+    uint32_t k = r >= 2u * amax ? 10923u : 16384u;
+    uint8_t sh = 0;
+    while (r >= 32u) { /* r in [j 2^sh, (j + 1) 2^sh), j = 16..31 */
+        r >>= 1;
+        sh++;
+    }
+    /* g = k 2^16 / r <= k ceil(2^16 / j) / 2^sh, rounded up */
+    uint32_t q = k * ((recip_tab[r - 16u] + 15u) >> 4); /* < 2^30 */
+    uint32_t lost = 0;
+    for (uint8_t i = 0; i < sh; i++) {
+        lost |= q & 1u;
+        q >>= 1;
+    }
+    q += lost;
+    return q >= 0xFFFFu ? 0xFFFFu : (uint16_t)q;
+}
+
+/* (a * g) / 256 rounded up (a in 2^-8 m): a window part in 2^-16 turn, capped at 0x7FFF. */
+static uint16_t win_part(uint16_t a, uint16_t g)
+{
+    if (g == 0xFFFFu)
+        return 0x7FFFu;
+    uint32_t v = ((uint32_t)a * g + 255u) >> 8;
+    return v > 0x7FFFu ? 0x7FFFu : (uint16_t)v;
+}
+
+/* Metres Q16 to 2^-8 m, rounded up, saturating. */
+static uint16_t m8(uint32_t q16)
+{
+    uint32_t v = (q16 + 255u) >> 8;
+    return v > 0xFFFFu ? 0xFFFFu : (uint16_t)v;
+}
+
+/* Octagonal norm max + min / 2 (Q16): true range <= it <= 1.118 true range. */
+static uint32_t oct_norm(int32_t dx, int32_t dy)
+{
+    uint32_t ax = umag(dx), ay = umag(dy);
+    return ax > ay ? ax + (ay >> 1) : ay + (ax >> 1);
 }
 
 /* ------------------------------------------------------------------ revolution */
@@ -79,14 +219,17 @@ int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
     uint8_t n = rev->n;
     if (n > OPTICAL_MAX_SIGHTINGS)
         return -1;
+    fx_angle_t half = fx_angle_from_counts(1, counts_per_turn); /* one count */
     for (uint8_t i = 0; i < n; i++) {
+        /* A start beyond the turn is a pulse that began before the index pulse (negative). */
         uint16_t st = rev->s[i].start;
-        uint32_t start = (int16_t)st < 0 ? (uint32_t)counts_per_turn - (uint16_t)(0u - st)
-                                         : (uint32_t)st;
-        fx_angle_t w = fx_angle_from_counts(rev->s[i].width, counts_per_turn);
-        if (rev->s[i].width >= counts_per_turn)
-            w = 0xFFFFFFFFul;
-        fx_angle_t a = fx_angle_from_counts(start, counts_per_turn) + (w >> 1);
+        uint32_t start =
+            st >= counts_per_turn ? (uint32_t)counts_per_turn - (uint16_t)(0u - st) : (uint32_t)st;
+        fx_angle_t w = rev->s[i].width >= counts_per_turn
+                           ? 0xFFFFFFFFul
+                           : fx_angle_from_counts(rev->s[i].width, counts_per_turn);
+        /* An edge at angle a reads floor(a) counts: the centre is half a count later. */
+        fx_angle_t a = fx_angle_from_counts(start, counts_per_turn) + (w >> 1) + (half >> 1);
         uint32_t w16 = (w >> 16) + ((w >> 15) & 1u);
         /* Insertion by angle: the sightings arrive in order except one straddling the index. */
         uint8_t j = i;
@@ -100,104 +243,6 @@ int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
     return (int8_t)n;
 }
 
-/* ------------------------------------------------------------------ helpers */
-
-static uint32_t umag(int32_t v)
-{
-    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
-}
-
-static uint16_t a16(fx_angle_t a)
-{
-    return (uint16_t)((a + 0x8000ul) >> 16);
-}
-
-/*
- * Upper bound of 12212 / r for the octagonal norm r = max + min / 2 of (|dx|, |dy|) in Q16
- * metres, i.e. of 2^16 / (2 pi) * asin(1 m / true range) when the range is at least 2 m;
- * 0xFFFF below 2 m (then the beacon's direction bound is taken as unlimited).
- */
-static uint16_t g_bound(uint32_t r)
-{
-    if (r < 2ul * FX_Q16_ONE)
-        return 0xFFFFu;
-    /* r in [2^p, 2^(p+1)), p >= 17: 12212 / r <= 12212 * 2^16 / 2^p; when r >= 1.5 * 2^p,
-     * <= that * 2 / 3. */
-    uint8_t p = 17;
-    uint32_t t = r >> 18;
-    while (t) {
-        t >>= 1;
-        p++;
-    }
-    uint32_t g = (GK_NUM << 16) >> p; /* p <= 31 */
-    if (r >= (3ul << (p - 1)))
-        g = (g * 2u + 2u) / 3u;
-    return (uint16_t)(g + 1u);
-}
-
-/* (a * g) / 256 rounded up, a in 2^-8 m, capped at 0x7FFF. */
-static uint16_t win_part(uint16_t a, uint16_t g)
-{
-    if (g == 0xFFFFu)
-        return 0x7FFFu;
-    uint32_t v = ((uint32_t)a * g + 255u) >> 8;
-    return v > 0x7FFFu ? 0x7FFFu : (uint16_t)v;
-}
-
-/* Metres Q16 to 2^-8 m, saturating at 255.99 m. */
-static uint16_t m8(uint32_t q16)
-{
-    uint32_t v = (q16 + 255u) >> 8;
-    return v > 0xFFFFu ? 0xFFFFu : (uint16_t)v;
-}
-
-/*
- * Width threshold of distance T: a post of diameter D at T looks 2 asin(D / 2T) wide (flat:
- * 2 atan(D / 2T)); in 2^-16 turn, rounded down.
- */
-static uint16_t width_at(fx_q16_t diameter, fx_q16_t t, uint8_t flat)
-{
-    int32_t ratio;
-    if (t <= 0 || !fx_div_shift(diameter, 2 * t, 30, &ratio) || ratio >= FX_Q30_ONE)
-        return 0;
-    fx_angle_t half = flat ? fx_atan_ratio(ratio, FX_Q30_ONE) : fx_asin(ratio);
-    return (uint16_t)(half >> 15);
-}
-
-/*
- * O5: is the apparent width @p w16 compatible with a beacon at map distance between rlo and
- * rhi (Q16)? Width distance dw = D / (2 sin(w/2)) (flat: D / (2 tan(w/2)), an upper bound).
- * Accept when [rlo - tol, rhi + tol] meets dw (flat: when rlo - tol <= dw), tol = dist_tol +
- * dist_rel * rhi. Multiplied out: (rlo - tol) 2 sin(w/2) <= D <= (rhi + tol) 2 sin(w/2).
- */
-static bool width_matches(const optical_config_t *cfg, uint16_t w16, uint32_t rlo, uint32_t rhi)
-{
-    int32_t tol = cfg->dist_tol + fx_mul_q16((int32_t)rhi, cfg->dist_rel);
-    fx_angle_t half = (fx_angle_t)w16 << 15;
-    fx_q30_t s2 = fx_sin(half); /* sin(w/2) */
-    if (cfg->beacon_flat) {
-        fx_q30_t c2 = fx_cos(half);
-        int32_t lo = (int32_t)rlo - tol;
-        if (lo <= 0)
-            return true;
-        /* lo <= D cos / (2 sin)  <=>  2 lo sin <= D cos */
-        return fx_mul_q30(2 * lo, s2) <= fx_mul_q30(cfg->beacon_diameter, c2);
-    }
-    int32_t lo = (int32_t)rlo - tol, hi = (int32_t)rhi + tol;
-    if (lo > 0 && fx_mul_q30(2 * lo, s2) > cfg->beacon_diameter)
-        return false; /* wider than a post anywhere in the interval: closer than lo - tol */
-    return fx_mul_q30(2 * hi, s2) >= cfg->beacon_diameter;
-}
-
-/* Range bounds [lo, hi] (Q16) of beacon k from the approximate position +- eps. */
-static void range_bounds(const optical_map_t *map, const optical_pose_t *ap, uint8_t k,
-                         fx_q16_t eps, uint32_t *lo, uint32_t *hi)
-{
-    uint32_t r = fx_hypot(map->b[k].x - ap->x, map->b[k].y - ap->y);
-    *lo = r > (uint32_t)eps ? r - (uint32_t)eps : 0u;
-    *hi = r + (uint32_t)eps;
-}
-
 /* ------------------------------------------------------------------ identification */
 
 typedef struct {
@@ -205,38 +250,58 @@ typedef struct {
     const optical_config_t *cfg;
     const optical_pose_t *ap;
     const optical_sighting_t *s;
-    uint8_t n;      /* sightings */
-    uint8_t moving;     /* latched poses given */
-    uint16_t eps8;      /* position uncertainty, 2^-8 m */
-    uint16_t lever_max; /* largest W.lever[] */
+    uint8_t n;       /* sightings */
+    uint16_t eps8;   /* position uncertainty, 2^-8 m */
+    uint16_t lever8; /* largest parallax lever, 2^-8 m */
+    uint32_t dk;     /* D * 2^8 * 2^16 / (2 pi), D in m: width check constant (O5) */
 } ctx_t;
 
-/* Window half-width of beacon k for sorted sighting j beyond the heading half-width. */
+static uint16_t lever8(uint8_t j)
+{
+    return m8(umag(W.c[j]));
+}
+
+/* Position part of beacon k's window for sorted sighting j, with the margin. */
 static uint16_t pos_part(const ctx_t *x, uint8_t k, uint8_t j)
 {
-    uint32_t a = (uint32_t)x->eps8 + W.lever[j];
-    return win_part(a > 0xFFFFu ? 0xFFFFu : (uint16_t)a, W.g[k]);
+    uint32_t a = (uint32_t)x->eps8 + lever8(j);
+    return (uint16_t)(win_part(a > 0xFFFFu ? 0xFFFFu : (uint16_t)a, W.g[k]) + MARGIN);
+}
+
+static void clear_matches(const ctx_t *x)
+{
+    for (uint8_t j = 0; j < x->n; j++)
+        if (W.sm[j] != DROPPED)
+            W.sm[j] = NONE;
+    for (uint8_t k = 0; k < x->map->n; k++)
+        W.bm[k] = NONE;
+}
+
+static void mark(uint8_t j, uint8_t k)
+{
+    W.sm[j] = W.sm[j] == NONE ? k : MULTI;
+    W.bm[k] = W.bm[k] == NONE ? j : MULTI;
 }
 
 /*
- * One matching pass with the heading-offset interval centred on @p mid, half-width @p half
- * (2^-16 turn). Fills W.sm / W.bm with the matches.
+ * Scan for the (sighting, beacon) pairs within the windows centred on heading offset @p mid,
+ * half-width @p half. With @p store the pairs go to the candidate list (false when more than
+ * MAX_CAND: the list is then unusable); otherwise they are marked in W.sm / W.bm at once.
  */
-static void match_pass(const ctx_t *x, int16_t mid, uint16_t half)
+static bool scan(const ctx_t *x, int16_t mid, uint16_t half, bool store)
 {
-    uint8_t nb = x->map->n;
-    for (uint8_t j = 0; j < x->n; j++)
-        W.sm[j] = NONE;
-    for (uint8_t k = 0; k < nb; k++) {
-        W.bm[k] = NONE;
+    uint8_t nc = 0;
+    if (!store)
+        clear_matches(x);
+    for (uint8_t k = 0; k < x->map->n; k++) {
         if (W.g[k] == 0)
             continue;
         /* Widest window of k over all sightings (largest lever), to bound the scan. */
-        uint32_t a = (uint32_t)x->eps8 + x->lever_max;
-        uint32_t wmax = (uint32_t)half + MARGIN + win_part(a > 0xFFFFu ? 0xFFFFu : (uint16_t)a,
-                                                           W.g[k]);
+        uint32_t a = (uint32_t)x->eps8 + x->lever8;
+        uint32_t wmax =
+            (uint32_t)half + MARGIN + win_part(a > 0xFFFFu ? 0xFFFFu : (uint16_t)a, W.g[k]);
         uint16_t centre = (uint16_t)(W.psi[k] + (uint16_t)mid);
-        bool all = wmax >= 0x7000u; /* wide: test every sighting */
+        bool all = wmax >= 0x7000u; /* that wide: test every sighting */
         uint16_t lo = (uint16_t)(centre - (uint16_t)wmax);
         uint16_t span = (uint16_t)(2u * wmax);
         uint8_t j = all ? 0u : W.bstart[lo >> 12];
@@ -248,112 +313,244 @@ static void match_pass(const ctx_t *x, int16_t mid, uint16_t half)
                 if (rel > span)
                     break;
             }
-            if (!W.keep[j])
+            if (W.sm[j] == DROPPED)
                 continue;
-            uint16_t diff = (uint16_t)(W.th[j] - centre);
-            uint16_t ad = (int16_t)diff < 0 ? (uint16_t)(0u - diff) : diff;
-            uint32_t wj = (uint32_t)half + MARGIN + pos_part(x, k, j);
-            if (ad > wj)
+            uint16_t off = (uint16_t)(W.th[j] - W.psi[k]);
+            uint16_t e = pos_part(x, k, j);
+            if ((uint32_t)abs16((uint16_t)(off - (uint16_t)mid)) > (uint32_t)half + e)
                 continue;
-            W.sm[j] = W.sm[j] == NONE ? k : MULTI;
-            W.bm[k] = W.bm[k] == NONE ? j : MULTI;
+            if (!store) {
+                mark(j, k);
+                continue;
+            }
+            if (nc == MAX_CAND)
+                return false;
+            W.cand[nc].j = j;
+            W.cand[nc].k = k;
+            W.cand[nc].off = (int16_t)off;
+            W.cand[nc].e = e;
+            nc++;
         }
+    }
+    W.ncand = nc;
+    return true;
+}
+
+/* The stored candidates within the windows (mid, half), marked in W.sm / W.bm. */
+static void evaluate(const ctx_t *x, int16_t mid, uint16_t half)
+{
+    clear_matches(x);
+    for (uint8_t c = 0; c < W.ncand; c++) {
+        const cand_t *p = &W.cand[c];
+        if ((uint32_t)abs16((uint16_t)((uint16_t)p->off - (uint16_t)mid)) <= (uint32_t)half + p->e)
+            mark(p->j, p->k);
     }
 }
 
-/* Seed's overlap rule: k's window meets the window of another beacon in range. */
+/* The seed's overlapping-window rule: k's window meets the window of another beacon. */
 static bool overlaps(const ctx_t *x, uint8_t k, uint16_t half)
 {
     uint32_t wk = (uint32_t)half + MARGIN + win_part(x->eps8, W.g[k]);
     for (uint8_t j = 0; j < x->map->n; j++) {
         if (j == k || W.g[j] == 0)
             continue;
-        uint16_t d = (uint16_t)(W.psi[j] - W.psi[k]);
-        uint16_t ad = (int16_t)d < 0 ? (uint16_t)(0u - d) : d;
-        if ((uint32_t)ad < wk + half + MARGIN + win_part(x->eps8, W.g[j]))
+        uint16_t d = abs16((uint16_t)(W.psi[j] - W.psi[k]));
+        if ((uint32_t)d < wk + half + MARGIN + win_part(x->eps8, W.g[j]))
             return true;
     }
     return false;
 }
 
 /*
- * Identify: sets W.sm[j] to the beacon of each safely identified sorted sighting (NONE
- * otherwise); returns the number identified, or -1 when the matches contradict the stated
- * uncertainty. *widened gets the widenings used.
+ * O5: is apparent width w16 (2^-16 turn) compatible with beacon k at its map distance?
+ * The range from the approximate position lies in [r~ / 1.118 - eps, r~ + eps] (r~ the
+ * octagonal norm); widened by tol = dist_tol + dist_rel * range on both sides. The width
+ * distance dw = D / (2 sin(w/2)) (flat: D / (2 tan(w/2)) <= D / w, an upper bound) must
+ * fall in it. With w in radians, 0.98 w <= 2 sin(w/2) <= w for w <= 0.5 rad:
+ *     lo * 0.98 w <= D  and (posts only)  hi * w >= D.
+ * In 2^-8 m and 2^-16 turn: lo8 * w16 compares with dk = D 2^8 2^16 / (2 pi).
  */
-static int8_t identify(const ctx_t *x, uint8_t *widened)
+static bool width_ok(const ctx_t *x, uint8_t k, uint16_t w16)
+{
+    const optical_config_t *cfg = x->cfg;
+    uint32_t r = oct_norm(x->map->b[k].x - x->ap->x, x->map->b[k].y - x->ap->y);
+    uint32_t rhi = (r >> 8) + x->eps8;        /* 2^-8 m */
+    uint32_t rlo = ((r >> 8) * 58623u) >> 16; /* / 1.118 */
+    rlo = rlo > x->eps8 ? rlo - x->eps8 : 0u;
+    if (rhi > 0x1FFFFu)
+        rhi = 0x1FFFFu; /* 512 m */
+    uint32_t tol =
+        ((uint32_t)cfg->dist_tol >> 8) + (((rhi >> 2) * ((uint32_t)cfg->dist_rel >> 8)) >> 6);
+    uint32_t lo = rlo > tol ? rlo - tol : 0u;
+    uint32_t hi = rhi + tol;
+    if (w16 > 5215u) /* 0.5 rad: a post closer than 2 D, wide for any use here */
+        return lo * 5215u <= x->dk + (x->dk >> 4);
+    /* lo * 0.98 w > D: the post would look wider even at the far end of the interval */
+    if (lo && (lo * w16 / 50u) * 49u > x->dk)
+        return false;
+    return cfg->beacon_flat || hi * w16 >= x->dk;
+}
+
+/* Keep in W.sm only the matches unique both ways (and, when asked, clear of overlapping
+ * windows) whose width fits the map distance (O5); count them. */
+static int8_t unique_matches(const ctx_t *x, bool overlap_rule, uint16_t half)
+{
+    int8_t found = 0;
+    for (uint8_t j = 0; j < x->n; j++) {
+        uint8_t k = W.sm[j];
+        if (k >= DROPPED)
+            continue;
+        if (W.bm[k] != j || (overlap_rule && overlaps(x, k, half)) ||
+            !width_ok(x, k, x->s[W.ord[j]].width)) {
+            W.sm[j] = NONE;
+            continue;
+        }
+        found++;
+    }
+    return found;
+}
+
+enum { IDENT_SAFE = 0, IDENT_GUESS = 1, IDENT_WIDENED = 2 };
+
+/*
+ * A guess when the bounds leave fewer than three: the heading offset that the candidate pairs
+ * of the most sightings agree on (each pair's offset +- its position part, doubled), then the
+ * unique matches there. Only a fix that the other sightings confirm may use it.
+ */
+static int8_t guess(const ctx_t *x)
+{
+    int16_t best_h = 0;
+    uint16_t best_e = 0;
+    uint8_t best_n = 0;
+    for (uint8_t c = 0; c < W.ncand; c++) {
+        int16_t h = W.cand[c].off;
+        uint16_t seen = 0; /* sightings that agree, as a bit set */
+        uint8_t cnt = 0;
+        for (uint8_t d = 0; d < W.ncand; d++) {
+            uint16_t bit = (uint16_t)(1u << W.cand[d].j);
+            if (seen & bit)
+                continue;
+            if ((uint32_t)abs16((uint16_t)(W.cand[d].off - h)) <=
+                (uint32_t)W.cand[d].e + W.cand[c].e) {
+                seen |= bit;
+                cnt++;
+            }
+        }
+        if (cnt > best_n) {
+            best_n = cnt;
+            best_h = h;
+            best_e = W.cand[c].e;
+        }
+    }
+    if (best_n < 3)
+        return 0;
+    evaluate(x, best_h, best_e);
+    return unique_matches(x, false, best_e);
+}
+
+/*
+ * Identify (O3-O5): leaves in W.sm[j] the beacon of each identified sorted sighting (NONE,
+ * MULTI or DROPPED otherwise) and returns how many, or -1 when the matches contradict the
+ * stated uncertainty. *mode: IDENT_SAFE (within the bounds), IDENT_GUESS or IDENT_WIDENED
+ * (the fix must be confirmed by the other sightings). *widened: widenings used.
+ */
+static int8_t identify(const ctx_t *x, uint8_t *mode, uint8_t *widened)
 {
     const optical_config_t *cfg = x->cfg;
     int32_t lo = -(int32_t)a16(cfg->window), hi = (int32_t)a16(cfg->window);
-    uint32_t step = 0;
-    if (cfg->widen_steps && cfg->widen_max > cfg->window)
-        step = (a16(cfg->widen_max) - a16(cfg->window) + cfg->widen_steps - 1u) / cfg->widen_steps;
-    uint8_t wid = 0, passes = 0;
-    int8_t found = 0;
+    uint8_t passes = 0;
+    bool stored = false;
+    int8_t found;
+    *mode = IDENT_SAFE;
+    *widened = 0;
+    /* Within the bounds: each safe match narrows the heading interval for the next pass. */
     for (;;) {
         int16_t mid = (int16_t)((lo + hi) / 2);
         uint16_t half = (uint16_t)((hi - lo + 1) / 2);
-        match_pass(x, mid, half);
+        if (stored) {
+            evaluate(x, mid, half); /* a narrower window: a subset of the stored pairs */
+        } else if (scan(x, mid, half, true)) {
+            stored = true;
+            evaluate(x, mid, half);
+        } else {
+            scan(x, mid, half, false); /* too many pairs to keep: this pass scans */
+        }
         passes++;
-        found = 0;
+        found = unique_matches(x, cfg->reject_overlap, half);
         int32_t nlo = lo, nhi = hi;
         for (uint8_t j = 0; j < x->n; j++) {
             uint8_t k = W.sm[j];
-            if (k >= MULTI)
+            if (k >= DROPPED)
                 continue;
-            if (W.bm[k] != j || ((wid || cfg->reject_overlap) && overlaps(x, k, half))) {
-                W.sm[j] = NONE;
-                continue;
-            }
-            uint32_t rlo, rhi;
-            range_bounds(x->map, x->ap, k, cfg->window_pos, &rlo, &rhi);
-            if (!width_matches(cfg, x->s[W.ord[j]].width, rlo, rhi)) {
-                W.sm[j] = NONE;
-                continue;
-            }
-            found++;
-            if (!wid) {
-                int16_t off = (int16_t)(W.th[j] - W.psi[k]);
-                int32_t e = (int32_t)pos_part(x, k, j) + MARGIN;
-                if (off - e > nlo)
-                    nlo = off - e;
-                if (off + e < nhi)
-                    nhi = off + e;
-            }
+            int16_t off = (int16_t)(W.th[j] - W.psi[k]);
+            int32_t e = pos_part(x, k, j);
+            if (off - e > nlo)
+                nlo = off - e;
+            if (off + e < nhi)
+                nhi = off + e;
         }
-        if (!wid) {
-            if (nlo > nhi)
-                return -1;
-            /* Tighter by at least a quarter: another pass finds more (or the same) safely. */
-            if (passes < MAX_PASSES && 4 * (nhi - nlo) < 3 * (hi - lo)) {
-                lo = nlo;
-                hi = nhi;
-                continue;
-            }
+        if (nlo > nhi)
+            return -1;
+        if (passes < MAX_PASSES && 4 * (nhi - nlo) < 3 * (hi - lo)) {
+            lo = nlo; /* tighter by a quarter or more: another pass, never fewer matches */
+            hi = nhi;
+            continue;
         }
-        if (found >= 3 || wid >= cfg->widen_steps || step == 0)
-            break;
-        wid++;
+        break;
+    }
+    if (found >= 3)
+        return found;
+    /* Beyond the bounds: a guess, then the seed's widening. */
+    if (stored) {
+        found = guess(x);
+        if (found >= 3) {
+            *mode = IDENT_GUESS;
+            return found;
+        }
+    }
+    uint32_t step = 0;
+    if (cfg->widen_steps && cfg->widen_max > cfg->window)
+        step = (a16(cfg->widen_max) - a16(cfg->window) + cfg->widen_steps - 1u) / cfg->widen_steps;
+    for (uint8_t w = 1; w <= cfg->widen_steps && step; w++) {
         lo -= (int32_t)step;
         hi += (int32_t)step;
         if (hi - lo >= 0x8000)
             break;
+        int16_t mid = (int16_t)((lo + hi) / 2);
+        uint16_t half = (uint16_t)((hi - lo + 1) / 2);
+        scan(x, mid, half, false);
+        found = unique_matches(x, true, half);
+        *widened = w;
+        if (found >= 3) {
+            *mode = IDENT_WIDENED;
+            return found;
+        }
     }
-    *widened = wid;
     return found;
 }
 
 /* ------------------------------------------------------------------ fix */
 
-/* Parallax-corrected angle of sorted sighting j towards a beacon at range r (Q16). */
-static fx_angle_t corrected(uint8_t j, uint32_t r)
+/* Precise angle of sorted sighting j in the reference frame. */
+static fx_angle_t ref_angle(const ctx_t *x, const optical_pose_t *latched, uint8_t j)
 {
-    if (W.c[j] == 0)
-        return W.d[j];
+    uint8_t i = W.ord[j];
+    fx_angle_t d = x->s[i].angle;
+    if (latched != NULL)
+        d += latched[i].heading - x->ap->heading;
+    return d;
+}
+
+/*
+ * O11: the angle under which the reference position sees the beacon of sorted sighting j
+ * (reference-frame angle d) at range r (Q16) from it: d + asin(c / r).
+ */
+static fx_angle_t corrected(fx_angle_t d, uint8_t j, uint32_t r)
+{
     int32_t ratio;
-    if (r == 0 || r > 0x7FFFFFFFul || !fx_div_shift(W.c[j], (int32_t)r, 30, &ratio))
-        return W.d[j];
-    return W.d[j] + fx_asin(ratio);
+    if (W.c[j] == 0 || r == 0 || r > 0x7FFFFFFFul || !fx_div_shift(W.c[j], (int32_t)r, 30, &ratio))
+        return d;
+    return d + fx_asin(ratio);
 }
 
 static bool coords_ok(fx_q16_t x, fx_q16_t y)
@@ -368,6 +565,122 @@ static int8_t finish(optical_fix_t *out, int8_t status)
     return status;
 }
 
+/* Width of a post of diameter D at distance T: 2 asin(D / 2T) (flat 2 atan), 2^-16 turn. */
+static uint16_t width_at(fx_q16_t diameter, fx_q16_t t, uint8_t flat)
+{
+    int32_t ratio;
+    if (t <= 0 || !fx_div_shift(diameter, 2 * t, 30, &ratio) || ratio >= FX_Q30_ONE)
+        return 0;
+    fx_angle_t half = flat ? fx_atan_ratio(ratio, FX_Q30_ONE) : fx_asin(ratio);
+    return (uint16_t)(half >> 15);
+}
+
+/* Expected angles and window factors of the beacons within the gate, seen from @p p. */
+static void expect(const ctx_t *x, const optical_pose_t *p, uint32_t gate, uint32_t amax)
+{
+    uint16_t head = a16(p->heading);
+    for (uint8_t k = 0; k < x->map->n; k++) {
+        int32_t dx = x->map->b[k].x - p->x, dy = x->map->b[k].y - p->y;
+        if (umag(dx) > gate || umag(dy) > gate) {
+            W.g[k] = 0;
+            continue;
+        }
+        W.psi[k] = (uint16_t)(optical_angle16(dx, dy) - head);
+        W.g[k] = g_bound(dx, dy, amax);
+    }
+}
+
+/* The identified sorted sightings: positions pos[], reference-frame angles ang[] (ring order). */
+typedef struct {
+    uint8_t m;
+    uint8_t pos[OPTICAL_MAX_SIGHTINGS];
+    fx_angle_t ang[OPTICAL_MAX_SIGHTINGS];
+} idset_t;
+
+static void gather(const ctx_t *x, const optical_pose_t *latched, idset_t *id)
+{
+    id->m = 0;
+    for (uint8_t j = 0; j < x->n; j++) {
+        if (W.sm[j] >= DROPPED)
+            continue;
+        id->ang[id->m] = ref_angle(x, latched, j);
+        id->pos[id->m++] = j;
+    }
+}
+
+/* Triangulate the triplet at positions t[] of the identified set; when moving, refine the
+ * parallax with the ranges of the fix (O11). */
+static int8_t solve_triplet(const ctx_t *x, const idset_t *id, const uint8_t t[3], uint8_t passes,
+                            optical_tri_t *tri)
+{
+    optical_xy_t b[3];
+    uint8_t tj[3];
+    bool moving = false;
+    for (uint8_t i = 0; i < 3; i++) {
+        tj[i] = id->pos[t[i]];
+        b[i] = x->map->b[W.sm[tj[i]]];
+        moving |= W.c[tj[i]] != 0;
+    }
+    optical_pose_t p = *x->ap;
+    if (!moving)
+        passes = 1;
+    int8_t st = OPTICAL_OK;
+    for (uint8_t pass = 0; pass < passes; pass++) {
+        fx_angle_t th[3];
+        for (uint8_t i = 0; i < 3; i++) {
+            th[i] = id->ang[t[i]];
+            if (W.c[tj[i]])
+                th[i] = corrected(th[i], tj[i], fx_hypot(b[i].x - p.x, b[i].y - p.y));
+        }
+        st = optical_triangulate(b, th, x->cfg->quality_max, tri);
+        if (st != OPTICAL_OK)
+            return st;
+        uint32_t moved = oct_norm(tri->pose.x - p.x, tri->pose.y - p.y);
+        p = tri->pose;
+        if (moved < 16) /* 0.25 mm */
+            break;
+    }
+    return st;
+}
+
+/*
+ * O7-O10: select three of the identified (the seed's rule) and triangulate. When that
+ * triplet lies too close to its beacons' circle, the triplets with one of its beacons
+ * replaced by another identified one are tried, and the best taken.
+ */
+static int8_t solve(const ctx_t *x, const idset_t *id, uint8_t passes, uint8_t t[3],
+                    optical_tri_t *tri)
+{
+    optical_select(id->ang, id->m, t);
+    int8_t st = solve_triplet(x, id, t, passes, tri);
+    if (st != OPTICAL_E_SINGULAR || id->m <= 3)
+        return st;
+    uint32_t best = UINT32_MAX;
+    uint8_t bt[3] = {t[0], t[1], t[2]};
+    optical_tri_t cand;
+    for (uint8_t r = 0; r < 3; r++) {
+        for (uint8_t q = 0; q < id->m; q++) {
+            if (q == t[0] || q == t[1] || q == t[2])
+                continue;
+            uint8_t u[3] = {t[0], t[1], t[2]};
+            u[r] = q;
+            if (solve_triplet(x, id, u, passes, &cand) == OPTICAL_OK && cand.quality < best) {
+                best = cand.quality;
+                bt[0] = u[0];
+                bt[1] = u[1];
+                bt[2] = u[2];
+                *tri = cand;
+            }
+        }
+    }
+    if (best == UINT32_MAX)
+        return st;
+    t[0] = bt[0];
+    t[1] = bt[1];
+    t[2] = bt[2];
+    return OPTICAL_OK;
+}
+
 int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *approx, const optical_sighting_t *s, uint8_t n,
                    const optical_pose_t *latched, optical_fix_t *out)
@@ -378,8 +691,8 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     out->widened = 0;
     out->quality = UINT32_MAX;
     out->pose = *approx;
-    if (map == NULL || map->n < 3 || map->n > OPTICAL_MAX_BEACONS ||
-        n > OPTICAL_MAX_SIGHTINGS || !coords_ok(approx->x, approx->y))
+    if (map == NULL || map->n < 3 || map->n > OPTICAL_MAX_BEACONS || n > OPTICAL_MAX_SIGHTINGS ||
+        !coords_ok(approx->x, approx->y))
         return finish(out, OPTICAL_E_ARG);
     for (uint8_t k = 0; k < map->n; k++)
         if (!coords_ok(map->b[k].x, map->b[k].y))
@@ -387,51 +700,49 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     if (n < 3)
         return finish(out, OPTICAL_E_FEW);
 
-    ctx_t x = {map, cfg, approx, s, n, latched != NULL, m8((uint32_t)cfg->window_pos), 0};
+    ctx_t x = {map, cfg, approx, s, n, m8((uint32_t)cfg->window_pos), 0, 0};
+    /* D (m) * 2^8 * 2^16 / (2 pi) = D (Q16) * 10430.378 / 2^8 */
+    x.dk = ((uint32_t)cfg->beacon_diameter * 10430u) >> 8;
 
-    /* O11: sightings into the vehicle frame of the reference instant. */
+    /* O11: sightings into the vehicle frame of the reference instant, sorted by angle. */
     fx_q30_t sa = 0, ca = FX_Q30_ONE;
-    if (x.moving)
+    if (latched != NULL)
         fx_sincos(approx->heading, &sa, &ca);
-    uint16_t lever_max = 0;
     for (uint8_t i = 0; i < n; i++) {
         fx_angle_t d = s[i].angle;
         int32_t c = 0;
-        if (x.moving) {
+        if (latched != NULL) {
             if (!coords_ok(latched[i].x, latched[i].y))
                 return finish(out, OPTICAL_E_ARG);
             d += latched[i].heading - approx->heading;
             int32_t ex = latched[i].x - approx->x, ey = latched[i].y - approx->y;
-            /* o = R(-heading) e, then c = cross(u(d), o) = oy cos d - ox sin d. */
-            int32_t ox = fx_mul_q30(ex, ca) + fx_mul_q30(ey, sa);
-            int32_t oy = fx_mul_q30(ey, ca) - fx_mul_q30(ex, sa);
-            fx_q30_t sd, cd;
-            fx_sincos(d, &sd, &cd);
-            c = fx_mul_q30(oy, cd) - fx_mul_q30(ox, sd);
+            if (ex | ey) {
+                /* o = R(-heading) e, then c = cross(u(d), o) = oy cos d - ox sin d. */
+                int32_t ox = fx_mul_q30(ex, ca) + fx_mul_q30(ey, sa);
+                int32_t oy = fx_mul_q30(ey, ca) - fx_mul_q30(ex, sa);
+                fx_q30_t sd, cd;
+                fx_sincos(d, &sd, &cd);
+                c = fx_mul_q30(oy, cd) - fx_mul_q30(ox, sd);
+            }
         }
-        /* Sorted insert by the reference-frame angle. */
         uint16_t t = a16(d);
         uint8_t j = i;
         while (j > 0 && W.th[j - 1] > t) {
             W.th[j] = W.th[j - 1];
-            W.d[j] = W.d[j - 1];
             W.c[j] = W.c[j - 1];
             W.ord[j] = W.ord[j - 1];
             j--;
         }
         W.th[j] = t;
-        W.d[j] = d;
         W.c[j] = c;
         W.ord[j] = i;
     }
     for (uint8_t j = 0; j < n; j++) {
-        uint16_t l = m8(umag(W.c[j]));
-        W.lever[j] = l;
-        if (l > lever_max)
-            lever_max = l;
+        uint16_t l = lever8(j);
+        if (l > x.lever8)
+            x.lever8 = l;
     }
-    x.lever_max = lever_max;
-    /* Bucket index: first sorted sighting at or after each 1/16 turn (n when none: wraps). */
+    /* Bucket index: first sorted sighting at or after each 1/16 turn (0 when none: wraps). */
     {
         uint8_t j = 0;
         for (uint8_t b = 0; b < 16; b++) {
@@ -450,8 +761,9 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         uint16_t wmin = width_at(cfg->beacon_diameter, t, cfg->beacon_flat);
         uint8_t kept = 0;
         for (uint8_t j = 0; j < n; j++) {
-            W.keep[j] = x.s[W.ord[j]].width >= wmin;
-            kept += W.keep[j];
+            bool keep = s[W.ord[j]].width >= wmin;
+            W.sm[j] = keep ? NONE : DROPPED;
+            kept += keep;
         }
         if (kept >= 3 || step >= cfg->range_steps || tstep == 0)
             break;
@@ -460,89 +772,75 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
 
     /* O2: expected angles of the beacons within T (+ the position uncertainty). */
     uint32_t gate = (uint32_t)t + (uint32_t)cfg->window_pos;
-    for (uint8_t k = 0; k < map->n; k++) {
-        int32_t dx = map->b[k].x - approx->x, dy = map->b[k].y - approx->y;
-        uint32_t ax = umag(dx), ay = umag(dy);
-        if (ax > gate || ay > gate) {
-            W.g[k] = 0;
-            continue;
-        }
-        W.psi[k] = a16(fx_atan2_fast(dy, dx) - approx->heading);
-        uint32_t r = ax > ay ? ax + (ay >> 1) : ay + (ax >> 1);
-        uint16_t g = g_bound(r);
-        W.g[k] = g ? g : 1u;
-    }
+    expect(&x, approx, gate, ((uint32_t)x.eps8 + x.lever8) << 8);
 
     /* O3-O5 */
-    uint8_t widened = 0;
-    int8_t found = identify(&x, &widened);
+    uint8_t mode, widened;
+    int8_t found = identify(&x, &mode, &widened);
     out->widened = widened;
     if (found < 0)
         return finish(out, OPTICAL_E_INCONSISTENT);
-    fx_angle_t ang[OPTICAL_MAX_SIGHTINGS];
-    uint8_t pos[OPTICAL_MAX_SIGHTINGS];
-    uint8_t m = 0;
-    for (uint8_t j = 0; j < n; j++) {
-        if (W.sm[j] >= MULTI)
-            continue;
-        out->ident[W.ord[j]] = (int8_t)W.sm[j];
-        ang[m] = W.d[j];
-        pos[m++] = j;
-    }
-    out->n_ident = m;
-    if (m < 3)
+    idset_t id;
+    gather(&x, latched, &id);
+    if (id.m < 3) {
+        out->n_ident = id.m;
         return finish(out, OPTICAL_E_FEW);
-
-    /* O7, O8: three of them (ang[] is in ring order: sorted). */
-    uint8_t keep[3];
-    optical_select(ang, m, keep);
-    uint8_t tj[3];
-    optical_xy_t b[3];
-    for (uint8_t i = 0; i < 3; i++) {
-        tj[i] = pos[keep[i]];
-        b[i] = map->b[W.sm[tj[i]]];
-        out->used[i] = W.sm[tj[i]];
     }
 
-    /* O9-O11: triangulate; when moving, refine the parallax with the ranges of the fix. */
+    /* O7-O11 */
+    uint8_t passes = cfg->motion_passes ? cfg->motion_passes : 1u;
+    uint8_t t3[3];
     optical_tri_t tri;
-    optical_pose_t p = *approx;
-    int8_t st = OPTICAL_OK;
-    uint8_t passes = x.moving ? cfg->motion_passes : 1u;
-    if (passes == 0)
-        passes = 1;
-    for (uint8_t pass = 0; pass < passes; pass++) {
-        fx_angle_t th[3];
-        for (uint8_t i = 0; i < 3; i++)
-            th[i] = corrected(tj[i], fx_hypot(b[i].x - p.x, b[i].y - p.y));
-        st = optical_triangulate(b, th, cfg->quality_max, &tri);
-        if (st != OPTICAL_OK && st != OPTICAL_E_SINGULAR)
-            return finish(out, st);
-        uint32_t moved = fx_hypot(tri.pose.x - p.x, tri.pose.y - p.y);
-        p = tri.pose;
-        if (moved < 16) /* 0.25 mm */
-            break;
+    int8_t st = solve(&x, &id, passes, t3, &tri);
+    if (st == OPTICAL_OK && mode != IDENT_SAFE) {
+        /* Beyond the bounds the identification is a hypothesis: identify again from the fix
+         * (5 cm, the residual tolerance) and use it only when at least five sightings agree. */
+        x.eps8 = 13;
+        expect(&x, &tri.pose, gate, ((uint32_t)x.eps8 + x.lever8) << 8);
+        scan(&x, 0, a16(cfg->resid_max), false);
+        if (unique_matches(&x, false, a16(cfg->resid_max)) < 5) {
+            for (uint8_t j = 0; j < n; j++)
+                if (W.sm[j] < DROPPED)
+                    W.sm[j] = NONE;
+            gather(&x, latched, &id);
+            out->n_ident = id.m;
+            return finish(out, OPTICAL_E_UNCONFIRMED);
+        }
+        gather(&x, latched, &id);
+        st = solve(&x, &id, passes, t3, &tri);
     }
-    out->pose = tri.pose;
-    out->quality = tri.quality;
+    for (uint8_t i = 0; i < id.m; i++)
+        out->ident[W.ord[id.pos[i]]] = (int8_t)W.sm[id.pos[i]];
+    out->n_ident = id.m;
+    if (st == OPTICAL_OK || st == OPTICAL_E_SINGULAR) {
+        out->pose = tri.pose;
+        out->quality = tri.quality;
+        for (uint8_t i = 0; i < 3; i++)
+            out->used[i] = W.sm[id.pos[t3[i]]];
+    }
     if (st != OPTICAL_OK)
         return finish(out, st);
+    optical_pose_t p = tri.pose;
 
     /* O6: implausible jumps and turns, then the other identified sightings must agree. */
-    if (fx_hypot(p.x - approx->x, p.y - approx->y) > (uint32_t)cfg->jump_max)
+    int32_t jx = p.x - approx->x, jy = p.y - approx->y;
+    if (oct_norm(jx, jy) > (uint32_t)cfg->jump_max && fx_hypot(jx, jy) > (uint32_t)cfg->jump_max)
         return finish(out, OPTICAL_E_JUMP);
     fx_angle_t dh = p.heading - approx->heading;
     if ((int32_t)dh > (int32_t)cfg->turn_max || (int32_t)dh < -(int32_t)cfg->turn_max)
         return finish(out, OPTICAL_E_TURN);
-    for (uint8_t i = 0; i < m; i++) {
-        uint8_t j = pos[i];
-        if (j == tj[0] || j == tj[1] || j == tj[2])
+    uint16_t rmax = a16(cfg->resid_max), h16 = a16(p.heading);
+    for (uint8_t i = 0; i < id.m; i++) {
+        if (i == t3[0] || i == t3[1] || i == t3[2])
             continue;
+        uint8_t j = id.pos[i];
         const optical_xy_t *bk = &map->b[W.sm[j]];
         int32_t dx = bk->x - p.x, dy = bk->y - p.y;
-        fx_angle_t th = corrected(j, fx_hypot(dx, dy));
-        fx_angle_t res = fx_atan2_fast(dy, dx) - p.heading - th;
-        if ((int32_t)res > (int32_t)cfg->resid_max || (int32_t)res < -(int32_t)cfg->resid_max)
+        fx_angle_t th = id.ang[i];
+        if (W.c[j])
+            th = corrected(th, j, fx_hypot(dx, dy));
+        uint16_t res = (uint16_t)(optical_angle16(dx, dy) - h16 - a16(th));
+        if (abs16(res) > rmax + 3u)
             return finish(out, OPTICAL_E_DISAGREE);
     }
     return finish(out, OPTICAL_OK);

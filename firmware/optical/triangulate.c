@@ -172,8 +172,8 @@ static uint32_t quality(const int32_t b1[2], const int32_t b3[2], const int32_t 
     return (uint32_t)q;
 }
 
-int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3],
-                           uint32_t quality_max, optical_tri_t *out)
+int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], uint32_t quality_max,
+                           optical_tri_t *out)
 {
     out->quality = UINT32_MAX;
     /* O8: sort by angle (CCW), then start after the largest gap so that it is the third. */

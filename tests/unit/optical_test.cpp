@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -29,7 +30,7 @@ namespace
 
 constexpr double kTau = 2.0 * M_PI;
 constexpr int kCounts = 50000;
-constexpr double kCount = kTau / kCounts; // one goniometer count, rad
+constexpr double kCount = kTau / kCounts;               // one goniometer count, rad
 constexpr double kPerCount = kCount * 1000.0 / 65536.0; // quality units -> m per count
 
 using V2 = Eigen::Vector2d;
@@ -286,9 +287,9 @@ TEST_F(Capture, PulseAcrossTheIndexAndConversion)
     EXPECT_EQ((int16_t)r->s[0].start, -10);
     optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
     ASSERT_EQ(optical_rev_sightings(r, kCounts, s), 2);
-    // Sorted by angle: the pulse at 1000 + 21/2 first, the straddling one at -10 + 40/2 = 10.
-    EXPECT_NEAR(fx_angle_to_deg(s[0].angle), 10.0 * 360.0 / kCounts, 1e-7);
-    EXPECT_NEAR(fx_angle_to_deg(s[1].angle), 1010.5 * 360.0 / kCounts, 1e-7);
+    // Sorted by angle: the straddling one at -10 + (40 + 1)/2, then 1000 + (21 + 1)/2.
+    EXPECT_NEAR(fx_angle_to_deg(s[0].angle), 10.5 * 360.0 / kCounts, 1e-7);
+    EXPECT_NEAR(fx_angle_to_deg(s[1].angle), 1011 * 360.0 / kCounts, 1e-7);
     EXPECT_EQ(s[1].width, std::lround(21.0 / kCounts * 65536.0));
 }
 
@@ -405,7 +406,8 @@ TriResult tri_fw(const std::array<V2, 3> &b, const std::array<double, 3> &th,
     fx_angle_t t[3] = {bin(th[0]), bin(th[1]), bin(th[2])};
     optical_tri_t out;
     int st = optical_triangulate(bq, t, qmax, &out);
-    return {st, {from_q16(out.pose.x, out.pose.y), fx_angle_to_rad(out.pose.heading)},
+    return {st,
+            {from_q16(out.pose.x, out.pose.y), fx_angle_to_rad(out.pose.heading)},
             out.quality == UINT32_MAX ? 1e30 : out.quality * kPerCount};
 }
 
@@ -449,8 +451,9 @@ TEST(Triangulate, WithinOneMillimetreOfEigenOnA50mField)
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u(0, 50);
     for (int i = 0; i < 6; i++)
-        layouts.push_back({"random", {on_grid(V2(u(rng), u(rng))), on_grid(V2(u(rng), u(rng))),
-                                      on_grid(V2(u(rng), u(rng)))}});
+        layouts.push_back({"random",
+                           {on_grid(V2(u(rng), u(rng))), on_grid(V2(u(rng), u(rng))),
+                            on_grid(V2(u(rng), u(rng)))}});
     const double limit = OPTICAL_QUALITY_LIMIT * kPerCount;
     double worst = 0, worst_h = 0, qual_err = 0, min_refused_crb = 1e30;
     long accepted = 0, refused = 0, total = 0, degenerate = 0;
@@ -502,8 +505,8 @@ TEST(Triangulate, WithinOneMillimetreOfEigenOnA50mField)
     std::printf("triangulation: %ld points, %ld accepted, %ld refused (%.2f %%), %ld degenerate;"
                 " worst %.4f mm, heading %.2e rad; quality vs CRB within %.2f %%;"
                 " smallest CRB among refused %.3f m/count (limit %.3f)\n",
-                total, accepted, refused, 100.0 * refused / total, degenerate, worst * 1e3,
-                worst_h, qual_err * 100, min_refused_crb, limit);
+                total, accepted, refused, 100.0 * refused / total, degenerate, worst * 1e3, worst_h,
+                qual_err * 100, min_refused_crb, limit);
     EXPECT_LT(worst, 1e-3);
     // Refused only where the geometry itself is that bad (the quality estimate is good to a
     // few per cent): nothing refused whose exact bound is below 95 % of the limit.
@@ -538,6 +541,255 @@ TEST(Triangulate, RefusesOnTheBeaconCircleAndDegenerateInput)
     EXPECT_EQ(tri_fw(twice, th).status, OPTICAL_E_DEGENERATE);
     std::array<V2, 3> far = {V2(0, 0), V2(3000, 0), V2(0, 10)};
     EXPECT_EQ(tri_fw(far, th).status, OPTICAL_E_ARG);
+}
+
+TEST(Angle16, AgainstAtan2)
+{
+    std::mt19937 rng(3);
+    double worst = 0;
+    for (int t = 0; t < 200000; t++) {
+        int sh = (int)(rng() % 31);
+        int32_t x = (int32_t)(rng() >> sh) * ((rng() & 1) ? 1 : -1);
+        int32_t y = (int32_t)(rng() >> (rng() % 31)) * ((rng() & 1) ? 1 : -1);
+        if (t < 8) { // axes and diagonals
+            static const int32_t ax[8][2] = {{1, 0},  {1, 1},   {0, 1},  {-1, 1},
+                                             {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+            x = ax[t][0] * 100000;
+            y = ax[t][1] * 100000;
+        }
+        if (x == 0 && y == 0)
+            continue;
+        double ref = wrap_2pi(std::atan2((double)y, (double)x)) / kTau * 65536.0;
+        double got = optical_angle16(x, y);
+        double e = std::abs(std::remainder(got - ref, 65536.0));
+        worst = std::max(worst, e);
+    }
+    std::printf("optical_angle16: max error %.3f units of 2^-16 turn (%.5f degrees)\n", worst,
+                worst * 360 / 65536);
+    EXPECT_LT(worst, 2.0);
+    EXPECT_EQ(optical_angle16(0, 0), 0);
+}
+
+// ---------------------------------------------------------------- the pipeline (O2-O7)
+
+constexpr double kD = 0.08; // beacon diameter
+
+struct Scene {
+    std::vector<V2> map;
+    V2 p;
+    double phi;
+    V2 ap;
+    double aphi;
+    optical_rev_t rev;
+    std::vector<std::vector<int>> truth; // beacons in each raw sighting (none: a glint)
+    int visible = 0;
+};
+
+// One revolution seen from (p, phi) standing still: every visible beacon gives a pulse from
+// the edge angles of its post (2 asin(D / 2d) wide), captured as counts of the angle clock;
+// pulses that overlap merge into one, as on the photodetector.
+void capture_still(Scene &sc, const std::vector<int> &vis, const std::vector<double> &glints)
+{
+    struct P {
+        double a0, a1;
+        std::vector<int> who;
+    };
+    std::vector<P> ps;
+    for (int k : vis) {
+        V2 d = sc.map[k] - sc.p;
+        double r = d.norm();
+        double c = wrap_2pi(std::atan2(d.y(), d.x()) - sc.phi);
+        double w = 2 * std::asin(std::min(1.0, kD / (2 * r)));
+        ps.push_back({c - w / 2, c + w / 2, {k}});
+    }
+    for (double g : glints)
+        ps.push_back({g, g + (1 + (int)(g * 1000) % 3) * kCount, {}});
+    for (auto &q : ps) { // into [0, 2 pi)
+        double sh = std::floor(q.a0 / kTau) * kTau;
+        q.a0 -= sh;
+        q.a1 -= sh;
+    }
+    std::sort(ps.begin(), ps.end(), [](const P &a, const P &b) { return a.a0 < b.a0; });
+    std::vector<P> merged;
+    for (const P &q : ps) {
+        if (!merged.empty() && q.a0 <= merged.back().a1) {
+            merged.back().a1 = std::max(merged.back().a1, q.a1);
+            for (int w : q.who) // a post behind another, or a glint on a post: one pulse
+                merged.back().who.push_back(w);
+        } else {
+            merged.push_back(q);
+        }
+    }
+    std::memset(&sc.rev, 0, sizeof sc.rev);
+    sc.rev.period = kCounts;
+    sc.truth.clear();
+    for (const P &q : merged) {
+        long c0 = (long)std::floor(q.a0 / kCount), c1 = (long)std::floor(q.a1 / kCount);
+        if (c1 == c0)
+            c1 = c0 + 1;
+        if (sc.rev.n == OPTICAL_MAX_SIGHTINGS) {
+            sc.rev.lost++;
+            continue;
+        }
+        long start = c0 >= kCounts ? c0 - kCounts : c0;
+        sc.rev.s[sc.rev.n].start = (uint16_t)start;
+        sc.rev.s[sc.rev.n].width = (uint16_t)(c1 - c0);
+        sc.truth.push_back(q.who);
+        sc.rev.n++;
+    }
+}
+
+Scene random_scene(std::mt19937 &rng, double field = 20.0)
+{
+    std::uniform_real_distribution<double> u01(0, 1);
+    Scene sc;
+    int n = 6 + (int)(rng() % 7);
+    for (int i = 0; i < n; i++) {
+        double t = u01(rng) * field;
+        switch (rng() % 4) {
+        case 0:
+            sc.map.push_back(on_grid(V2(t, 0)));
+            break;
+        case 1:
+            sc.map.push_back(on_grid(V2(field, t)));
+            break;
+        case 2:
+            sc.map.push_back(on_grid(V2(t, field)));
+            break;
+        default:
+            sc.map.push_back(on_grid(V2(0, t)));
+        }
+    }
+    sc.p = V2(1 + u01(rng) * (field - 2), 1 + u01(rng) * (field - 2));
+    sc.phi = u01(rng) * kTau;
+    std::vector<int> vis(n);
+    for (int i = 0; i < n; i++)
+        vis[i] = i;
+    std::shuffle(vis.begin(), vis.end(), rng);
+    vis.resize(n - (int)(rng() % 3)); // up to 2 occluded
+    std::vector<double> glints(rng() % 4);
+    for (double &g : glints)
+        g = u01(rng) * kTau;
+    capture_still(sc, vis, glints);
+    sc.visible = (int)vis.size();
+    double ea = u01(rng) * 0.3, eb = u01(rng) * kTau;
+    sc.ap = sc.p + ea * V2(std::cos(eb), std::sin(eb));
+    sc.aphi = sc.phi + (u01(rng) * 2 - 1) * 5 * M_PI / 180;
+    return sc;
+}
+
+optical_config_t test_config()
+{
+    optical_config_t cfg;
+    optical_config_default(&cfg);
+    cfg.window = fx_angle_from_deg(5.3); // the approximate pose: within 5 degrees and 0.3 m
+    cfg.window_pos = fx_q16_from_double(0.33);
+    return cfg;
+}
+
+struct FixOut {
+    int status;
+    Pose pose;
+    optical_fix_t raw;
+};
+
+FixOut run_fix(const Scene &sc, const optical_config_t &cfg,
+               const optical_pose_t *latched = nullptr, const optical_sighting_t *given = nullptr,
+               int ngiven = 0)
+{
+    std::vector<optical_xy_t> m;
+    for (const V2 &b : sc.map)
+        m.push_back(q16(b));
+    optical_map_t map = {m.data(), (uint8_t)m.size()};
+    optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
+    int n = ngiven;
+    if (given)
+        std::copy(given, given + ngiven, s);
+    else
+        n = optical_rev_sightings(&sc.rev, kCounts, s);
+    EXPECT_GE(n, 0);
+    optical_pose_t ap = {fx_q16_from_double(sc.ap.x()), fx_q16_from_double(sc.ap.y()),
+                         fx_angle_from_rad(sc.aphi)};
+    FixOut o;
+    o.status = optical_fix(&map, &cfg, &ap, s, (uint8_t)n, latched, &o.raw);
+    o.pose = {from_q16(o.raw.pose.x, o.raw.pose.y), fx_angle_to_rad(o.raw.pose.heading)};
+    return o;
+}
+
+// Best CRB (m per count) over the triplets of the beacons seen.
+double best_crb(const Scene &sc)
+{
+    std::vector<int> seen;
+    for (const auto &w : sc.truth)
+        if (w.size() == 1)
+            seen.push_back(w[0]);
+    double best = 1e30;
+    for (size_t a = 0; a < seen.size(); a++)
+        for (size_t b = a + 1; b < seen.size(); b++)
+            for (size_t c = b + 1; c < seen.size(); c++)
+                best = std::min(best,
+                                crb_rms({sc.map[seen[a]], sc.map[seen[b]], sc.map[seen[c]]}, sc.p) *
+                                    kCount);
+    return best;
+}
+
+TEST(Pipeline, TenThousandRandomRevolutions)
+{
+    std::mt19937 rng(2024);
+    optical_config_t cfg = test_config();
+    const double limit = cfg.quality_max * kPerCount;
+    int accepted = 0, wrong = 0, good = 0, good_acc = 0, wrong_ident = 0, merged_ident = 0;
+    double worst = 0, sum2 = 0, worst_h = 0;
+    int why[16] = {0};
+    for (int t = 0; t < 10000; t++) {
+        Scene sc = random_scene(rng);
+        FixOut f = run_fix(sc, cfg);
+        why[f.status]++;
+        bool gg = best_crb(sc) <= limit / 2;
+        good += gg;
+        // Every identification the fix reports must be right (also on refused fixes).
+        optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
+        optical_rev_sightings(&sc.rev, kCounts, s);
+        for (int i = 0; i < sc.rev.n; i++) {
+            if (f.raw.ident[i] < 0)
+                continue;
+            // which raw sighting is sorted sighting i: match by angle
+            double a = fx_angle_to_rad(s[i].angle);
+            const std::vector<int> *who = nullptr;
+            for (int r = 0; r < sc.rev.n; r++) {
+                double c = (sc.rev.s[r].start + (sc.rev.s[r].width + 1) / 2.0) * kCount;
+                if (std::abs(wrap_pi(c - a)) < 1e-6)
+                    who = &sc.truth[r];
+            }
+            ASSERT_NE(who, nullptr);
+            // Right when the pulse came from that beacon (alone, or merged with the post
+            // behind it or a glint on it).
+            wrong_ident += std::find(who->begin(), who->end(), f.raw.ident[i]) == who->end();
+            merged_ident += who->size() > 1;
+        }
+        if (f.status != OPTICAL_OK)
+            continue;
+        accepted++;
+        good_acc += gg;
+        double e = (f.pose.p - sc.p).norm();
+        worst = std::max(worst, e);
+        worst_h = std::max(worst_h, std::abs(wrap_pi(f.pose.phi - sc.phi)));
+        sum2 += e * e;
+        wrong += e > 0.05;
+    }
+    std::printf("pipeline: %d of 10000 accepted, %d more than 5 cm off, worst %.2f mm, RMS %.2f mm,"
+                " heading worst %.4f deg; good geometry %d, accepted %d (%.2f %%); wrong"
+                " identifications %d (%d of merged pulses)\n",
+                accepted, wrong, worst * 1e3, std::sqrt(sum2 / std::max(1, accepted)) * 1e3,
+                worst_h * 180 / M_PI, good, good_acc, 100.0 * good_acc / good, wrong_ident,
+                merged_ident);
+    std::printf("status:");
+    for (int i = 0; i < 11; i++)
+        std::printf(" %d:%d", i, why[i]);
+    std::printf("\n");
+    EXPECT_EQ(wrong, 0);
+    EXPECT_EQ(wrong_ident, 0);
+    EXPECT_GE(good_acc, 0.95 * good);
 }
 
 } // namespace

@@ -66,8 +66,8 @@ static int read_config(json_t *req, optical_config_t *cfg, char *err, size_t err
         while (i < sizeof keys / sizeof keys[0] && strcmp(keys[i].key, k) != 0)
             i++;
         if (i == sizeof keys / sizeof keys[0])
-            return ac_fail(err, errlen, "config: unknown key \"%.40s\" (docs/optical.md lists them)",
-                           k);
+            return ac_fail(err, errlen,
+                           "config: unknown key \"%.40s\" (docs/optical.md lists them)", k);
         const cfg_key_t *d = &keys[i];
         char what[64];
         snprintf(what, sizeof what, "config.%s", k);

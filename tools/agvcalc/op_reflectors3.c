@@ -141,8 +141,9 @@ int agvcalc_op_reflectors3(json_t *req, json_t *resp, char *err, size_t errlen)
                        "too close to singular: the vehicle lies near the circle through the "
                        "three reflectors");
     case OPTICAL_R3_E_NONE:
-        return ac_fail(err, errlen, "no assignment of reflectors to reflections gives a position "
-                                    "inside the field");
+        return ac_fail(err, errlen,
+                       "no assignment of reflectors to reflections gives a position "
+                       "inside the field");
     default:
         return ac_fail(err, errlen, "coordinates beyond +-8192 m");
     }

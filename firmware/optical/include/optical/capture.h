@@ -34,7 +34,8 @@ extern "C" {
 typedef struct {
     /**
      * Rising edge relative to the revolution's index pulse, modulo 2^16. A pulse that began
-     * before the index pulse and ended after it reads as a negative start (above 32767).
+     * before the index pulse and ended after it reads as a negative start (2^16 - its lead,
+     * beyond the counts of a turn).
      */
     uint16_t start;
     uint16_t width; /**< falling edge - rising edge, counts (1..65535) */
@@ -54,11 +55,11 @@ typedef struct {
 /** Capture state: handlers and main loop share it (pass its address as the handlers' arg). */
 typedef struct {
     optical_rev_t buf[2];
-    uint16_t index;       /**< count at the current revolution's index pulse */
-    uint16_t rise;        /**< count at the pending rising edge */
-    uint16_t seq;         /**< revolutions started */
-    uint16_t dropped;     /**< completed revolutions never handed out (wraps) */
-    uint16_t cov_seen;    /**< hal_capture_overflows() at the last take */
+    uint16_t index;         /**< count at the current revolution's index pulse */
+    uint16_t rise;          /**< count at the pending rising edge */
+    uint16_t seq;           /**< revolutions started */
+    uint16_t dropped;       /**< completed revolutions never handed out (wraps) */
+    uint16_t cov_seen;      /**< hal_capture_overflows() at the last take */
     volatile uint8_t fill;  /**< buffer the handlers fill (0/1) */
     volatile uint8_t mode;  /**< 0 stopped, 1 waiting for the first index pulse, 2 running */
     volatile uint8_t pulse; /**< 1 between a rising and a falling edge */

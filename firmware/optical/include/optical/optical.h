@@ -76,15 +76,17 @@ typedef struct {
 /** Result codes (optical_fix_t.status, optical_triangulate). */
 typedef enum {
     OPTICAL_OK = 0,
-    OPTICAL_E_ARG,         /**< bad arguments (map size, coordinates beyond the limit) */
-    OPTICAL_E_REV,         /**< implausible revolution (period, lost captures) */
-    OPTICAL_E_FEW,         /**< fewer than three beacons identified */
-    OPTICAL_E_DEGENERATE,  /**< two beacons or two sightings coincide */
-    OPTICAL_E_SINGULAR,    /**< too close to the beacons' circle: quality beyond the limit */
-    OPTICAL_E_JUMP,        /**< the fix is implausibly far from the approximate position */
-    OPTICAL_E_TURN,        /**< the bearing is implausibly far from the approximate one */
-    OPTICAL_E_DISAGREE,    /**< other identified sightings disagree: likely misidentified */
-    OPTICAL_E_INCONSISTENT /**< the matches contradict the stated pose uncertainty */
+    OPTICAL_E_ARG,          /**< bad arguments (map size, coordinates beyond the limit) */
+    OPTICAL_E_REV,          /**< implausible revolution (period, lost captures) */
+    OPTICAL_E_FEW,          /**< fewer than three beacons identified */
+    OPTICAL_E_DEGENERATE,   /**< two beacons or two sightings coincide */
+    OPTICAL_E_SINGULAR,     /**< too close to the beacons' circle: quality beyond the limit */
+    OPTICAL_E_JUMP,         /**< the fix is implausibly far from the approximate position */
+    OPTICAL_E_TURN,         /**< the bearing is implausibly far from the approximate one */
+    OPTICAL_E_DISAGREE,     /**< other identified sightings disagree: likely misidentified */
+    OPTICAL_E_INCONSISTENT, /**< the matches contradict the stated pose uncertainty */
+    OPTICAL_E_UNCONFIRMED   /**< identified only beyond the bounds (a guess or widened
+                                 windows) and fewer than five sightings confirm the fix */
 } optical_status_t;
 
 /**
@@ -126,24 +128,33 @@ typedef struct {
 
 /** The result of optical_fix(). */
 typedef struct {
-    optical_pose_t pose;                   /**< the vehicle at the reference instant */
-    uint32_t quality;                      /**< as optical_tri_t.quality */
-    int8_t ident[OPTICAL_MAX_SIGHTINGS];   /**< map index per sighting (input order), -1 none */
-    uint8_t used[3];                       /**< map indices of the triplet, in ring order */
-    uint8_t n_ident;                       /**< sightings identified */
-    uint8_t widened;                       /**< window widenings used (0: within the bounds) */
-    uint8_t status;                        /**< optical_status_t */
+    optical_pose_t pose;                 /**< the vehicle at the reference instant */
+    uint32_t quality;                    /**< as optical_tri_t.quality */
+    int8_t ident[OPTICAL_MAX_SIGHTINGS]; /**< map index per sighting (input order), -1 none */
+    uint8_t used[3];                     /**< map indices of the triplet, in ring order */
+    uint8_t n_ident;                     /**< sightings identified */
+    uint8_t widened;                     /**< window widenings used (0: within the bounds) */
+    uint8_t status;                      /**< optical_status_t */
 } optical_fix_t;
+
+/**
+ * Direction of the vector (dx, dy) in 2^-16 turn (65536 = 360 degrees, CCW from +x), cheap:
+ * the identification's expected angles. Any int32 components (any common scale); max error
+ * 2 units (0.011 degrees); (0, 0) gives 0.
+ */
+uint16_t optical_angle16(int32_t dx, int32_t dy);
 
 /** Fill @p cfg with the defaults (docs/optical.md). */
 void optical_config_default(optical_config_t *cfg);
 
 /**
- * Convert a captured revolution into sightings for optical_fix(): centre = start + width / 2
- * on a goniometer of @p counts_per_turn counts (exact to one binary-angle LSB), sorted by
- * angle. Returns the number of sightings (0..OPTICAL_MAX_SIGHTINGS) or -1 when the revolution
- * is implausible: its period is not @p counts_per_turn (lost angle-clock pulses or a lost
- * index pulse) or the timer lost a capture (COV). Widths beyond 2^-16 turn units saturate.
+ * Convert a captured revolution into sightings for optical_fix(): centre = start + (width + 1)
+ * / 2 counts (an edge at angle a reads floor(a) counts after the index pulse, which the angle
+ * clock's encoder aligns with a count) on a goniometer of @p counts_per_turn counts (exact to
+ * one binary-angle LSB), sorted by angle. Returns the number of sightings
+ * (0..OPTICAL_MAX_SIGHTINGS) or -1 when the revolution is implausible: its period is not @p
+ * counts_per_turn (lost angle-clock pulses or a lost index pulse) or the timer lost a capture
+ * (COV). Widths beyond 2^-16 turn units saturate.
  */
 int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
                              optical_sighting_t *out);
@@ -159,8 +170,8 @@ int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
  * Accuracy: within 1 mm of the exact solution of the same inputs wherever quality <= 8 m/mrad
  * in a 50 m field (tests/unit/optical_test.cpp measures it).
  */
-int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3],
-                           uint32_t quality_max, optical_tri_t *out);
+int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], uint32_t quality_max,
+                           optical_tri_t *out);
 
 /**
  * Select three of @p n identified beacons (O7): with their sighting angles @p angle sorted

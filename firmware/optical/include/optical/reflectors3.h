@@ -30,7 +30,7 @@ extern "C" {
 /** Most vertices of the field polygon. */
 #define OPTICAL_R3_MAX_FIELD 16
 /** Most candidate positions (one per assignment). */
-#define OPTICAL_R3_MAX_CAND 6
+#define OPTICAL_R3_MAX_CAND  6
 
 /** Result codes beyond optical_status_t. */
 typedef enum {
@@ -58,7 +58,7 @@ typedef struct {
     uint32_t quality;    /**< as optical_tri_t.quality */
     uint8_t first;       /**< reflector (0..2) that gave the first reflection */
     uint8_t n_cand;      /**< assignments that fit (all of them on OPTICAL_R3_E_AMBIGUOUS) */
-    optical_xy_t cand[OPTICAL_R3_MAX_CAND]; /**< their positions */
+    optical_xy_t cand[OPTICAL_R3_MAX_CAND];  /**< their positions */
     uint8_t cand_first[OPTICAL_R3_MAX_CAND]; /**< and the reflector seen first in each */
     uint8_t status;                          /**< optical_r3_status_t */
 } optical_r3_t;
