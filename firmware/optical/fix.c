@@ -43,7 +43,14 @@ typedef struct {
     uint16_t e;   /* position part of the window + MARGIN */
 } cand_t;
 
-/* Work area of optical_fix (not reentrant). */
+/* The identified sorted sightings: positions pos[], reference-frame angles ang[] (ring order). */
+typedef struct {
+    uint8_t m;
+    uint8_t pos[OPTICAL_MAX_SIGHTINGS];
+    fx_angle_t ang[OPTICAL_MAX_SIGHTINGS];
+} idset_t;
+
+/* Work area of optical_fix (static: the MSP430's stack is small; not reentrant). */
 static struct {
     uint16_t psi[OPTICAL_MAX_BEACONS];  /* expected angle, 2^-16 turn, vehicle frame */
     uint16_t g[OPTICAL_MAX_BEACONS];    /* bound of 2^16/(2 pi) asin(1 m / r); 0 gated out */
@@ -55,6 +62,9 @@ static struct {
     uint8_t bstart[16];                 /* first sorted sighting of each 1/16 turn */
     cand_t cand[MAX_CAND];
     uint8_t ncand;
+    idset_t id;        /* the identified */
+    optical_xy_t b[3]; /* the triplet being solved */
+    optical_tri_t tri; /* a candidate triplet's solution (solve) */
 } W;
 
 void optical_config_default(optical_config_t *cfg)
@@ -590,13 +600,6 @@ static void expect(const ctx_t *x, const optical_pose_t *p, uint32_t gate, uint3
     }
 }
 
-/* The identified sorted sightings: positions pos[], reference-frame angles ang[] (ring order). */
-typedef struct {
-    uint8_t m;
-    uint8_t pos[OPTICAL_MAX_SIGHTINGS];
-    fx_angle_t ang[OPTICAL_MAX_SIGHTINGS];
-} idset_t;
-
 static void gather(const ctx_t *x, const optical_pose_t *latched, idset_t *id)
 {
     id->m = 0;
@@ -613,13 +616,12 @@ static void gather(const ctx_t *x, const optical_pose_t *latched, idset_t *id)
 static int8_t solve_triplet(const ctx_t *x, const idset_t *id, const uint8_t t[3], uint8_t passes,
                             optical_tri_t *tri)
 {
-    optical_xy_t b[3];
-    uint8_t tj[3];
+    optical_xy_t *b = W.b;
     bool moving = false;
     for (uint8_t i = 0; i < 3; i++) {
-        tj[i] = id->pos[t[i]];
-        b[i] = x->map->b[W.sm[tj[i]]];
-        moving |= W.c[tj[i]] != 0;
+        uint8_t j = id->pos[t[i]];
+        b[i] = x->map->b[W.sm[j]];
+        moving |= W.c[j] != 0;
     }
     optical_pose_t p = *x->ap;
     if (!moving)
@@ -628,9 +630,10 @@ static int8_t solve_triplet(const ctx_t *x, const idset_t *id, const uint8_t t[3
     for (uint8_t pass = 0; pass < passes; pass++) {
         fx_angle_t th[3];
         for (uint8_t i = 0; i < 3; i++) {
+            uint8_t j = id->pos[t[i]];
             th[i] = id->ang[t[i]];
-            if (W.c[tj[i]])
-                th[i] = corrected(th[i], tj[i], fx_hypot(b[i].x - p.x, b[i].y - p.y));
+            if (W.c[j])
+                th[i] = corrected(th[i], j, fx_hypot(b[i].x - p.x, b[i].y - p.y));
         }
         st = optical_triangulate(b, th, x->cfg->quality_max, tri);
         if (st != OPTICAL_OK)
@@ -657,19 +660,19 @@ static int8_t solve(const ctx_t *x, const idset_t *id, uint8_t passes, uint8_t t
         return st;
     uint32_t best = UINT32_MAX;
     uint8_t bt[3] = {t[0], t[1], t[2]};
-    optical_tri_t cand;
+    optical_tri_t *cand = &W.tri;
     for (uint8_t r = 0; r < 3; r++) {
         for (uint8_t q = 0; q < id->m; q++) {
             if (q == t[0] || q == t[1] || q == t[2])
                 continue;
             uint8_t u[3] = {t[0], t[1], t[2]};
             u[r] = q;
-            if (solve_triplet(x, id, u, passes, &cand) == OPTICAL_OK && cand.quality < best) {
-                best = cand.quality;
+            if (solve_triplet(x, id, u, passes, cand) == OPTICAL_OK && cand->quality < best) {
+                best = cand->quality;
                 bt[0] = u[0];
                 bt[1] = u[1];
                 bt[2] = u[2];
-                *tri = cand;
+                *tri = *cand;
             }
         }
     }
@@ -780,10 +783,10 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     out->widened = widened;
     if (found < 0)
         return finish(out, OPTICAL_E_INCONSISTENT);
-    idset_t id;
-    gather(&x, latched, &id);
-    if (id.m < 3) {
-        out->n_ident = id.m;
+    idset_t *id = &W.id;
+    gather(&x, latched, id);
+    if (id->m < 3) {
+        out->n_ident = id->m;
         return finish(out, OPTICAL_E_FEW);
     }
 
@@ -791,7 +794,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     uint8_t passes = cfg->motion_passes ? cfg->motion_passes : 1u;
     uint8_t t3[3];
     optical_tri_t tri;
-    int8_t st = solve(&x, &id, passes, t3, &tri);
+    int8_t st = solve(&x, id, passes, t3, &tri);
     if (st == OPTICAL_OK && mode != IDENT_SAFE) {
         /* Beyond the bounds the identification is a hypothesis: identify again from the fix
          * (5 cm, the residual tolerance) and use it only when at least five sightings agree. */
@@ -802,21 +805,21 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
             for (uint8_t j = 0; j < n; j++)
                 if (W.sm[j] < DROPPED)
                     W.sm[j] = NONE;
-            gather(&x, latched, &id);
-            out->n_ident = id.m;
+            gather(&x, latched, id);
+            out->n_ident = id->m;
             return finish(out, OPTICAL_E_UNCONFIRMED);
         }
-        gather(&x, latched, &id);
-        st = solve(&x, &id, passes, t3, &tri);
+        gather(&x, latched, id);
+        st = solve(&x, id, passes, t3, &tri);
     }
-    for (uint8_t i = 0; i < id.m; i++)
-        out->ident[W.ord[id.pos[i]]] = (int8_t)W.sm[id.pos[i]];
-    out->n_ident = id.m;
+    for (uint8_t i = 0; i < id->m; i++)
+        out->ident[W.ord[id->pos[i]]] = (int8_t)W.sm[id->pos[i]];
+    out->n_ident = id->m;
     if (st == OPTICAL_OK || st == OPTICAL_E_SINGULAR) {
         out->pose = tri.pose;
         out->quality = tri.quality;
         for (uint8_t i = 0; i < 3; i++)
-            out->used[i] = W.sm[id.pos[t3[i]]];
+            out->used[i] = W.sm[id->pos[t3[i]]];
     }
     if (st != OPTICAL_OK)
         return finish(out, st);
@@ -830,13 +833,13 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     if ((int32_t)dh > (int32_t)cfg->turn_max || (int32_t)dh < -(int32_t)cfg->turn_max)
         return finish(out, OPTICAL_E_TURN);
     uint16_t rmax = a16(cfg->resid_max), h16 = a16(p.heading);
-    for (uint8_t i = 0; i < id.m; i++) {
+    for (uint8_t i = 0; i < id->m; i++) {
         if (i == t3[0] || i == t3[1] || i == t3[2])
             continue;
-        uint8_t j = id.pos[i];
+        uint8_t j = id->pos[i];
         const optical_xy_t *bk = &map->b[W.sm[j]];
         int32_t dx = bk->x - p.x, dy = bk->y - p.y;
-        fx_angle_t th = id.ang[i];
+        fx_angle_t th = id->ang[i];
         if (W.c[j])
             th = corrected(th, j, fx_hypot(dx, dy));
         uint16_t res = (uint16_t)(optical_angle16(dx, dy) - h16 - a16(th));

@@ -52,6 +52,9 @@ int8_t optical_r3_fix(const optical_xy_t refl[3], uint32_t click, const uint32_t
     out->n_cand = 0;
     out->quality = UINT32_MAX;
     out->first = 0;
+    out->pose.x = 0;
+    out->pose.y = 0;
+    out->pose.heading = 0;
     if (n != 3)
         return done(out, OPTICAL_R3_E_COUNT);
     uint32_t period = click_next - click;

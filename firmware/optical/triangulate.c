@@ -18,6 +18,7 @@
  * component lies in [2^25, 2^26) ("lambda" units); sin/cos are Q1.30.
  */
 #include <stdbool.h>
+#include <stddef.h>
 
 #include "optical/optical.h"
 
@@ -54,7 +55,7 @@ static int32_t mq(int32_t a, fx_q30_t b)
  * cross(nY, nX) rot90(W) / |W|^2 with W = sX nY - sY nX. False when the circles (nearly)
  * coincide so that the point does not fit.
  */
-static bool pair_point(const int32_t nX[2], fx_q30_t sX, const int32_t nY[2], fx_q30_t sY,
+__attribute__((noinline)) static bool pair_point(const int32_t nX[2], fx_q30_t sX, const int32_t nY[2], fx_q30_t sY,
                        int32_t out[2])
 {
     int32_t wx = mq(nY[0], sX) - mq(nX[0], sY);
@@ -103,56 +104,54 @@ static bool pair_point(const int32_t nX[2], fx_q30_t sX, const int32_t nY[2], fx
     return true;
 }
 
-/* Largest shift h such that every value >> h fits 15 bits (|v| < 2^15). */
-static uint8_t shift15(const int32_t *v, uint8_t n)
+/* Work area (static: the MSP430's stack is small); optical_triangulate is not reentrant. */
+static struct {
+    int32_t b1[2], b3[2];             /* beacon offsets from beacon 2, lambda */
+    int32_t nA[2], nB[2], nC[2];      /* doubled homogeneous centres, origin beacon 2 */
+    int32_t s1b1[2], s2b3[2], s3b1[2], s3b3[2];
+    int32_t nx[2], ny[2], p[2];       /* one pair's centres at its origin, its point */
+    int32_t v[12];                    /* chords and vehicle-to-beacon vectors (quality) */
+    int32_t sq[6];                    /* their squared lengths, cut to 15-bit components */
+    fx_angle_t h[3];                  /* bearings from the three sightings */
+    fx_angle_t g[3];                  /* gaps between the sorted sightings */
+    fx_q30_t s1, c1, s2, c2, s3, c3;  /* sin, cos of alpha1..3 */
+} T;
+
+/*
+ * Quality: the RMS position error for unit independent bearing errors,
+ *     S = sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2) / |r3 sin a12 + r1 sin a23 + r2 sin a31|
+ * (chords c between beacons, ranges r from the vehicle), in Q16 metres per mrad. v[]: b1, b3
+ * (beacon offsets from beacon 2), b3 - b1 and the three vectors vehicle -> beacon, in lambda
+ * units; they are cut to 15 bits (the estimate needs a few per cent, not more).
+ */
+__attribute__((noinline)) static uint32_t quality(const int32_t v[12], fx_q30_t s1, fx_q30_t s2, fx_q30_t s3, uint8_t sigma)
 {
     uint32_t m = 0;
-    for (uint8_t i = 0; i < n; i++)
+    for (uint8_t i = 0; i < 12; i++)
         m |= mag(v[i]);
     uint8_t h = 0;
     while (m >= (1ul << 15)) {
         m >>= 1;
         h++;
     }
-    return h;
-}
-
-static int32_t asr(int32_t v, uint8_t h)
-{
-    while (h--)
-        v /= 2; /* rounds toward zero: fine for the quality estimate */
-    return v;
-}
-
-/*
- * Quality: the RMS position error for unit independent bearing errors,
- *     S = sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2) / |r3 sin a12 + r1 sin a23 + r2 sin a31|
- * (chords c between beacons, ranges r from the vehicle), in Q16 metres per mrad. Inputs in
- * lambda units: b1, b3 the beacon offsets from beacon 2, d[i] the beacons from the vehicle.
- */
-static uint32_t quality(const int32_t b1[2], const int32_t b3[2], const int32_t d[6], fx_q30_t s1,
-                        fx_q30_t s2, fx_q30_t s3, uint8_t sigma)
-{
-    int32_t v[12] = {b1[0], b1[1], b3[0], b3[1], b3[0] - b1[0], b3[1] - b1[1],
-                     d[0],  d[1],  d[2],  d[3],  d[4],          d[5]};
-    uint8_t h = shift15(v, 12);
-    int32_t w[12];
-    for (uint8_t i = 0; i < 12; i++)
-        w[i] = asr(v[i], h);
-    /* Squares of 15-bit values: < 2^31 for a sum of two. */
-    int32_t c12 = w[0] * w[0] + w[1] * w[1];
-    int32_t c23 = w[2] * w[2] + w[3] * w[3];
-    int32_t c31 = w[4] * w[4] + w[5] * w[5];
-    int32_t r1q = w[6] * w[6] + w[7] * w[7];
-    int32_t r2q = w[8] * w[8] + w[9] * w[9];
-    int32_t r3q = w[10] * w[10] + w[11] * w[11];
+    /* Squares of 15-bit values: a sum of two stays below 2^31. */
+    int32_t *sq = T.sq;
+    for (uint8_t i = 0; i < 6; i++) {
+        int32_t a = v[2 * i], b = v[2 * i + 1];
+        for (uint8_t k = 0; k < h; k++) {
+            a /= 2; /* toward zero: fine for the estimate */
+            b /= 2;
+        }
+        sq[i] = (int32_t)(int16_t)a * (int16_t)a + (int32_t)(int16_t)b * (int16_t)b;
+    }
+    /* sq: c12^2, c23^2, c31^2, r1^2, r2^2, r3^2 */
     int32_t t1, t2, t3;
-    fx_mul_shift(c12, r3q, 34, &t1);
-    fx_mul_shift(c23, r1q, 34, &t2);
-    fx_mul_shift(c31, r2q, 34, &t3);
+    fx_mul_shift(sq[0], sq[5], 34, &t1);
+    fx_mul_shift(sq[1], sq[3], 34, &t2);
+    fx_mul_shift(sq[2], sq[4], 34, &t3);
     uint16_t num = fx_sqrt32((uint32_t)t1 + (uint32_t)t2 + (uint32_t)t3); /* num / 2^17 */
-    int32_t r1 = fx_sqrt32((uint32_t)r1q), r2 = fx_sqrt32((uint32_t)r2q);
-    int32_t r3 = fx_sqrt32((uint32_t)r3q);
+    int32_t r1 = fx_sqrt32((uint32_t)sq[3]), r2 = fx_sqrt32((uint32_t)sq[4]);
+    int32_t r3 = fx_sqrt32((uint32_t)sq[5]);
     /* a31 = 360 - alpha3: sin a31 = -s3. */
     int32_t den = mq(r3, s1) + mq(r1, s2) - mq(r2, s3);
     if (den < 0)
@@ -192,8 +191,10 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
             o[0] = t;
         }
     }
-    fx_angle_t g[3] = {theta[o[1]] - theta[o[0]], theta[o[2]] - theta[o[1]],
-                       theta[o[0]] - theta[o[2]]};
+    fx_angle_t *g = T.g;
+    g[0] = theta[o[1]] - theta[o[0]];
+    g[1] = theta[o[2]] - theta[o[1]];
+    g[2] = theta[o[0]] - theta[o[2]];
     if (g[0] == 0 || g[1] == 0 || g[2] == 0)
         return OPTICAL_E_DEGENERATE;
     uint8_t r = 0;
@@ -206,8 +207,11 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     const optical_xy_t *B1 = &b[o[k1]], *B2 = &b[o[k2]], *B3 = &b[o[k3]];
     fx_angle_t a1 = g[k1], a2 = g[k2], a3 = a1 + a2;
 
-    int32_t b1[2] = {B1->x - B2->x, B1->y - B2->y};
-    int32_t b3[2] = {B3->x - B2->x, B3->y - B2->y};
+    int32_t *b1 = T.b1, *b3 = T.b3;
+    b1[0] = B1->x - B2->x;
+    b1[1] = B1->y - B2->y;
+    b3[0] = B3->x - B2->x;
+    b3[1] = B3->y - B2->y;
     uint32_t m = max4(b1[0], b1[1], b3[0], b3[1]);
     if (m >= SPAN_LIMIT)
         return OPTICAL_E_ARG;
@@ -225,52 +229,73 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
         b3[1] *= 2;
     }
 
-    fx_q30_t s1, c1, s2, c2, s3, c3;
-    fx_sincos(a1, &s1, &c1);
-    fx_sincos(a2, &s2, &c2);
-    fx_sincos(a3, &s3, &c3);
+    fx_sincos(a1, &T.s1, &T.c1);
+    fx_sincos(a2, &T.s2, &T.c2);
+    fx_sincos(a3, &T.s3, &T.c3);
 
-    /* Doubled homogeneous centres n = 2 sin(alpha) (c - O), O = beacon 2, 1 or 3. */
-    int32_t s1b1[2] = {mq(b1[0], s1), mq(b1[1], s1)}, c1b1[2] = {mq(b1[0], c1), mq(b1[1], c1)};
-    int32_t s2b3[2] = {mq(b3[0], s2), mq(b3[1], s2)}, c2b3[2] = {mq(b3[0], c2), mq(b3[1], c2)};
-    int32_t s3b1[2] = {mq(b1[0], s3), mq(b1[1], s3)}, s3b3[2] = {mq(b3[0], s3), mq(b3[1], s3)};
-    int32_t c3q[2] = {mq(b3[0] - b1[0], c3), mq(b3[1] - b1[1], c3)};
-    /* A (B1, B2, alpha1): O = B2: s1 b1 - c1 rot90(b1); O = B1: subtract 2 s1 b1. */
-    int32_t nA[2] = {s1b1[0] + c1b1[1], s1b1[1] - c1b1[0]};
-    int32_t nA1[2] = {-s1b1[0] + c1b1[1], -s1b1[1] - c1b1[0]};
-    /* B (B2, B3, alpha2): O = B2: s2 b3 + c2 rot90(b3); O = B3: subtract 2 s2 b3. */
-    int32_t nB[2] = {s2b3[0] - c2b3[1], s2b3[1] + c2b3[0]};
-    int32_t nB3[2] = {-s2b3[0] - c2b3[1], -s2b3[1] + c2b3[0]};
-    /* C (B1, B3, alpha3): O = B2: s3 (b1 + b3) + c3 rot90(b3 - b1). */
-    int32_t nC[2] = {s3b1[0] + s3b3[0] - c3q[1], s3b1[1] + s3b3[1] + c3q[0]};
-    int32_t nC1[2] = {nC[0] - 2 * s3b1[0], nC[1] - 2 * s3b1[1]};
-    int32_t nC3[2] = {nC[0] - 2 * s3b3[0], nC[1] - 2 * s3b3[1]};
+    /* Doubled homogeneous centres n = 2 sin(alpha) (c - O), O = beacon 2 (1 or 3 below). */
+    T.s1b1[0] = mq(b1[0], T.s1);
+    T.s1b1[1] = mq(b1[1], T.s1);
+    T.s2b3[0] = mq(b3[0], T.s2);
+    T.s2b3[1] = mq(b3[1], T.s2);
+    T.s3b1[0] = mq(b1[0], T.s3);
+    T.s3b1[1] = mq(b1[1], T.s3);
+    T.s3b3[0] = mq(b3[0], T.s3);
+    T.s3b3[1] = mq(b3[1], T.s3);
+    /* A (B1, B2, alpha1): s1 b1 - c1 rot90(b1); B (B2, B3, alpha2): s2 b3 + c2 rot90(b3);
+     * C (B1, B3, alpha3): s3 (b1 + b3) + c3 rot90(b3 - b1). */
+    T.nA[0] = T.s1b1[0] + mq(b1[1], T.c1);
+    T.nA[1] = T.s1b1[1] - mq(b1[0], T.c1);
+    T.nB[0] = T.s2b3[0] - mq(b3[1], T.c2);
+    T.nB[1] = T.s2b3[1] + mq(b3[0], T.c2);
+    T.nC[0] = T.s3b1[0] + T.s3b3[0] - mq(b3[1] - b1[1], T.c3);
+    T.nC[1] = T.s3b1[1] + T.s3b3[1] + mq(b3[0] - b1[0], T.c3);
 
-    int32_t pab[2], pac[2], pbc[2];
-    if (!pair_point(nA, s1, nB, s2, pab) || !pair_point(nA1, s1, nC1, s3, pac) ||
-        !pair_point(nB3, s2, nC3, s3, pbc))
-        return OPTICAL_E_SINGULAR;
+    /* The three pairwise intersections, each relative to its common beacon, summed relative
+     * to B2. Moving the origin from B2 to Bi subtracts 2 sin(alpha) bi from n. */
+    int32_t sx = 0, sy = 0;
+    for (uint8_t pr = 0; pr < 3; pr++) {
+        fx_q30_t sX = pr == 2 ? T.s2 : T.s1, sY = pr == 0 ? T.s2 : T.s3;
+        const int32_t *org = pr == 0 ? NULL : pr == 1 ? b1 : b3;
+        const int32_t *nX = pr == 2 ? T.nB : T.nA, *nY = pr == 0 ? T.nB : T.nC;
+        const int32_t *dX = pr == 1 ? T.s1b1 : T.s2b3, *dY = pr == 1 ? T.s3b1 : T.s3b3;
+        for (uint8_t i = 0; i < 2; i++) {
+            T.nx[i] = org ? nX[i] - 2 * dX[i] : nX[i];
+            T.ny[i] = org ? nY[i] - 2 * dY[i] : nY[i];
+        }
+        if (!pair_point(T.nx, sX, T.ny, sY, T.p))
+            return OPTICAL_E_SINGULAR;
+        sx += T.p[0] + (org ? org[0] : 0);
+        sy += T.p[1] + (org ? org[1] : 0);
+    }
     /* Average, relative to B2 (lambda), then to Q16 metres: / 3 / 2^sigma. */
-    int32_t sx = pab[0] + (b1[0] + pac[0]) + (b3[0] + pbc[0]);
-    int32_t sy = pab[1] + (b1[1] + pac[1]) + (b3[1] + pbc[1]);
-    int32_t px, py;
+    int32_t px, py, cx, cy;
     fx_mul_shift(sx, 357913941l /* 2^30 / 3 */, (uint8_t)(30 + sigma), &px);
     fx_mul_shift(sy, 357913941l, (uint8_t)(30 + sigma), &py);
-    /* Vehicle-to-beacon vectors (lambda), from the average (before rounding to Q16). */
-    int32_t cx, cy;
     fx_mul_shift(sx, 357913941l, 30, &cx);
     fx_mul_shift(sy, 357913941l, 30, &cy);
-    int32_t d[6] = {b1[0] - cx, b1[1] - cy, -cx, -cy, b3[0] - cx, b3[1] - cy};
-    uint32_t qual = quality(b1, b3, d, s1, s2, s3, sigma);
+    /* Quality from the chords and the vehicle-to-beacon vectors (lambda). */
+    T.v[0] = b1[0];
+    T.v[1] = b1[1];
+    T.v[2] = b3[0];
+    T.v[3] = b3[1];
+    T.v[4] = b3[0] - b1[0];
+    T.v[5] = b3[1] - b1[1];
+    T.v[6] = b1[0] - cx;
+    T.v[7] = b1[1] - cy;
+    T.v[8] = -cx;
+    T.v[9] = -cy;
+    T.v[10] = b3[0] - cx;
+    T.v[11] = b3[1] - cy;
+    out->quality = quality(T.v, T.s1, T.s2, T.s3, sigma);
 
     out->pose.x = B2->x + px;
     out->pose.y = B2->y + py;
     /* O10: bearing = direction to each beacon - its sighting angle, averaged. */
-    const optical_xy_t *bk[3] = {B1, B2, B3};
-    const fx_angle_t th[3] = {theta[o[k1]], theta[o[k2]], theta[o[k3]]};
-    fx_angle_t h[3];
-    for (uint8_t i = 0; i < 3; i++)
-        h[i] = fx_atan2(bk[i]->y - out->pose.y, bk[i]->x - out->pose.x) - th[i];
+    fx_angle_t *h = T.h;
+    h[0] = fx_atan2(B1->y - out->pose.y, B1->x - out->pose.x) - theta[o[k1]];
+    h[1] = fx_atan2(B2->y - out->pose.y, B2->x - out->pose.x) - theta[o[k2]];
+    h[2] = fx_atan2(B3->y - out->pose.y, B3->x - out->pose.x) - theta[o[k3]];
     /* Each beacon must lie along its own sighting: a solution on the other arc of a circle
      * (which the circles alone cannot tell apart) leaves one direction off by about 180
      * degrees. Near the beacons' circle a quantised input can land there. */
@@ -286,6 +311,5 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     if (e0 > CONSISTENT || e1 > CONSISTENT || e2 > CONSISTENT)
         return OPTICAL_E_SINGULAR;
     out->pose.heading = h[0] + (fx_angle_t)mean;
-    out->quality = qual;
-    return qual > quality_max ? OPTICAL_E_SINGULAR : OPTICAL_OK;
+    return out->quality > quality_max ? OPTICAL_E_SINGULAR : OPTICAL_OK;
 }
