@@ -6,6 +6,7 @@
  */
 #include "fx_internal.h"
 
+#ifndef FX_ASM /* MSP430: msp430/fx_arith.S */
 uint64_t fx_umul64(uint32_t a, uint32_t b)
 {
     return (uint64_t)a * b;
@@ -13,15 +14,14 @@ uint64_t fx_umul64(uint32_t a, uint32_t b)
 
 uint32_t fx_udiv64_32(uint32_t hi, uint32_t lo, uint32_t d, uint32_t *rem)
 {
-    /* Restoring division: the dividend shifts through the remainder one bit per step; a
-     * carry out of the remainder means it is certainly >= d. */
+    /* Restoring division: the dividend shifts through the remainder one bit per step; the
+     * remainder stays below d <= 2^31, so doubled it still fits 32 bits. */
     uint32_t r = hi, q = 0;
     for (uint8_t k = 0; k < 32u; k++) {
-        uint32_t carry = r >> 31;
         r = (r << 1) | (lo >> 31);
         lo <<= 1;
         q <<= 1;
-        if (carry || r >= d) {
+        if (r >= d) {
             r -= d;
             q |= 1u;
         }
@@ -46,15 +46,57 @@ uint16_t fx_udiv32_16(uint32_t n, uint16_t d, uint16_t *rem)
     *rem = r;
     return q;
 }
+#endif
+
+#ifndef FX_ASM /* MSP430: msp430/fx_arith.S */
+uint64_t fx_shr64(uint64_t v, uint8_t n)
+{
+    if (n & 32u)
+        v >>= 32;
+    if (n & 16u)
+        v >>= 16;
+    if (n & 8u)
+        v >>= 8;
+    if (n & 4u)
+        v >>= 4;
+    if (n & 2u)
+        v >>= 2;
+    if (n & 1u)
+        v >>= 1;
+    return v;
+}
+
+uint64_t fx_shl64(uint64_t v, uint8_t n)
+{
+    if (n & 32u)
+        v <<= 32;
+    if (n & 16u)
+        v <<= 16;
+    if (n & 8u)
+        v <<= 8;
+    if (n & 4u)
+        v <<= 4;
+    if (n & 2u)
+        v <<= 2;
+    if (n & 1u)
+        v <<= 1;
+    return v;
+}
+#endif
 
 fx_angle_t fx_angle_from_counts(uint32_t counts, uint16_t counts_per_turn)
 {
     uint16_t d = counts_per_turn, r;
     if (d == 0)
         return 0;
-    /* counts mod d, then round(r * 2^32 / d) as two 16-bit quotient digits. */
-    (void)fx_udiv32_16(counts >> 16, d, &r);
-    (void)fx_udiv32_16(((uint32_t)r << 16) | (counts & 0xFFFFu), d, &r);
+    /* counts mod d (counts itself in the normal range), then round(r * 2^32 / d) as two
+     * 16-bit quotient digits. */
+    if (counts < d) {
+        r = (uint16_t)counts;
+    } else {
+        (void)fx_udiv32_16(counts >> 16, d, &r);
+        (void)fx_udiv32_16(((uint32_t)r << 16) | (counts & 0xFFFFu), d, &r);
+    }
     uint16_t hi = fx_udiv32_16((uint32_t)r << 16, d, &r);
     uint16_t lo = fx_udiv32_16((uint32_t)r << 16, d, &r);
     fx_angle_t a = ((uint32_t)hi << 16) | lo;
@@ -82,16 +124,20 @@ bool fx_mul_shift(int32_t a, int32_t b, uint8_t shift, int32_t *out)
     uint64_t p = fx_umul64(magnitude(a), magnitude(b)); /* <= 2^62 */
     if (shift >= 64u)
         p = 0;
-    else if (shift)
-        p = (p + ((uint64_t)1 << (shift - 1u))) >> shift;
+    else if (shift) /* floor((p + 2^(shift-1)) / 2^shift) */
+        p = (fx_shr64(p, (uint8_t)(shift - 1u)) + 1u) >> 1;
     return store_signed(p, (a < 0) != (b < 0), out);
 }
 
-static int32_t mul_saturated(int32_t a, int32_t b, uint8_t shift)
+#ifndef FX_ASM /* MSP430: msp430/fx_arith.S */
+/* a * b / 2^shift rounded, saturated; shift is a constant in each caller (inlined). */
+static inline int32_t mul_saturated(int32_t a, int32_t b, uint8_t shift)
 {
+    uint64_t p = (fx_umul64(magnitude(a), magnitude(b)) >> (shift - 1u)) + 1u;
+    bool neg = (a < 0) != (b < 0);
     int32_t r;
-    if (!fx_mul_shift(a, b, shift, &r))
-        r = (a < 0) != (b < 0) ? INT32_MIN : INT32_MAX;
+    if (!store_signed(p >> 1, neg, &r))
+        r = neg ? INT32_MIN : INT32_MAX;
     return r;
 }
 
@@ -104,6 +150,7 @@ int32_t fx_mul_q16(int32_t a, int32_t b)
 {
     return mul_saturated(a, b, 16);
 }
+#endif
 
 bool fx_div_shift(int32_t num, int32_t den, uint8_t shift, int32_t *out)
 {
@@ -115,17 +162,11 @@ bool fx_div_shift(int32_t num, int32_t den, uint8_t shift, int32_t *out)
         return true;
     }
     /* The dividend n * 2^shift as hi:lo; a quotient of 2^32 or more cannot fit. */
-    if (shift >= 64u)
+    if (shift >= 64u || (shift > 32u && fx_shr64(n, (uint8_t)(64u - shift)) != 0))
         return false;
-    if (shift >= 32u) {
-        if (shift > 32u && (n >> (64u - shift)) != 0)
-            return false;
-        hi = n << (shift - 32u);
-        lo = 0;
-    } else {
-        hi = shift ? n >> (32u - shift) : 0;
-        lo = n << shift;
-    }
+    uint64_t w = fx_shl64(n, shift);
+    hi = (uint32_t)(w >> 32);
+    lo = (uint32_t)w;
     if (hi >= d)
         return false;
     uint64_t q = fx_udiv64_32(hi, lo, d, &rem);
@@ -136,7 +177,13 @@ bool fx_div_shift(int32_t num, int32_t den, uint8_t shift, int32_t *out)
 
 bool fx_div32(int32_t num, int32_t den, int32_t *out)
 {
-    return fx_div_shift(num, den, 0, out);
+    if (den == 0)
+        return false;
+    uint32_t n = magnitude(num), d = magnitude(den), rem;
+    uint32_t q = fx_udiv64_32(0, n, d, &rem);
+    if (rem >= d - rem)
+        q++; /* <= 2^31 + 1: no wrap */
+    return store_signed(q, (num < 0) != (den < 0), out);
 }
 
 bool fx_recip(int32_t den, uint8_t shift, int32_t *out)

@@ -1,17 +1,21 @@
 /*
  * fx_trig.c - sin, cos, tan, cot, atan2, asin, acos (fx.h) from the generated tables
  * (tools/gen_fx_tables.py). The integer steps here define the results bit for bit: the
- * MSP430 assembly (msp430/) implements the very same steps.
+ * MSP430 assembly (msp430/fx_trig.S, built instead of the functions under FX_ASM) performs
+ * the very same steps.
  */
 #include "fx_internal.h"
 
+#ifndef FX_ASM /* MSP430: msp430/fx_trig.S */
 /*
  * sin of x in [0, 2^30] (the first quadrant, closed), Q1.30, non-negative.
  *
- * x is rounded to the nearest 2^7 (the 16-bit fraction of a 2^23 step), then
- *   sin = T[i] + (T[i+1] - T[i]) u + G[i] w,   w = u (1 - u)
- * with the step index i, the fraction u in Q16, the chord's slope from the table and the
- * second-order term G[i] = m h^2 / 2 (fx_tables.h); w in Q16, G in Q29, the term in Q30.
+ * x is rounded to the nearest 2^7 (the 16-bit fraction u of a 2^23 step i), then
+ *   sin = T[i] + t (D + 2 G (1 - t)),   t = u / 2^16, D = T[i+1] - T[i]
+ * the chord plus the second-order term 2 G t (1 - t) (G = fx_sin_corr in Q29 units of
+ * h^2 m / 2, see tools/gen_fx_tables.py), in Horner form: the slope is
+ * D + 2 ((G (2^16 - u)) >> 16), and then two multiplies (one 32 x 16). With u = 0 the slope
+ * is multiplied by 0, so (2^16 - u) may be taken modulo 2^16.
  */
 static fx_q30_t sin_q1(uint32_t x)
 {
@@ -19,11 +23,9 @@ static fx_q30_t sin_q1(uint32_t x)
     uint16_t i = (uint16_t)(xr >> 23);
     uint16_t u = (uint16_t)(xr >> 7);
     uint32_t t0 = fx_sin_tab[i];
-    uint32_t d = fx_sin_tab[i + 1u] - t0; /* < 2^24 */
-    uint32_t chord = t0 + (uint32_t)(uint16_t)(d >> 16) * u + (((uint32_t)(uint16_t)d * u) >> 16);
-    uint16_t w = (uint16_t)(((uint32_t)u * (uint16_t)(0u - u)) >> 16);
-    uint32_t second = ((uint32_t)fx_sin_corr[i] * w + 0x4000u) >> 15;
-    return (fx_q30_t)(chord + second);
+    uint16_t bend = (uint16_t)(((uint32_t)fx_sin_corr[i] * (uint16_t)(0u - u)) >> 16);
+    uint32_t e = fx_sin_tab[i + 1u] - t0 + 2u * (uint32_t)bend;
+    return (fx_q30_t)(t0 + (uint32_t)(uint16_t)(e >> 16) * u + (((uint32_t)(uint16_t)e * u) >> 16));
 }
 
 fx_q30_t fx_sin(fx_angle_t a)
@@ -40,6 +42,8 @@ fx_q30_t fx_cos(fx_angle_t a)
 {
     return fx_sin(a + FX_ANGLE_QUARTER);
 }
+
+#endif
 
 void fx_sincos(fx_angle_t a, fx_q30_t *s, fx_q30_t *c)
 {
@@ -82,6 +86,12 @@ fx_q16_t fx_cot(fx_angle_t a)
     return ratio_q16(fx_cos(a), fx_sin(a), a, false);
 }
 
+static uint32_t magnitude(int32_t v)
+{
+    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+}
+
+#ifndef FX_ASM /* MSP430: msp430/fx_trig.S */
 /* atan of the ratio q / 2^24 in [0, 0.5], binary angle: table of 1/256 steps, chord. */
 static uint32_t atan_interp(uint32_t q)
 {
@@ -92,25 +102,23 @@ static uint32_t atan_interp(uint32_t q)
 }
 
 /*
- * Octant reduction shared by both arctangents: with ay <= ax, a ratio above 1/2 is turned
- * by 45 degrees, atan(r) = 45 deg - atan((1 - r) / (1 + r)), so the table only spans
- * [0, 1/2]. Leaves num <= den / 2 in *num, *den and says whether it turned.
+ * Octant reduction of the arctangent, for 0 <= ay <= ax, 0 < ax <= 2^31: both are
+ * halved when ax >= 2^30 (so that ax + ay <= 2^31; the ratio keeps 29 bits), and a ratio
+ * above 1/2 (ay > ax - ay) is turned by 45 degrees, atan(r) = 45 deg - atan((1-r) / (1+r)),
+ * so the table only spans [0, 1/2]. Leaves num <= den / 2, 0 < den <= 2^31 in *num, *den
+ * and says whether it turned.
  */
 static bool octant_ratio(uint32_t ay, uint32_t ax, uint32_t *num, uint32_t *den)
 {
-    if (ay > (ax >> 1)) {
-        uint32_t n = ax - ay, d = ax + ay;
-        if (d < ax) { /* the sum carried out: halve both (the ratio keeps 31 bits) */
-            n >>= 1;
-            d = (d >> 1) | 0x80000000u;
-        }
-        *num = n;
-        *den = d;
-        return true;
+    if (ax >= 0x40000000u) {
+        ax >>= 1;
+        ay >>= 1;
     }
-    *num = ay;
-    *den = ax;
-    return false;
+    uint32_t rest = ax - ay;
+    bool turned = ay > rest;
+    *num = turned ? rest : ay;
+    *den = turned ? ax + ay : ax;
+    return turned;
 }
 
 fx_angle_t fx_atan_q1(uint32_t ay, uint32_t ax)
@@ -123,6 +131,7 @@ fx_angle_t fx_atan_q1(uint32_t ay, uint32_t ax)
     }
     uint32_t num, den, rem;
     bool turned = octant_ratio(ay, ax, &num, &den);
+    /* q = floor(num 2^24 / den) <= 2^23 */
     uint32_t t = atan_interp(fx_udiv64_32(num >> 8, num << 24, den, &rem));
     if (turned)
         t = 0x20000000u - t;
@@ -131,63 +140,20 @@ fx_angle_t fx_atan_q1(uint32_t ay, uint32_t ax)
     return t;
 }
 
-static uint32_t magnitude(int32_t v)
+fx_angle_t fx_atan2(int32_t y, int32_t x)
 {
-    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
-}
-
-/* The first-quadrant angle t of (|x|, |y|) placed in the quadrant of (x, y). */
-static fx_angle_t unfold(fx_angle_t t, int32_t y, int32_t x)
-{
+    uint32_t ax = magnitude(x), ay = magnitude(y);
+    if ((ax | ay) == 0)
+        return 0;
+    /* The first-quadrant angle placed in the quadrant of (x, y). */
+    fx_angle_t t = fx_atan_q1(ay, ax);
     if (x < 0)
         t = FX_ANGLE_HALF - t;
     if (y < 0)
         t = 0u - t;
     return t;
 }
-
-fx_angle_t fx_atan2(int32_t y, int32_t x)
-{
-    uint32_t ax = magnitude(x), ay = magnitude(y);
-    if ((ax | ay) == 0)
-        return 0;
-    return unfold(fx_atan_q1(ay, ax), y, x);
-}
-
-fx_angle_t fx_atan2_fast(int32_t y, int32_t x)
-{
-    uint32_t ax = magnitude(x), ay = magnitude(y);
-    if ((ax | ay) == 0)
-        return 0;
-    bool swap = ay > ax;
-    if (swap) {
-        uint32_t t = ax;
-        ax = ay;
-        ay = t;
-    }
-    uint32_t num, den;
-    bool turned = octant_ratio(ay, ax, &num, &den);
-    /* Cut both to the 16 significant bits of den, then a 15-bit ratio. */
-    if (den >> 24) {
-        num >>= 8;
-        den >>= 8;
-    }
-    while (den >> 16) {
-        num >>= 1;
-        den >>= 1;
-    }
-    uint16_t rem;
-    uint16_t q = fx_udiv32_16(num << 15, (uint16_t)den, &rem); /* <= 2^14 */
-    uint16_t i = (uint16_t)(q >> 9), u = (uint16_t)(q & 511u);
-    uint16_t t0 = fx_atan_fast_tab[i];
-    uint16_t d = (uint16_t)(fx_atan_fast_tab[i + 1u] - t0); /* < 2^11 */
-    uint32_t t = (((uint32_t)t0 << 9) + (uint32_t)d * u) << 4;
-    if (turned)
-        t = 0x20000000u - t;
-    if (swap)
-        t = FX_ANGLE_QUARTER - t;
-    return unfold(t, y, x);
-}
+#endif
 
 fx_angle_t fx_atan_ratio(int32_t num, int32_t den)
 {

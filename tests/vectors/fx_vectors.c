@@ -49,15 +49,16 @@ static volatile uint8_t vs;
 static cy_bench_stat_t st_sin = {"fx_sin", 0, 0, 0}, st_cos = {"fx_cos", 0, 0, 0},
                        st_sincos = {"fx_sincos", 0, 0, 0}, st_tan = {"fx_tan", 0, 0, 0},
                        st_cot = {"fx_cot", 0, 0, 0}, st_atan2 = {"fx_atan2", 0, 0, 0},
-                       st_atan2f = {"fx_atan2_fast", 0, 0, 0},
                        st_atanr = {"fx_atan_ratio", 0, 0, 0}, st_atanq = {"fx_atan_q16", 0, 0, 0},
                        st_asin = {"fx_asin", 0, 0, 0}, st_acos = {"fx_acos", 0, 0, 0},
-                       st_sqrt32 = {"fx_sqrt32", 0, 0, 0}, st_sqrt64 = {"fx_sqrt64", 0, 0, 0},
-                       st_hypot = {"fx_hypot", 0, 0, 0}, st_mulq30 = {"fx_mul_q30", 0, 0, 0},
-                       st_mulq16 = {"fx_mul_q16", 0, 0, 0}, st_mulsh = {"fx_mul_shift", 0, 0, 0},
-                       st_div32 = {"fx_div32", 0, 0, 0}, st_divsh = {"fx_div_shift", 0, 0, 0},
-                       st_recip = {"fx_recip", 0, 0, 0},
-                       st_counts = {"fx_angle_from_counts", 0, 0, 0};
+                       st_sqrt32 = {"fx_sqrt32", 0, 0, 0},
+                       st_sqrt32_top = {"fx_sqrt32_x_ge_2e30", 0, 0, 0},
+                       st_sqrt64 = {"fx_sqrt64", 0, 0, 0}, st_hypot = {"fx_hypot", 0, 0, 0},
+                       st_mulq30 = {"fx_mul_q30", 0, 0, 0}, st_mulq16 = {"fx_mul_q16", 0, 0, 0},
+                       st_mulsh = {"fx_mul_shift", 0, 0, 0}, st_div32 = {"fx_div32", 0, 0, 0},
+                       st_divsh = {"fx_div_shift", 0, 0, 0}, st_recip = {"fx_recip", 0, 0, 0},
+                       st_counts = {"fx_angle_from_counts", 0, 0, 0},
+                       st_counts_in = {"fx_angle_from_counts_in_turn", 0, 0, 0};
 
 static void out_head(const char *name, uint32_t a)
 {
@@ -102,18 +103,16 @@ static void angle_fns(fx_angle_t a)
 
 static void atan_fns(int32_t y, int32_t x)
 {
-    fx_angle_t a, f, r;
+    fx_angle_t a, r;
     va = (uint32_t)y;
     vb = (uint32_t)x;
     CY_BENCH(&st_atan2, a = fx_atan2((int32_t)va, (int32_t)vb));
-    CY_BENCH(&st_atan2f, f = fx_atan2_fast((int32_t)va, (int32_t)vb));
     CY_BENCH(&st_atanr, r = fx_atan_ratio((int32_t)va, (int32_t)vb));
     uint32_t h;
     CY_BENCH(&st_hypot, h = fx_hypot((int32_t)va, (int32_t)vb));
     out_head("atan2", (uint32_t)y);
     out_next((uint32_t)x);
     out_next(a);
-    out_next(f);
     out_next(r);
     out_next(h);
     cy_println();
@@ -138,6 +137,8 @@ static void sqrt32_fn(uint32_t x)
     uint16_t r;
     va = x;
     CY_BENCH(&st_sqrt32, r = fx_sqrt32(va));
+    if (x >= 0x40000000u) /* again, for the figure of the inputs that need no shift */
+        CY_BENCH(&st_sqrt32_top, r = fx_sqrt32(va));
     out_head("sqrt32", x);
     out_next(r);
     cy_println();
@@ -198,6 +199,8 @@ static void counts_fn(uint32_t counts, uint16_t cpt)
     va = counts;
     vb = cpt;
     CY_BENCH(&st_counts, a = fx_angle_from_counts(va, (uint16_t)vb));
+    if (counts < cpt) /* again, for the figure of the normal range (no wrap) */
+        CY_BENCH(&st_counts_in, a = fx_angle_from_counts(va, (uint16_t)vb));
     out_head("counts", counts);
     out_next(cpt);
     out_next(a);
@@ -288,8 +291,27 @@ static void units(void)
         unit_fns(rnd_signed());
 }
 
+/*
+ * Every root value r with the first and the last input that give it (r^2, (r + 1)^2 - 1):
+ * checked on the spot (an exact floor is the same on both worlds), nothing printed.
+ */
+static void sqrt32_boundaries(void)
+{
+    uint16_t bad = 0;
+    for (uint32_t r = 0; r <= 0xFFFFu; r++) {
+        uint32_t sq = r * r;
+        if (fx_sqrt32(sq) != r || fx_sqrt32(sq + 2u * r) != r)
+            bad++;
+    }
+    cy_print("sqrt32-boundaries ");
+    cy_print_dec(bad);
+    cy_println();
+    cy_check(bad == 0, "fx_sqrt32 at every root boundary");
+}
+
 static void roots(void)
 {
+    sqrt32_boundaries();
     static const uint32_t edge[] = {0u,          1u,          2u,          3u,
                                     4u,          5u,          8u,          9u,
                                     0xFFFFu,     0x10000u,    0xFFFFFFFFu, 0xFFFE0001u,
@@ -446,10 +468,11 @@ int main(void)
     muls();
     divs();
     counts();
-    const cy_bench_stat_t *st[] = {
-        &st_sin,    &st_cos,    &st_sincos, &st_tan,   &st_cot,    &st_atan2,  &st_atan2f,
-        &st_atanr,  &st_atanq,  &st_asin,   &st_acos,  &st_sqrt32, &st_sqrt64, &st_hypot,
-        &st_mulq30, &st_mulq16, &st_mulsh,  &st_div32, &st_divsh,  &st_recip,  &st_counts};
+    const cy_bench_stat_t *st[] = {&st_sin,    &st_cos,        &st_sincos, &st_tan,   &st_cot,
+                                   &st_atan2,  &st_atanr,      &st_atanq,  &st_asin,  &st_acos,
+                                   &st_sqrt32, &st_sqrt32_top, &st_sqrt64, &st_hypot, &st_mulq30,
+                                   &st_mulq16, &st_mulsh,      &st_div32,  &st_divsh, &st_recip,
+                                   &st_counts, &st_counts_in};
     for (uint16_t i = 0; i < sizeof st / sizeof st[0]; i++)
         cy_bench_report(st[i]);
     cy_test_end();
