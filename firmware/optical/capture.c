@@ -1,11 +1,12 @@
 /*
  * capture.c - goniometer capture (optical/capture.h, SPEC O1).
  *
- * Ownership: buf[fill] belongs to the handlers; buf[1 - fill] is either free, ready (a
+ * Ownership: *cur belongs to the handlers; the other buffer is either free, ready (a
  * completed revolution waiting for the main loop) or held (the main loop computes on it).
  * Only the index handler swaps the buffers, and never while the other one is held. The
  * main-loop calls change the shared flags inside a critical section; the handlers run with
- * interrupts disabled, so each of them is atomic with respect to the main loop.
+ * interrupts disabled, so each of them is atomic with respect to the main loop. The handlers
+ * are kept to a few instructions (no multiply: a pointer to the buffer being filled).
  */
 #include "optical/capture.h"
 
@@ -21,6 +22,12 @@ void optical_capture_init(optical_capture_t *c)
     uint8_t *p = (uint8_t *)c;
     for (size_t i = 0; i < sizeof *c; i++)
         p[i] = 0;
+    c->cur = &c->buf[0];
+}
+
+static optical_rev_t *other(optical_capture_t *c)
+{
+    return c->cur == &c->buf[0] ? &c->buf[1] : &c->buf[0];
 }
 
 void optical_capture_start(optical_capture_t *c)
@@ -29,8 +36,8 @@ void optical_capture_start(optical_capture_t *c)
     c->pulse = 0;
     c->seq = 0;
     c->ready = 0;
-    c->buf[c->fill].n = 0;
-    c->buf[c->fill].lost = 0;
+    c->cur->n = 0;
+    c->cur->lost = 0;
     c->cov_seen = hal_capture_overflows(HAL_CAPTURE_BEACON);
     c->mode = MODE_WAIT_INDEX;
     hal_critical_exit();
@@ -52,7 +59,7 @@ void optical_capture_on_index(void *arg, uint16_t count, uint8_t rising)
     uint8_t mode = c->mode;
     if (mode == MODE_STOPPED)
         return;
-    optical_rev_t *r = &c->buf[c->fill];
+    optical_rev_t *r = c->cur;
     if (mode == MODE_RUNNING) {
         r->period = (uint16_t)(count - c->index);
         if (c->held) {
@@ -61,8 +68,8 @@ void optical_capture_on_index(void *arg, uint16_t count, uint8_t rising)
             if (c->ready)
                 c->dropped++; /* the older ready revolution is replaced by this newer one */
             c->ready = 1;
-            c->fill ^= 1u;
-            r = &c->buf[c->fill];
+            r = r == &c->buf[0] ? &c->buf[1] : &c->buf[0];
+            c->cur = r;
         }
     } else {
         c->mode = MODE_RUNNING;
@@ -79,17 +86,18 @@ void optical_capture_on_edge(void *arg, uint16_t count, uint8_t rising)
     optical_capture_t *c = arg;
     if (rising) {
         c->rise = count;
-        c->pulse = c->mode == MODE_RUNNING;
+        c->pulse = c->mode >> 1; /* 1 only when running */
         return;
     }
     if (!c->pulse)
         return; /* a falling edge without its rising edge (started before we ran) */
     c->pulse = 0;
-    optical_rev_t *r = &c->buf[c->fill];
+    optical_rev_t *r = c->cur;
     uint8_t n = r->n;
     if (n < OPTICAL_MAX_SIGHTINGS) {
-        r->s[n].start = (uint16_t)(c->rise - c->index);
-        r->s[n].width = (uint16_t)(count - c->rise);
+        optical_raw_sighting_t *s = &r->s[n];
+        s->start = (uint16_t)(c->rise - c->index);
+        s->width = (uint16_t)(count - c->rise);
         r->n = (uint8_t)(n + 1u);
     } else if (r->lost != 0xFFu) {
         r->lost++;
@@ -103,7 +111,7 @@ const optical_rev_t *optical_capture_take(optical_capture_t *c)
     if (c->ready && !c->held) {
         c->ready = 0;
         c->held = 1;
-        optical_rev_t *w = &c->buf[c->fill ^ 1u];
+        optical_rev_t *w = other(c);
         uint16_t cov = hal_capture_overflows(HAL_CAPTURE_BEACON);
         w->cov = cov != c->cov_seen;
         c->cov_seen = cov;

@@ -21,7 +21,9 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "optical/fastmath.h"
 #include "optical/optical.h"
+#include "scratch.h"
 
 #define NONE    0xFFu /* no match */
 #define MULTI   0xFEu /* more than one match */
@@ -31,36 +33,41 @@
  * bits (0.5), the centre of a pulse from two edges quantised to counts (0.7), spare. */
 #define MARGIN 6
 
+/* O6: other identified sightings whose residual is checked at most (a misidentified triplet
+ * moves the fix so far that any of them shows it). */
+#define CHECK_MAX 4
+
 /* Heading-interval refinement passes at most. */
 #define MAX_PASSES 6
 
-/* Candidate (sighting, beacon) pairs kept between passes. */
-#define MAX_CAND 40
+#define MAX_CAND OPTICAL_MAX_CAND
 
-typedef struct {
-    uint8_t j, k; /* sorted sighting, beacon */
-    int16_t off;  /* th[j] - psi[k], 2^-16 turn */
-    uint16_t e;   /* position part of the window + MARGIN */
-} cand_t;
+optical_scratch_t optical_scratch;
+#define CAND (optical_scratch.cand)
 
-/* The identified sorted sightings: positions pos[], reference-frame angles ang[] (ring order). */
+/* The identified sorted sightings: positions pos[] (ring order); their reference-frame angles
+ * ang[] live in the scratch memory once identification is over. */
 typedef struct {
     uint8_t m;
     uint8_t pos[OPTICAL_MAX_SIGHTINGS];
-    fx_angle_t ang[OPTICAL_MAX_SIGHTINGS];
+    fx_angle_t *ang;
 } idset_t;
 
 /* Work area of optical_fix (static: the MSP430's stack is small; not reentrant). */
 static struct {
-    uint16_t psi[OPTICAL_MAX_BEACONS];  /* expected angle, 2^-16 turn, vehicle frame */
-    uint16_t g[OPTICAL_MAX_BEACONS];    /* bound of 2^16/(2 pi) asin(1 m / r); 0 gated out */
-    uint8_t bm[OPTICAL_MAX_BEACONS];    /* per beacon: sorted sighting matched, NONE, MULTI */
-    uint16_t th[OPTICAL_MAX_SIGHTINGS]; /* sighting angles in the reference frame, sorted */
-    uint8_t ord[OPTICAL_MAX_SIGHTINGS]; /* input index of th[j] */
-    uint8_t sm[OPTICAL_MAX_SIGHTINGS];  /* per sorted sighting: beacon, NONE, MULTI, DROPPED */
-    int32_t c[OPTICAL_MAX_SIGHTINGS];   /* parallax lever c = cross(u, o), Q16 m */
-    uint8_t bstart[16];                 /* first sorted sighting of each 1/16 turn */
-    cand_t cand[MAX_CAND];
+    uint16_t psi[OPTICAL_MAX_BEACONS];   /* expected angle, 2^-16 turn, vehicle frame */
+    uint16_t g[OPTICAL_MAX_BEACONS];     /* bound of 2^16/(2 pi) asin(1 m / r); 0 gated out */
+    uint16_t e[OPTICAL_MAX_BEACONS];     /* window part of the position uncertainty + margin */
+    uint8_t bm[OPTICAL_MAX_BEACONS];     /* per beacon: sorted sighting matched, NONE, MULTI */
+    uint16_t th[OPTICAL_MAX_SIGHTINGS];  /* sighting angles in the reference frame, sorted */
+    uint8_t ord[OPTICAL_MAX_SIGHTINGS];  /* input index of th[j] */
+    uint8_t sm[OPTICAL_MAX_SIGHTINGS];   /* per sorted sighting: beacon, NONE, MULTI, DROPPED */
+    uint16_t we[OPTICAL_MAX_SIGHTINGS];  /* position part of the window of its match */
+    uint8_t wchk[OPTICAL_MAX_SIGHTINGS]; /* O5 verdict cache: beacon | 0x80 misfit, 0x7F none */
+    int32_t c[OPTICAL_MAX_SIGHTINGS];    /* parallax lever c = cross(u, o), Q16 m */
+    uint16_t lev[OPTICAL_MAX_SIGHTINGS]; /* |c| in 2^-8 m */
+    uint16_t wd[OPTICAL_MAX_SIGHTINGS];  /* apparent width, 2^-16 turn */
+    uint8_t bstart[16];                  /* first sorted sighting of each 1/16 turn */
     uint8_t ncand;
     idset_t id;        /* the identified */
     optical_xy_t b[3]; /* the triplet being solved */
@@ -105,95 +112,51 @@ static uint16_t abs16(uint16_t d)
     return (int16_t)d < 0 ? (uint16_t)(0u - d) : d;
 }
 
-/* round(atan(i / 64) * 2^16 / (2 pi)), i = 0..64 */
-static const uint16_t atan_tab[65] = {
-    0,    163,  326,  489,  651,  813,  975,  1136, 1297, 1457, 1617, 1775, 1933,
-    2090, 2246, 2401, 2555, 2708, 2860, 3010, 3159, 3307, 3453, 3599, 3742, 3884,
-    4025, 4164, 4302, 4438, 4572, 4705, 4836, 4966, 5094, 5220, 5344, 5467, 5589,
-    5708, 5826, 5943, 6058, 6171, 6282, 6392, 6500, 6607, 6712, 6815, 6917, 7018,
-    7117, 7214, 7310, 7405, 7498, 7589, 7679, 7768, 7856, 7942, 8026, 8110, 8192};
-
-uint16_t optical_angle16(int32_t dx, int32_t dy)
-{
-    uint32_t ax = umag(dx), ay = umag(dy);
-    bool swap = ay > ax;
-    if (swap) {
-        uint32_t t = ax;
-        ax = ay;
-        ay = t;
-    }
-    if (ax == 0)
-        return 0;
-    while (ax >= 0x8000u) {
-        ax >>= 1;
-        ay >>= 1;
-    }
-    uint16_t a;
-    uint16_t den = (uint16_t)ax, rem = (uint16_t)ay;
-    if (rem >= den) {
-        a = 8192;
-    } else {
-        /* q = round(2^14 ay / ax) by restoring division (15 quotient bits, last rounds) */
-        uint16_t q = 0;
-        for (uint8_t i = 0; i < 15; i++) {
-            rem <<= 1;
-            q <<= 1;
-            if (rem >= den) {
-                rem -= den;
-                q |= 1u;
-            }
-        }
-        q = (uint16_t)((q + 1u) >> 1); /* 0..16384 */
-        uint16_t i = q >> 8, f = q & 255u;
-        a = atan_tab[i];
-        if (f)
-            a = (uint16_t)(a + (((uint16_t)(atan_tab[i + 1u] - a) * f + 128u) >> 8));
-    }
-    if (swap)
-        a = (uint16_t)(16384u - a);
-    if (dx < 0)
-        a = (uint16_t)(32768u - a);
-    if (dy < 0)
-        a = (uint16_t)(0u - a);
-    return a;
-}
-
-/* ceil(2^20 / j), j = 16..31 */
-static const uint32_t recip_tab[16] = {65536, 61681, 58255, 55189, 52429, 49933, 47663, 45591,
-                                       43691, 41944, 40330, 38837, 37450, 36158, 34953, 33826};
+/* ceil(k * 32 / j), j = 16..31, for k = 10923 and 16384 (see g_bound) */
+static const uint16_t gk_tab[2][16] = {{21846, 20561, 19419, 18397, 17477, 16645, 15888, 15198,
+                                        14564, 13982, 13444, 12946, 12484, 12053, 11652, 11276},
+                                       {32768, 30841, 29128, 27595, 26215, 24967, 23832, 22796,
+                                        21846, 20972, 20165, 19419, 18725, 18079, 17477, 16913}};
 
 /*
  * g_k: an upper bound of 2^16 / (2 pi) * asin(a / r) / a for every lever a (metres) up to
- * @p amax (Q16), r the true range of a beacon at (dx, dy) (Q16) from the approximate
+ * amax8, r the true range of a beacon at (dx, dy) from the approximate
  * position, so that win_part(a, g) bounds the angle a position error a can cause. The range
- * is bounded from below by max(|dx|, |dy|, (|dx| + |dy|) / sqrt 2) (at most 8.2 % short) and
- * its reciprocal from above by a 16-step table per octave (at most 6.3 % high); asin(x) <=
- * 1.0472 x for x <= 1/2 and <= (pi / 2) x for x <= 1. 0xFFFF (no bound) when the beacon may
- * lie within amax (or 0.3 m) of the vehicle.
+ * is bounded from below by max(|dx|, |dy|, (|dx| + |dy|) / sqrt 2) (at most 8.2 % short),
+ * in 2^-8 m, capped at 256 m; its reciprocal from above by a 16-step table per octave (at
+ * most 6.3 % high); asin(x) <= 1.0472 x (k = 10923) for x <= 1/2 and <= (pi / 2) x
+ * (k = 16384) for x <= 1. 0xFFFF (no bound) when the beacon may lie within amax8 (2^-8 m)
+ * or 0.3 m of the vehicle. Arguments: |dx|, |dy| (Q16).
  */
-static uint16_t g_bound(int32_t dx, int32_t dy, uint32_t amax)
+static uint16_t g_bound(uint32_t ax, uint32_t ay, uint16_t amax8)
 {
-    uint32_t ax = umag(dx), ay = umag(dy);
-    uint32_t m = ax > ay ? ax : ay;
-    uint32_t d = (((ax + ay) >> 8) * 181u); /* (|dx| + |dy|) * 0.70703 <= true range */
-    uint32_t r = d > m ? d : m;
-    if (r <= amax || r < 19661u)
+    /* magnitudes in 2^-8 m, capped at 256 m (a smaller range only makes g larger) */
+    uint16_t x8 = ax >= (1ul << 24) ? 0xFFFFu : (uint16_t)(ax >> 8);
+    uint16_t y8 = ay >= (1ul << 24) ? 0xFFFFu : (uint16_t)(ay >> 8);
+    uint16_t r8 = x8 > y8 ? x8 : y8;
+    uint32_t s = (uint32_t)x8 + y8;
+    uint16_t d8 = (uint16_t)((((uint32_t)(uint16_t)(s >> 1)) * 181u) >> 7); /* <= 0.70703 s */
+    if (d8 > r8)
+        r8 = d8;
+    if (r8 <= amax8 || r8 < 77u)
         return 0xFFFFu;
-    uint32_t k = r >= 2u * amax ? 10923u : 16384u;
+    const uint16_t *tab = gk_tab[r8 >= 2u * (uint32_t)amax8 ? 0 : 1];
     uint8_t sh = 0;
-    while (r >= 32u) { /* r in [j 2^sh, (j + 1) 2^sh), j = 16..31 */
-        r >>= 1;
+    while (r8 >= 32u) { /* r8 in [j 2^sh, (j + 1) 2^sh), j = 16..31, sh >= 2 */
+        r8 >>= 1;
         sh++;
     }
-    /* g = k 2^16 / r <= k ceil(2^16 / j) / 2^sh, rounded up */
-    uint32_t q = k * ((recip_tab[r - 16u] + 15u) >> 4); /* < 2^30 */
-    uint32_t lost = 0;
-    for (uint8_t i = 0; i < sh; i++) {
-        lost |= q & 1u;
-        q >>= 1;
+    /* g = k 2^16 / r <= k 2^8 / (j 2^sh) <= gk_tab[j] 2^3 / 2^sh, rounded up */
+    uint16_t base = tab[r8 - 16u];
+    if (sh < 3)
+        return base >= 0x8000u ? 0xFFFEu : (uint16_t)(base << 1);
+    uint8_t n = (uint8_t)(sh - 3u);
+    uint16_t lost = 0;
+    for (uint8_t i = 0; i < n; i++) {
+        lost |= base & 1u;
+        base >>= 1;
     }
-    q += lost;
-    return q >= 0xFFFFu ? 0xFFFFu : (uint16_t)q;
+    return (uint16_t)(base + lost);
 }
 
 /* (a * g) / 256 rounded up (a in 2^-8 m): a window part in 2^-16 turn, capped at 0x7FFF. */
@@ -266,15 +229,12 @@ typedef struct {
     uint32_t dk;     /* D * 2^8 * 2^16 / (2 pi), D in m: width check constant (O5) */
 } ctx_t;
 
-static uint16_t lever8(uint8_t j)
-{
-    return m8(umag(W.c[j]));
-}
-
 /* Position part of beacon k's window for sorted sighting j, with the margin. */
 static uint16_t pos_part(const ctx_t *x, uint8_t k, uint8_t j)
 {
-    uint32_t a = (uint32_t)x->eps8 + lever8(j);
+    if (W.lev[j] == 0)
+        return W.e[k];
+    uint32_t a = (uint32_t)x->eps8 + W.lev[j];
     return (uint16_t)(win_part(a > 0xFFFFu ? 0xFFFFu : (uint16_t)a, W.g[k]) + MARGIN);
 }
 
@@ -287,10 +247,11 @@ static void clear_matches(const ctx_t *x)
         W.bm[k] = NONE;
 }
 
-static void mark(uint8_t j, uint8_t k)
+static void mark(uint8_t j, uint8_t k, uint16_t e)
 {
     W.sm[j] = W.sm[j] == NONE ? k : MULTI;
     W.bm[k] = W.bm[k] == NONE ? j : MULTI;
+    W.we[j] = e;
 }
 
 /*
@@ -307,9 +268,11 @@ static bool scan(const ctx_t *x, int16_t mid, uint16_t half, bool store)
         if (W.g[k] == 0)
             continue;
         /* Widest window of k over all sightings (largest lever), to bound the scan. */
-        uint32_t a = (uint32_t)x->eps8 + x->lever8;
-        uint32_t wmax =
-            (uint32_t)half + MARGIN + win_part(a > 0xFFFFu ? 0xFFFFu : (uint16_t)a, W.g[k]);
+        uint32_t wmax = (uint32_t)half + W.e[k];
+        if (x->lever8) {
+            uint32_t a = (uint32_t)x->eps8 + x->lever8;
+            wmax = (uint32_t)half + MARGIN + win_part(a > 0xFFFFu ? 0xFFFFu : (uint16_t)a, W.g[k]);
+        }
         uint16_t centre = (uint16_t)(W.psi[k] + (uint16_t)mid);
         bool all = wmax >= 0x7000u; /* that wide: test every sighting */
         uint16_t lo = (uint16_t)(centre - (uint16_t)wmax);
@@ -330,15 +293,15 @@ static bool scan(const ctx_t *x, int16_t mid, uint16_t half, bool store)
             if ((uint32_t)abs16((uint16_t)(off - (uint16_t)mid)) > (uint32_t)half + e)
                 continue;
             if (!store) {
-                mark(j, k);
+                mark(j, k, e);
                 continue;
             }
             if (nc == MAX_CAND)
                 return false;
-            W.cand[nc].j = j;
-            W.cand[nc].k = k;
-            W.cand[nc].off = (int16_t)off;
-            W.cand[nc].e = e;
+            CAND.j[nc] = j;
+            CAND.k[nc] = k;
+            CAND.off[nc] = (int16_t)off;
+            CAND.e[nc] = e;
             nc++;
         }
     }
@@ -351,9 +314,10 @@ static void evaluate(const ctx_t *x, int16_t mid, uint16_t half)
 {
     clear_matches(x);
     for (uint8_t c = 0; c < W.ncand; c++) {
-        const cand_t *p = &W.cand[c];
-        if ((uint32_t)abs16((uint16_t)((uint16_t)p->off - (uint16_t)mid)) <= (uint32_t)half + p->e)
-            mark(p->j, p->k);
+        uint16_t e = CAND.e[c];
+        if ((uint32_t)abs16((uint16_t)((uint16_t)CAND.off[c] - (uint16_t)mid)) <=
+            (uint32_t)half + e)
+            mark(CAND.j[c], CAND.k[c], e);
     }
 }
 
@@ -410,8 +374,14 @@ static int8_t unique_matches(const ctx_t *x, bool overlap_rule, uint16_t half)
         uint8_t k = W.sm[j];
         if (k >= DROPPED)
             continue;
-        if (W.bm[k] != j || (overlap_rule && overlaps(x, k, half)) ||
-            !width_ok(x, k, x->s[W.ord[j]].width)) {
+        if (W.bm[k] != j || (overlap_rule && overlaps(x, k, half))) {
+            W.sm[j] = NONE;
+            continue;
+        }
+        /* O5, once per (sighting, beacon): bit 7 of wchk marks a misfit. */
+        if ((W.wchk[j] & 0x7Fu) != k)
+            W.wchk[j] = (uint8_t)(k | (width_ok(x, k, W.wd[j]) ? 0u : 0x80u));
+        if (W.wchk[j] & 0x80u) {
             W.sm[j] = NONE;
             continue;
         }
@@ -433,15 +403,14 @@ static int8_t guess(const ctx_t *x)
     uint16_t best_e = 0;
     uint8_t best_n = 0;
     for (uint8_t c = 0; c < W.ncand; c++) {
-        int16_t h = W.cand[c].off;
+        int16_t h = CAND.off[c];
         uint16_t seen = 0; /* sightings that agree, as a bit set */
         uint8_t cnt = 0;
         for (uint8_t d = 0; d < W.ncand; d++) {
-            uint16_t bit = (uint16_t)(1u << W.cand[d].j);
+            uint16_t bit = (uint16_t)(1u << CAND.j[d]);
             if (seen & bit)
                 continue;
-            if ((uint32_t)abs16((uint16_t)(W.cand[d].off - h)) <=
-                (uint32_t)W.cand[d].e + W.cand[c].e) {
+            if ((uint32_t)abs16((uint16_t)(CAND.off[d] - h)) <= (uint32_t)CAND.e[d] + CAND.e[c]) {
                 seen |= bit;
                 cnt++;
             }
@@ -449,7 +418,7 @@ static int8_t guess(const ctx_t *x)
         if (cnt > best_n) {
             best_n = cnt;
             best_h = h;
-            best_e = W.cand[c].e;
+            best_e = CAND.e[c];
         }
     }
     if (best_n < 3)
@@ -493,7 +462,7 @@ static int8_t identify(const ctx_t *x, uint8_t *mode, uint8_t *widened)
             if (k >= DROPPED)
                 continue;
             int16_t off = (int16_t)(W.th[j] - W.psi[k]);
-            int32_t e = pos_part(x, k, j);
+            int32_t e = W.we[j];
             if (off - e > nlo)
                 nlo = off - e;
             if (off + e < nhi)
@@ -565,8 +534,9 @@ static fx_angle_t corrected(fx_angle_t d, uint8_t j, uint32_t r)
 
 static bool coords_ok(fx_q16_t x, fx_q16_t y)
 {
-    return x > -OPTICAL_COORD_LIMIT && x < OPTICAL_COORD_LIMIT && y > -OPTICAL_COORD_LIMIT &&
-           y < OPTICAL_COORD_LIMIT;
+    /* |v| < limit  <=>  v + limit - 1 < 2 limit - 1, unsigned */
+    const uint32_t l = (uint32_t)OPTICAL_COORD_LIMIT;
+    return (uint32_t)x + (l - 1u) < 2u * l - 1u && (uint32_t)y + (l - 1u) < 2u * l - 1u;
 }
 
 static int8_t finish(optical_fix_t *out, int8_t status)
@@ -575,34 +545,29 @@ static int8_t finish(optical_fix_t *out, int8_t status)
     return status;
 }
 
-/* Width of a post of diameter D at distance T: 2 asin(D / 2T) (flat 2 atan), 2^-16 turn. */
-static uint16_t width_at(fx_q16_t diameter, fx_q16_t t, uint8_t flat)
-{
-    int32_t ratio;
-    if (t <= 0 || !fx_div_shift(diameter, 2 * t, 30, &ratio) || ratio >= FX_Q30_ONE)
-        return 0;
-    fx_angle_t half = flat ? fx_atan_ratio(ratio, FX_Q30_ONE) : fx_asin(ratio);
-    return (uint16_t)(half >> 15);
-}
-
 /* Expected angles and window factors of the beacons within the gate, seen from @p p. */
-static void expect(const ctx_t *x, const optical_pose_t *p, uint32_t gate, uint32_t amax)
+static void expect(const ctx_t *x, const optical_pose_t *p, uint32_t gate)
 {
     uint16_t head = a16(p->heading);
+    uint32_t amax = (uint32_t)x->eps8 + x->lever8;
+    uint16_t amax8 = amax > 0xFFFFu ? 0xFFFFu : (uint16_t)amax;
     for (uint8_t k = 0; k < x->map->n; k++) {
         int32_t dx = x->map->b[k].x - p->x, dy = x->map->b[k].y - p->y;
-        if (umag(dx) > gate || umag(dy) > gate) {
+        uint32_t ax = umag(dx), ay = umag(dy);
+        if (ax > gate || ay > gate) {
             W.g[k] = 0;
             continue;
         }
         W.psi[k] = (uint16_t)(optical_angle16(dx, dy) - head);
-        W.g[k] = g_bound(dx, dy, amax);
+        W.g[k] = g_bound(ax, ay, amax8);
+        W.e[k] = (uint16_t)(win_part(x->eps8, W.g[k]) + MARGIN);
     }
 }
 
 static void gather(const ctx_t *x, const optical_pose_t *latched, idset_t *id)
 {
     id->m = 0;
+    id->ang = optical_scratch.solve.ang; /* the candidates are no longer needed */
     for (uint8_t j = 0; j < x->n; j++) {
         if (W.sm[j] >= DROPPED)
             continue;
@@ -741,7 +706,9 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         W.ord[j] = i;
     }
     for (uint8_t j = 0; j < n; j++) {
-        uint16_t l = lever8(j);
+        uint16_t l = W.c[j] ? m8(umag(W.c[j])) : 0u;
+        W.lev[j] = l;
+        W.wd[j] = s[W.ord[j]].width;
         if (l > x.lever8)
             x.lever8 = l;
     }
@@ -755,27 +722,29 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         }
     }
 
-    /* O4: drop sightings too narrow for a beacon within T; widen T when fewer than 3 stay. */
+    /* O4: drop sightings too narrow for a beacon within T; widen T when fewer than 3 stay.
+     * A post at T looks 2 asin(D / 2T) >= D / T wide: the threshold D / T keeps those. */
     fx_q16_t t = cfg->range;
     int32_t tstep = cfg->range_steps && cfg->range_max > cfg->range
                         ? (cfg->range_max - cfg->range + cfg->range_steps - 1) / cfg->range_steps
                         : 0;
     for (uint8_t step = 0;; step++) {
-        uint16_t wmin = width_at(cfg->beacon_diameter, t, cfg->beacon_flat);
+        uint32_t t8 = (uint32_t)t >> 8;
+        uint32_t wmin = t8 ? x.dk / t8 : 0xFFFFu; /* 2^-16 turn */
         uint8_t kept = 0;
         for (uint8_t j = 0; j < n; j++) {
-            bool keep = s[W.ord[j]].width >= wmin;
+            bool keep = W.wd[j] >= wmin;
             W.sm[j] = keep ? NONE : DROPPED;
+            W.wchk[j] = 0x7Fu;
             kept += keep;
         }
         if (kept >= 3 || step >= cfg->range_steps || tstep == 0)
             break;
         t += tstep;
     }
-
     /* O2: expected angles of the beacons within T (+ the position uncertainty). */
     uint32_t gate = (uint32_t)t + (uint32_t)cfg->window_pos;
-    expect(&x, approx, gate, ((uint32_t)x.eps8 + x.lever8) << 8);
+    expect(&x, approx, gate);
 
     /* O3-O5 */
     uint8_t mode, widened;
@@ -799,7 +768,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         /* Beyond the bounds the identification is a hypothesis: identify again from the fix
          * (5 cm, the residual tolerance) and use it only when at least five sightings agree. */
         x.eps8 = 13;
-        expect(&x, &tri.pose, gate, ((uint32_t)x.eps8 + x.lever8) << 8);
+        expect(&x, &tri.pose, gate);
         scan(&x, 0, a16(cfg->resid_max), false);
         if (unique_matches(&x, false, a16(cfg->resid_max)) < 5) {
             for (uint8_t j = 0; j < n; j++)
@@ -833,9 +802,11 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     if ((int32_t)dh > (int32_t)cfg->turn_max || (int32_t)dh < -(int32_t)cfg->turn_max)
         return finish(out, OPTICAL_E_TURN);
     uint16_t rmax = a16(cfg->resid_max), h16 = a16(p.heading);
-    for (uint8_t i = 0; i < id->m; i++) {
+    uint8_t checked = 0;
+    for (uint8_t i = 0; i < id->m && checked < CHECK_MAX; i++) {
         if (i == t3[0] || i == t3[1] || i == t3[2])
             continue;
+        checked++;
         uint8_t j = id->pos[i];
         const optical_xy_t *bk = &map->b[W.sm[j]];
         int32_t dx = bk->x - p.x, dy = bk->y - p.y;

@@ -21,6 +21,7 @@
 #include <stddef.h>
 
 #include "optical/optical.h"
+#include "scratch.h"
 
 /** Largest disagreement of the three bearings of a solution (2e-4 rad). */
 #define CONSISTENT 136707l
@@ -55,8 +56,8 @@ static int32_t mq(int32_t a, fx_q30_t b)
  * cross(nY, nX) rot90(W) / |W|^2 with W = sX nY - sY nX. False when the circles (nearly)
  * coincide so that the point does not fit.
  */
-__attribute__((noinline)) static bool pair_point(const int32_t nX[2], fx_q30_t sX, const int32_t nY[2], fx_q30_t sY,
-                       int32_t out[2])
+__attribute__((noinline)) static bool pair_point(const int32_t nX[2], fx_q30_t sX,
+                                                 const int32_t nY[2], fx_q30_t sY, int32_t out[2])
 {
     int32_t wx = mq(nY[0], sX) - mq(nX[0], sY);
     int32_t wy = mq(nY[1], sX) - mq(nX[1], sY);
@@ -104,31 +105,45 @@ __attribute__((noinline)) static bool pair_point(const int32_t nX[2], fx_q30_t s
     return true;
 }
 
-/* Work area (static: the MSP430's stack is small); optical_triangulate is not reentrant. */
-static struct {
-    int32_t b1[2], b3[2];             /* beacon offsets from beacon 2, lambda */
-    int32_t nA[2], nB[2], nC[2];      /* doubled homogeneous centres, origin beacon 2 */
-    int32_t s1b1[2], s2b3[2], s3b1[2], s3b3[2];
-    int32_t nx[2], ny[2], p[2];       /* one pair's centres at its origin, its point */
-    int32_t v[12];                    /* chords and vehicle-to-beacon vectors (quality) */
-    int32_t sq[6];                    /* their squared lengths, cut to 15-bit components */
-    fx_angle_t h[3];                  /* bearings from the three sightings */
-    fx_angle_t g[3];                  /* gaps between the sorted sightings */
-    fx_q30_t s1, c1, s2, c2, s3, c3;  /* sin, cos of alpha1..3 */
-} T;
+/* Work area: optical_scratch (scratch.h; static, not reentrant). */
+#define T (optical_scratch.solve.t)
 
 /*
  * Quality: the RMS position error for unit independent bearing errors,
  *     S = sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2) / |r3 sin a12 + r1 sin a23 + r2 sin a31|
- * (chords c between beacons, ranges r from the vehicle), in Q16 metres per mrad. v[]: b1, b3
- * (beacon offsets from beacon 2), b3 - b1 and the three vectors vehicle -> beacon, in lambda
- * units; they are cut to 15 bits (the estimate needs a few per cent, not more).
+ * (chords c between beacons, ranges r from the vehicle), in Q16 metres per mrad, from the
+ * beacon offsets in T and the vehicle (cx, cy) relative to beacon 2, lambda units; the vectors
+ * are cut to 15 bits (the estimate needs a few per cent, not more).
  */
-__attribute__((noinline)) static uint32_t quality(const int32_t v[12], fx_q30_t s1, fx_q30_t s2, fx_q30_t s3, uint8_t sigma)
+/* Component i of: b1, b3, b3 - b1 (the chords 12, 23, 31), then the vectors from the vehicle
+ * (cx, cy) to beacons 1, 2 (the origin) and 3. */
+static int32_t qvec(uint8_t i, int32_t cx, int32_t cy)
 {
+    const int32_t *b1 = T.b1, *b3 = T.b3;
+    uint8_t c = i & 1u;
+    int32_t cc = c ? cy : cx;
+    switch (i >> 1) {
+    case 0:
+        return b1[c];
+    case 1:
+        return b3[c];
+    case 2:
+        return b3[c] - b1[c];
+    case 3:
+        return b1[c] - cc;
+    case 4:
+        return -cc;
+    default:
+        return b3[c] - cc;
+    }
+}
+
+__attribute__((noinline)) static uint32_t quality(int32_t cx, int32_t cy, uint8_t sigma)
+{
+    fx_q30_t s1 = T.s1, s2 = T.s2, s3 = T.s3;
     uint32_t m = 0;
     for (uint8_t i = 0; i < 12; i++)
-        m |= mag(v[i]);
+        m |= mag(qvec(i, cx, cy));
     uint8_t h = 0;
     while (m >= (1ul << 15)) {
         m >>= 1;
@@ -137,7 +152,7 @@ __attribute__((noinline)) static uint32_t quality(const int32_t v[12], fx_q30_t 
     /* Squares of 15-bit values: a sum of two stays below 2^31. */
     int32_t *sq = T.sq;
     for (uint8_t i = 0; i < 6; i++) {
-        int32_t a = v[2 * i], b = v[2 * i + 1];
+        int32_t a = qvec((uint8_t)(2 * i), cx, cy), b = qvec((uint8_t)(2 * i + 1), cx, cy);
         for (uint8_t k = 0; k < h; k++) {
             a /= 2; /* toward zero: fine for the estimate */
             b /= 2;
@@ -275,19 +290,7 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     fx_mul_shift(sx, 357913941l, 30, &cx);
     fx_mul_shift(sy, 357913941l, 30, &cy);
     /* Quality from the chords and the vehicle-to-beacon vectors (lambda). */
-    T.v[0] = b1[0];
-    T.v[1] = b1[1];
-    T.v[2] = b3[0];
-    T.v[3] = b3[1];
-    T.v[4] = b3[0] - b1[0];
-    T.v[5] = b3[1] - b1[1];
-    T.v[6] = b1[0] - cx;
-    T.v[7] = b1[1] - cy;
-    T.v[8] = -cx;
-    T.v[9] = -cy;
-    T.v[10] = b3[0] - cx;
-    T.v[11] = b3[1] - cy;
-    out->quality = quality(T.v, T.s1, T.s2, T.s3, sigma);
+    out->quality = quality(cx, cy, sigma);
 
     out->pose.x = B2->x + px;
     out->pose.y = B2->y + py;

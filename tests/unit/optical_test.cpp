@@ -21,6 +21,7 @@ extern "C" {
 #include "hal/irq.h"
 #include "hal_posix/harness.h"
 #include "optical/capture.h"
+#include "optical/fastmath.h"
 #include "optical/optical.h"
 #include "optical/reflectors3.h"
 }

@@ -17,6 +17,7 @@
 #include "cy_test.h"
 #include "fx/fx.h"
 #include "optical/capture.h"
+#include "optical/fastmath.h"
 #include "optical/optical.h"
 #include "optical/reflectors3.h"
 #include "optical_vectors_data.h"
@@ -31,7 +32,6 @@
 #endif
 
 static optical_capture_t cap;
-static optical_xy_t map_buf[OPTICAL_MAX_BEACONS];
 static optical_sighting_t sight[OPTICAL_MAX_SIGHTINGS];
 static optical_pose_t lat[OPTICAL_MAX_SIGHTINGS];
 static optical_fix_t fix;
@@ -46,7 +46,7 @@ static void field(const char *label, uint32_t v)
 static void config(uint8_t variant, optical_config_t *cfg)
 {
     optical_config_default(cfg);
-    if (variant == 1) { /* approximate pose within 5 degrees and 0.3 m */
+    if (variant == 1) {           /* approximate pose within 5 degrees and 0.3 m */
         cfg->window = 63230463ul; /* 5.3 degrees */
         cfg->window_pos = 21627;  /* 0.33 m */
     }
@@ -68,15 +68,6 @@ static const optical_rev_t *capture_case(uint8_t i)
     return optical_capture_take(&cap);
 }
 
-static uint8_t load_map(uint8_t m)
-{
-    for (uint8_t k = 0; k < vec_maps[m].n; k++) {
-        map_buf[k].x = vec_beacons[vec_maps[m].first + k].x;
-        map_buf[k].y = vec_beacons[vec_maps[m].first + k].y;
-    }
-    return vec_maps[m].n;
-}
-
 /* The fix of case @p i; the sightings in sight[], their count returned (-1: bad revolution). */
 static int8_t run_case(uint8_t i, optical_config_t *cfg, optical_map_t *map, optical_pose_t *ap,
                        const optical_pose_t **latched)
@@ -87,8 +78,8 @@ static int8_t run_case(uint8_t i, optical_config_t *cfg, optical_map_t *map, opt
     if (rev)
         optical_capture_release(&cap);
     config(c->cfg, cfg);
-    map->b = map_buf;
-    map->n = load_map(c->map);
+    map->b = &vec_beacons[vec_maps[c->map].first];
+    map->n = vec_maps[c->map].n;
     ap->x = c->approx.x;
     ap->y = c->approx.y;
     ap->heading = c->approx.h;
@@ -152,14 +143,88 @@ static void fixes(void)
     }
 }
 
+static uint32_t rng = 0x2545F491u;
+
+static uint32_t rnd32(void)
+{
+    rng ^= rng << 13;
+    rng ^= rng >> 17;
+    rng ^= rng << 5;
+    return rng;
+}
+
+/* A random int32 of random magnitude and sign. */
+static int32_t rnd_mag(void)
+{
+    uint32_t v = rnd32() >> (rnd32() & 31u);
+    return (rnd32() & 1u) ? (int32_t)(0u - v) : (int32_t)v;
+}
+
+/* The two helpers of fastmath.h (assembly on the target): edge cases, then random. */
+static void helpers(void)
+{
+    static const int32_t edge[] = {0,
+                                   1,
+                                   -1,
+                                   2,
+                                   32767,
+                                   32768,
+                                   -32768,
+                                   65535,
+                                   65536,
+                                   0x7FFFFFFFl,
+                                   -0x7FFFFFFFl - 1,
+                                   0x40000000l,
+                                   -0x40000000l};
+    const uint8_t ne = sizeof edge / sizeof edge[0];
+    for (uint16_t t = 0; t < 400u + ne * ne; t++) {
+        int32_t x, y;
+        if (t < ne * ne) {
+            x = edge[t / ne];
+            y = edge[t % ne];
+        } else {
+            x = rnd_mag();
+            y = rnd_mag();
+        }
+        cy_print("a16 ");
+        cy_print_hex32((uint32_t)x);
+        cy_print(" ");
+        cy_print_hex32((uint32_t)y);
+        cy_print(" ");
+        cy_print_hex16(optical_angle16(x, y));
+        cy_println();
+    }
+    for (uint16_t t = 0; t < 400u; t++) {
+        /* Operands whose dot product fits: Q30-sized factors against <= 2^30 values. */
+        int32_t a = rnd_mag(), b = rnd_mag() >> 1, c = rnd_mag(), d = rnd_mag() >> 1;
+        if (t < 8) {
+            a = t & 1 ? -0x40000000l : 0x3FFFFFFFl;
+            b = t & 2 ? -0x40000000l : 0x40000000l;
+            c = t & 4 ? 0x7FFFFFFFl : -0x7FFFFFFFl;
+            d = 1;
+        }
+        cy_print("dot2 ");
+        cy_print_hex32((uint32_t)a);
+        cy_print(" ");
+        cy_print_hex32((uint32_t)b);
+        cy_print(" ");
+        cy_print_hex32((uint32_t)c);
+        cy_print(" ");
+        cy_print_hex32((uint32_t)d);
+        cy_print(" ");
+        cy_print_hex32((uint32_t)optical_dot2(a, b, c, d));
+        cy_println();
+    }
+}
+
 static void reflectors(void)
 {
     /* Seed 004: A(0,21), B(13,21), C(13,0) ft; reflections 1.0556, 2.3628, 2.8508 s after the
      * click, next click at 4 s (ticks of 100 us); and variants: a missing reflection, a late
      * click, the field given, a goal. */
     static const optical_xy_t refl[3] = {{0, 21l << 16}, {13l << 16, 21l << 16}, {13l << 16, 0}};
-    static const optical_xy_t fld[4] = {{0, 0}, {13l << 16, 0}, {13l << 16, 21l << 16},
-                                        {0, 21l << 16}};
+    static const optical_xy_t fld[4] = {
+        {0, 0}, {13l << 16, 0}, {13l << 16, 21l << 16}, {0, 21l << 16}};
     static const uint32_t t[3] = {10556u, 23628u, 28508u};
     static const uint32_t tw[3] = {0xFFFFB1E0ul + 10556u, 3628u, 8508u}; /* click - 20000 */
     optical_r3_config_t cfg = {NULL, 0, 40000u, 2000u, OPTICAL_QUALITY_LIMIT};
@@ -350,6 +415,7 @@ int main(void)
 #endif
     cy_bench_init();
     cy_print("# optical vectors\n");
+    helpers();
     fixes();
     reflectors();
     bench();

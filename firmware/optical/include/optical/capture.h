@@ -55,16 +55,16 @@ typedef struct {
 /** Capture state: handlers and main loop share it (pass its address as the handlers' arg). */
 typedef struct {
     optical_rev_t buf[2];
+    optical_rev_t *cur;     /**< the revolution the handlers fill (buf[0] or buf[1]) */
     uint16_t index;         /**< count at the current revolution's index pulse */
     uint16_t rise;          /**< count at the pending rising edge */
     uint16_t seq;           /**< revolutions started */
     uint16_t dropped;       /**< completed revolutions never handed out (wraps) */
     uint16_t cov_seen;      /**< hal_capture_overflows() at the last take */
-    volatile uint8_t fill;  /**< buffer the handlers fill (0/1) */
     volatile uint8_t mode;  /**< 0 stopped, 1 waiting for the first index pulse, 2 running */
-    volatile uint8_t pulse; /**< 1 between a rising and a falling edge */
-    volatile uint8_t ready; /**< 1: buf[1 - fill] is a completed revolution not yet taken */
-    volatile uint8_t held;  /**< 1: the main loop holds buf[1 - fill] */
+    volatile uint8_t pulse; /**< 1 between a rising and a falling edge while running */
+    volatile uint8_t ready; /**< 1: the other buffer is a completed revolution not yet taken */
+    volatile uint8_t held;  /**< 1: the main loop holds the other buffer */
 } optical_capture_t;
 
 /** Reset @p c: stopped, no revolution ready, counters zero. Call before registering. */

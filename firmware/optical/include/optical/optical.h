@@ -137,13 +137,6 @@ typedef struct {
     uint8_t status;                      /**< optical_status_t */
 } optical_fix_t;
 
-/**
- * Direction of the vector (dx, dy) in 2^-16 turn (65536 = 360 degrees, CCW from +x), cheap:
- * the identification's expected angles. Any int32 components (any common scale); max error
- * 2 units (0.011 degrees); (0, 0) gives 0.
- */
-uint16_t optical_angle16(int32_t dx, int32_t dy);
-
 /** Fill @p cfg with the defaults (docs/optical.md). */
 void optical_config_default(optical_config_t *cfg);
 
