@@ -613,15 +613,16 @@ static int8_t solve_triplet(const ctx_t *x, const idset_t *id, const uint8_t t[3
 
 /*
  * O7-O10: select three of the identified (the seed's rule) and triangulate. When that
- * triplet lies too close to its beacons' circle, the triplets with one of its beacons
- * replaced by another identified one are tried, and the best taken.
+ * triplet lies too close to its beacons' circle (refused as singular or inconsistent), the
+ * triplets with one of its beacons replaced by another identified one are tried, and the
+ * best taken.
  */
 static int8_t solve(const ctx_t *x, const idset_t *id, uint8_t passes, uint8_t t[3],
                     optical_tri_t *tri)
 {
     optical_select(id->ang, id->m, t);
     int8_t st = solve_triplet(x, id, t, passes, tri);
-    if (st != OPTICAL_E_SINGULAR || id->m <= 3)
+    if ((st != OPTICAL_E_SINGULAR && st != OPTICAL_E_INCONSISTENT) || id->m <= 3)
         return st;
     uint32_t best = UINT32_MAX;
     uint8_t bt[3] = {t[0], t[1], t[2]};

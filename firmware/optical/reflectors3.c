@@ -92,7 +92,7 @@ int8_t optical_r3_fix(const optical_xy_t refl[3], uint32_t click, const uint32_t
         optical_tri_t tri;
         int8_t st = optical_triangulate(b, th, cfg->quality_max, &tri);
         if (st == OPTICAL_E_SINGULAR)
-            singular = true;
+            singular = true; /* (inconsistent: that assignment does not fit) */
         if (st != OPTICAL_OK)
             continue;
         const optical_xy_t p = {tri.pose.x, tri.pose.y};

@@ -312,7 +312,7 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     if (e2 < 0)
         e2 = -e2;
     if (e0 > CONSISTENT || e1 > CONSISTENT || e2 > CONSISTENT)
-        return OPTICAL_E_SINGULAR;
+        return OPTICAL_E_INCONSISTENT;
     out->pose.heading = h[0] + (fx_angle_t)mean;
     return out->quality > quality_max ? OPTICAL_E_SINGULAR : OPTICAL_OK;
 }

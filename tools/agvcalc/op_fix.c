@@ -135,7 +135,10 @@ static const char *why(int8_t st)
                "likely misidentification";
     case OPTICAL_E_INCONSISTENT:
         return "the sightings contradict the approximate pose within window_deg and "
-               "window_pos_m";
+               "window_pos_m, or no position sees the selected beacons under their angles";
+    case OPTICAL_E_UNCONFIRMED:
+        return "identified only beyond the stated uncertainty (a guess or widened windows) "
+               "and fewer than five sightings confirm the fix";
     default:
         return "coordinates beyond +-8192 m";
     }

@@ -68,6 +68,10 @@ int agvcalc_op_triangulate(json_t *req, json_t *resp, char *err, size_t errlen)
                        "too close to singular: the vehicle lies near the circle through the "
                        "three beacons (quality %.4g m per count exceeds quality_max %.4g)",
                        tri.quality * PER_COUNT, qmax);
+    case OPTICAL_E_INCONSISTENT:
+        return ac_fail(err, errlen,
+                       "no position sees the three beacons under these angles (inconsistent "
+                       "angles, or too close to the circle through the beacons)");
     default:
         return ac_fail(err, errlen, "beacons: more than 2048 m apart");
     }

@@ -84,7 +84,10 @@ typedef enum {
     OPTICAL_E_JUMP,         /**< the fix is implausibly far from the approximate position */
     OPTICAL_E_TURN,         /**< the bearing is implausibly far from the approximate one */
     OPTICAL_E_DISAGREE,     /**< other identified sightings disagree: likely misidentified */
-    OPTICAL_E_INCONSISTENT, /**< the matches contradict the stated pose uncertainty */
+    OPTICAL_E_INCONSISTENT, /**< no position sees the beacons under the angles (a solution
+                                 on the wrong arc of a circle: inconsistent input, or a
+                                 quantised one near the beacons' circle); in optical_fix also
+                                 matches that contradict the stated pose uncertainty */
     OPTICAL_E_UNCONFIRMED   /**< identified only beyond the bounds (a guess or widened
                                  windows) and fewer than five sightings confirm the fix */
 } optical_status_t;
@@ -158,8 +161,9 @@ int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
  * @param theta their sighting angles (CCW from the vehicle heading), same order
  * @param out   pose and quality; written on OPTICAL_OK and on OPTICAL_E_SINGULAR
  * @param quality_max refuse (OPTICAL_E_SINGULAR) when the quality exceeds it
- * Returns OPTICAL_OK, OPTICAL_E_DEGENERATE (coincident beacons or sightings, or all three
- * beacons on one line through the vehicle), OPTICAL_E_SINGULAR or OPTICAL_E_ARG.
+ * Returns OPTICAL_OK, OPTICAL_E_DEGENERATE (coincident beacons or sightings), OPTICAL_E_SINGULAR
+ * (quality beyond the limit, or the circles coincide), OPTICAL_E_INCONSISTENT (the solution
+ * does not reproduce all three angles) or OPTICAL_E_ARG.
  * Accuracy: within 1 mm of the exact solution of the same inputs wherever quality <= 8 m/mrad
  * in a 50 m field (tests/unit/optical_test.cpp measures it).
  */
