@@ -24,12 +24,12 @@ typedef struct {
 
 /* Intermediates of optical_triangulate (lambda units: see triangulate.c). */
 typedef struct {
-    int32_t b1[2], b3[2];        /* beacon offsets from beacon 2 */
-    int32_t nA[2], nB[2], nC[2]; /* doubled homogeneous centres, origin beacon 2 */
-    int32_t s1b1[2], s2b3[2], s3b1[2], s3b3[2];
-    int32_t nx[2], ny[2], p[2]; /* one pair's centres at its origin, its point */
-    int32_t sq[6];              /* squared chords and ranges, 15-bit components */
-    fx_angle_t g[3], h[3];      /* gaps of the sorted sightings, the three bearings */
+    int32_t b1[2], b3[2];     /* beacon offsets from beacon 2 */
+    int32_t nA[2], nB[2];     /* doubled homogeneous centres A, B at beacon 2 */
+    int32_t s1b1[2], s3b1[2]; /* A and C at beacon 1 */
+    int32_t s2b3[2], s3b3[2]; /* B and C at beacon 3 */
+    int32_t p[2];             /* one pair's intersection */
+    fx_angle_t g[3], h[3];    /* gaps of the sorted sightings, the three bearings */
     fx_q30_t s1, c1, s2, c2, s3, c3;
 } optical_tri_scratch_t;
 

@@ -15,11 +15,13 @@
  * docs/optical.md derives it and the quality measure.
  *
  * Fixed point: the two beacon offsets from beacon 2 are scaled by 2^sigma so that the largest
- * component lies in [2^25, 2^26) ("lambda" units); sin/cos are Q1.30.
+ * component lies in [2^27, 2^28) ("lambda" units); sin/cos are Q1.30; products of two go
+ * through optical_dot2 (one rounding, exact 64-bit sum).
  */
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "optical/fastmath.h"
 #include "optical/optical.h"
 #include "scratch.h"
 
@@ -46,60 +48,53 @@ static uint32_t max4(int32_t a, int32_t b, int32_t c, int32_t d)
     return t > m ? t : m;
 }
 
-static int32_t mq(int32_t a, fx_q30_t b)
-{
-    return fx_mul_q30(a, b);
-}
-
 /*
  * One pairwise intersection, relative to the common beacon, in lambda units:
  * cross(nY, nX) rot90(W) / |W|^2 with W = sX nY - sY nX. False when the circles (nearly)
- * coincide so that the point does not fit.
+ * coincide so that the point does not fit. |n| < 2^29.5.
  */
 __attribute__((noinline)) static bool pair_point(const int32_t nX[2], fx_q30_t sX,
                                                  const int32_t nY[2], fx_q30_t sY, int32_t out[2])
 {
-    int32_t wx = mq(nY[0], sX) - mq(nX[0], sY);
-    int32_t wy = mq(nY[1], sX) - mq(nX[1], sY);
-    int32_t a, b;
-    /* |n| < 2^28.5: each product < 2^57, so >> 27 leaves < 2^30 and the difference fits. */
-    fx_mul_shift(nY[0], nX[1], 27, &a);
-    fx_mul_shift(nY[1], nX[0], 27, &b);
-    int32_t x = a - b; /* cross(nY, nX) / 2^27 */
-    /* W = W~ * 2^e with the larger component of W~ in [2^29, 2^30). */
+    int32_t wx = optical_dot2(nY[0], sX, nX[0], -sY); /* |W| < 2^30.5 */
+    int32_t wy = optical_dot2(nY[1], sX, nX[1], -sY);
+    int32_t x = optical_dot2(nY[0], nX[1], nY[1], -nX[0]); /* cross(nY, nX) / 2^30 */
+    /* W = W~ 2^e with the larger component of W~ in [2^28, 2^29). */
     uint32_t m = mag(wx) | mag(wy);
     if (m == 0)
         return false;
     int8_t e = 0;
-    while (m < (1ul << 29)) {
+    while (m < (1ul << 28)) {
         m <<= 1;
         wx *= 2;
         wy *= 2;
         e--;
     }
-    while (m >= (1ul << 30)) { /* only when the products above ran near the limit */
+    while (m >= (1ul << 29)) {
         m >>= 1;
         wx /= 2;
         wy /= 2;
         e++;
     }
-    int32_t qx, qy;
-    fx_mul_shift(wx, wx, 31, &qx);
-    fx_mul_shift(wy, wy, 31, &qy);
-    int32_t q = qx + qy; /* |W~|^2 / 2^31, in [2^27, 2^30) */
-    /* t = x 2^26 / q; P = x 2^27 rot90(W~) / (q 2^31 2^e) = t rot90(W~) / 2^(30 + e). */
+    int32_t d = optical_dot2(wx, wx, wy, wy); /* |W~|^2 / 2^30, in [2^26, 2^29) */
+    /* t = x 2^28 / d < 2^29.5; P = x 2^30 rot90(W~) 2^e / (d 2^30 2^2e)
+     *   = t rot90(W~) / 2^(28 + e) = fx_mul_q30(t, rot90(W~)) 2^(2 - e). */
     int32_t t;
-    if (!fx_div_shift(x, q, 26, &t))
+    if (!fx_div_shift(x, d, 28, &t))
         return false;
-    int16_t sh = (int16_t)(30 + e);
-    if (sh < 0)
-        return false;
-    int32_t px, py;
-    if (!fx_mul_shift(t, -wy, (uint8_t)sh, &px) || !fx_mul_shift(t, wx, (uint8_t)sh, &py))
-        return false;
-    /* The vehicle lies within the field: beyond 2^28 lambda the circles nearly coincide. */
-    if (mag(px) >= (1ul << 28) || mag(py) >= (1ul << 28))
-        return false;
+    int32_t px = fx_mul_q30(t, -wy), py = fx_mul_q30(t, wx); /* < 2^28.5 */
+    int8_t sh = (int8_t)(2 - e);
+    for (; sh > 0; sh--) {
+        /* Beyond 2^30 lambda (eight times the beacons' span) the circles all but coincide. */
+        if (mag(px) >= (1ul << 29) || mag(py) >= (1ul << 29))
+            return false;
+        px *= 2;
+        py *= 2;
+    }
+    for (; sh < 0; sh++) {
+        px /= 2;
+        py /= 2;
+    }
     out[0] = px;
     out[1] = py;
     return true;
@@ -115,73 +110,49 @@ __attribute__((noinline)) static bool pair_point(const int32_t nX[2], fx_q30_t s
  * beacon offsets in T and the vehicle (cx, cy) relative to beacon 2, lambda units; the vectors
  * are cut to 15 bits (the estimate needs a few per cent, not more).
  */
-/* Component i of: b1, b3, b3 - b1 (the chords 12, 23, 31), then the vectors from the vehicle
- * (cx, cy) to beacons 1, 2 (the origin) and 3. */
-static int32_t qvec(uint8_t i, int32_t cx, int32_t cy)
+/* |v|^2 / 2^32 of a lambda vector below 2^30.5: below 2^29. */
+static int32_t sq(int32_t x, int32_t y)
 {
-    const int32_t *b1 = T.b1, *b3 = T.b3;
-    uint8_t c = i & 1u;
-    int32_t cc = c ? cy : cx;
-    switch (i >> 1) {
-    case 0:
-        return b1[c];
-    case 1:
-        return b3[c];
-    case 2:
-        return b3[c] - b1[c];
-    case 3:
-        return b1[c] - cc;
-    case 4:
-        return -cc;
-    default:
-        return b3[c] - cc;
-    }
+    x /= 2;
+    y /= 2;
+    return optical_dot2(x, x, y, y);
 }
 
+/*
+ * Quality: the RMS position error for unit independent bearing errors,
+ *     S = sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2) / |r3 sin a12 + r1 sin a23 + r2 sin a31|
+ * (chords c between beacons, ranges r from the vehicle), in Q16 metres per mrad, from the
+ * beacon offsets in T and the vehicle (cx, cy) relative to beacon 2, lambda units.
+ */
 __attribute__((noinline)) static uint32_t quality(int32_t cx, int32_t cy, uint8_t sigma)
 {
-    fx_q30_t s1 = T.s1, s2 = T.s2, s3 = T.s3;
-    uint32_t m = 0;
-    for (uint8_t i = 0; i < 12; i++)
-        m |= mag(qvec(i, cx, cy));
-    uint8_t h = 0;
-    while (m >= (1ul << 15)) {
-        m >>= 1;
-        h++;
+    const int32_t *b1 = T.b1, *b3 = T.b3;
+    int32_t c12 = sq(b1[0], b1[1]), c23 = sq(b3[0], b3[1]);
+    int32_t c31 = sq(b3[0] - b1[0], b3[1] - b1[1]);
+    int32_t q1 = sq(b1[0] - cx, b1[1] - cy), q2 = sq(cx, cy), q3 = sq(b3[0] - cx, b3[1] - cy);
+    /* The squared ranges times 4^j, the largest in [2^28, 2^30): 15-bit ranges. The factor
+     * 2^j scales numerator and denominator alike. */
+    if ((q1 | q2 | q3) == 0)
+        return UINT32_MAX;
+    while ((uint32_t)(q1 | q2 | q3) < (1ul << 28)) {
+        q1 *= 4;
+        q2 *= 4;
+        q3 *= 4;
     }
-    /* Squares of 15-bit values: a sum of two stays below 2^31. */
-    int32_t *sq = T.sq;
-    for (uint8_t i = 0; i < 6; i++) {
-        int32_t a = qvec((uint8_t)(2 * i), cx, cy), b = qvec((uint8_t)(2 * i + 1), cx, cy);
-        for (uint8_t k = 0; k < h; k++) {
-            a /= 2; /* toward zero: fine for the estimate */
-            b /= 2;
-        }
-        sq[i] = (int32_t)(int16_t)a * (int16_t)a + (int32_t)(int16_t)b * (int16_t)b;
-    }
-    /* sq: c12^2, c23^2, c31^2, r1^2, r2^2, r3^2 */
-    int32_t t1, t2, t3;
-    fx_mul_shift(sq[0], sq[5], 34, &t1);
-    fx_mul_shift(sq[1], sq[3], 34, &t2);
-    fx_mul_shift(sq[2], sq[4], 34, &t3);
-    uint16_t num = fx_sqrt32((uint32_t)t1 + (uint32_t)t2 + (uint32_t)t3); /* num / 2^17 */
-    int32_t r1 = fx_sqrt32((uint32_t)sq[3]), r2 = fx_sqrt32((uint32_t)sq[4]);
-    int32_t r3 = fx_sqrt32((uint32_t)sq[5]);
+    /* 2^j sqrt(sum c^2 r^2) / 2^47 (each product below 2^29) */
+    uint16_t num = fx_sqrt32((uint32_t)fx_mul_q30(c12, q3) + (uint32_t)fx_mul_q30(c23, q1) +
+                             (uint32_t)fx_mul_q30(c31, q2));
+    int32_t r1 = fx_sqrt32((uint32_t)q1), r2 = fx_sqrt32((uint32_t)q2); /* 2^j range / 2^16 */
+    int32_t r3 = fx_sqrt32((uint32_t)q3);
     /* a31 = 360 - alpha3: sin a31 = -s3. */
-    int32_t den = mq(r3, s1) + mq(r1, s2) - mq(r2, s3);
+    int32_t den = fx_mul_q30(r3, T.s1) + fx_mul_q30(r1, T.s2) - fx_mul_q30(r2, T.s3);
     if (den < 0)
         den = -den;
     if (den == 0)
         return UINT32_MAX;
-    /* S in Q16 m/rad = num 2^17 2^(h - sigma) / den; per mrad: / 1000. */
-    int16_t sh = (int16_t)(17 + h - sigma);
-    int32_t n = (int32_t)num;
-    while (sh < 0) {
-        n /= 2;
-        sh++;
-    }
+    /* S = num 2^47 / (den 2^16) lambda; in Q16 m: / 2^sigma; per mrad: / 1000. */
     int32_t q;
-    if (!fx_div_shift(n, den * 1000, (uint8_t)sh, &q) || q < 0)
+    if (!fx_div_shift((int32_t)num, den * 1000, (uint8_t)(31 - sigma), &q) || q < 0)
         return UINT32_MAX;
     return (uint32_t)q;
 }
@@ -233,7 +204,7 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     if ((b1[0] | b1[1]) == 0 || (b3[0] | b3[1]) == 0 || (b1[0] == b3[0] && b1[1] == b3[1]))
         return OPTICAL_E_DEGENERATE;
     uint8_t sigma = 0;
-    while (m < (1ul << 25)) {
+    while (m < (1ul << 27)) {
         m <<= 1;
         sigma++;
     }
@@ -248,48 +219,48 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     fx_sincos(a2, &T.s2, &T.c2);
     fx_sincos(a3, &T.s3, &T.c3);
 
-    /* Doubled homogeneous centres n = 2 sin(alpha) (c - O), O = beacon 2 (1 or 3 below). */
-    T.s1b1[0] = mq(b1[0], T.s1);
-    T.s1b1[1] = mq(b1[1], T.s1);
-    T.s2b3[0] = mq(b3[0], T.s2);
-    T.s2b3[1] = mq(b3[1], T.s2);
-    T.s3b1[0] = mq(b1[0], T.s3);
-    T.s3b1[1] = mq(b1[1], T.s3);
-    T.s3b3[0] = mq(b3[0], T.s3);
-    T.s3b3[1] = mq(b3[1], T.s3);
-    /* A (B1, B2, alpha1): s1 b1 - c1 rot90(b1); B (B2, B3, alpha2): s2 b3 + c2 rot90(b3);
-     * C (B1, B3, alpha3): s3 (b1 + b3) + c3 rot90(b3 - b1). */
-    T.nA[0] = T.s1b1[0] + mq(b1[1], T.c1);
-    T.nA[1] = T.s1b1[1] - mq(b1[0], T.c1);
-    T.nB[0] = T.s2b3[0] - mq(b3[1], T.c2);
-    T.nB[1] = T.s2b3[1] + mq(b3[0], T.c2);
-    T.nC[0] = T.s3b1[0] + T.s3b3[0] - mq(b3[1] - b1[1], T.c3);
-    T.nC[1] = T.s3b1[1] + T.s3b3[1] + mq(b3[0] - b1[0], T.c3);
+    /* Doubled homogeneous centres n = 2 sin(alpha) (c - O) of circle A (B1, B2, alpha1),
+     * B (B2, B3, alpha2) and C (B1, B3, alpha3), at the origin of each pair's common beacon:
+     *   A at B2: s1 b1 - c1 rot90(b1)      A at B1: -s1 b1 - c1 rot90(b1)
+     *   B at B2: s2 b3 + c2 rot90(b3)      B at B3: -s2 b3 + c2 rot90(b3)
+     *   C at B1: s3 q + c3 rot90(q)        C at B3: -s3 q + c3 rot90(q),   q = b3 - b1
+     * (C at B2 would be s3 (b1 + b3) + c3 rot90(q): moving the origin by bi subtracts
+     * 2 sin(alpha) bi.) rot90(v) = (-vy, vx); every n is a rotated beacon offset. */
+    int32_t q[2] = {b3[0] - b1[0], b3[1] - b1[1]};
+    T.nA[0] = optical_dot2(b1[0], T.s1, b1[1], T.c1); /* A at B2 */
+    T.nA[1] = optical_dot2(b1[1], T.s1, b1[0], -T.c1);
+    T.nB[0] = optical_dot2(b3[0], T.s2, b3[1], -T.c2); /* B at B2 */
+    T.nB[1] = optical_dot2(b3[1], T.s2, b3[0], T.c2);
+    T.s1b1[0] = optical_dot2(b1[0], -T.s1, b1[1], T.c1); /* A at B1 */
+    T.s1b1[1] = optical_dot2(b1[1], -T.s1, b1[0], -T.c1);
+    T.s3b1[0] = optical_dot2(q[0], T.s3, q[1], -T.c3); /* C at B1 */
+    T.s3b1[1] = optical_dot2(q[1], T.s3, q[0], T.c3);
+    T.s2b3[0] = optical_dot2(b3[0], -T.s2, b3[1], -T.c2); /* B at B3 */
+    T.s2b3[1] = optical_dot2(b3[1], -T.s2, b3[0], T.c2);
+    T.s3b3[0] = optical_dot2(q[0], -T.s3, q[1], -T.c3); /* C at B3 */
+    T.s3b3[1] = optical_dot2(q[1], -T.s3, q[0], T.c3);
 
-    /* The three pairwise intersections, each relative to its common beacon, summed relative
-     * to B2. Moving the origin from B2 to Bi subtracts 2 sin(alpha) bi from n. */
-    int32_t sx = 0, sy = 0;
+    /* The three pairwise intersections (AB at B2, AC at B1, BC at B3), summed relative to
+     * B2. */
+    int64_t sx = 0, sy = 0; /* (three values below 2^30.3: only added, never multiplied) */
     for (uint8_t pr = 0; pr < 3; pr++) {
-        fx_q30_t sX = pr == 2 ? T.s2 : T.s1, sY = pr == 0 ? T.s2 : T.s3;
         const int32_t *org = pr == 0 ? NULL : pr == 1 ? b1 : b3;
-        const int32_t *nX = pr == 2 ? T.nB : T.nA, *nY = pr == 0 ? T.nB : T.nC;
-        const int32_t *dX = pr == 1 ? T.s1b1 : T.s2b3, *dY = pr == 1 ? T.s3b1 : T.s3b3;
-        for (uint8_t i = 0; i < 2; i++) {
-            T.nx[i] = org ? nX[i] - 2 * dX[i] : nX[i];
-            T.ny[i] = org ? nY[i] - 2 * dY[i] : nY[i];
-        }
-        if (!pair_point(T.nx, sX, T.ny, sY, T.p))
+        const int32_t *nX = pr == 0 ? T.nA : pr == 1 ? T.s1b1 : T.s2b3;
+        const int32_t *nY = pr == 0 ? T.nB : pr == 1 ? T.s3b1 : T.s3b3;
+        fx_q30_t sX = pr == 2 ? T.s2 : T.s1, sY = pr == 0 ? T.s2 : T.s3;
+        if (!pair_point(nX, sX, nY, sY, T.p))
             return OPTICAL_E_SINGULAR;
         sx += T.p[0] + (org ? org[0] : 0);
         sy += T.p[1] + (org ? org[1] : 0);
     }
-    /* Average, relative to B2 (lambda), then to Q16 metres: / 3 / 2^sigma. */
+    /* Average, relative to B2 (lambda), then to Q16 metres: / 3 / 2^sigma (the sums halved
+     * to 32 bits first). */
+    int32_t hx = (int32_t)(sx / 2), hy = (int32_t)(sy / 2);
     int32_t px, py, cx, cy;
-    fx_mul_shift(sx, 357913941l /* 2^30 / 3 */, (uint8_t)(30 + sigma), &px);
-    fx_mul_shift(sy, 357913941l, (uint8_t)(30 + sigma), &py);
-    fx_mul_shift(sx, 357913941l, 30, &cx);
-    fx_mul_shift(sy, 357913941l, 30, &cy);
-    /* Quality from the chords and the vehicle-to-beacon vectors (lambda). */
+    fx_mul_shift(hx, 357913941l /* 2^30 / 3 */, (uint8_t)(29 + sigma), &px);
+    fx_mul_shift(hy, 357913941l, (uint8_t)(29 + sigma), &py);
+    cx = 2 * fx_mul_q30(hx, 357913941l); /* the vehicle in lambda, for the quality */
+    cy = 2 * fx_mul_q30(hy, 357913941l);
     out->quality = quality(cx, cy, sigma);
 
     out->pose.x = B2->x + px;
