@@ -253,14 +253,20 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
         sx += T.p[0] + (org ? org[0] : 0);
         sy += T.p[1] + (org ? org[1] : 0);
     }
-    /* Average, relative to B2 (lambda), then to Q16 metres: / 3 / 2^sigma (the sums halved
-     * to 32 bits first). */
+    /* Average, relative to B2 (lambda; the sums halved to 32 bits first), then to Q16
+     * metres: / 2^sigma, rounded. */
     int32_t hx = (int32_t)(sx / 2), hy = (int32_t)(sy / 2);
-    int32_t px, py, cx, cy;
-    fx_mul_shift(hx, 357913941l /* 2^30 / 3 */, (uint8_t)(29 + sigma), &px);
-    fx_mul_shift(hy, 357913941l, (uint8_t)(29 + sigma), &py);
-    cx = 2 * fx_mul_q30(hx, 357913941l); /* the vehicle in lambda, for the quality */
-    cy = 2 * fx_mul_q30(hy, 357913941l);
+    int32_t cx = 2 * fx_mul_q30(hx, 357913941l /* 2^30 / 3 */);
+    int32_t cy = 2 * fx_mul_q30(hy, 357913941l);
+    int32_t px = cx, py = cy;
+    if (sigma) {
+        px += 1l << (sigma - 1); /* round half up: floor((v + 2^(sigma-1)) / 2^sigma) */
+        py += 1l << (sigma - 1);
+        for (uint8_t i = 0; i < sigma; i++) {
+            px = (px - (px < 0)) / 2; /* floor halving */
+            py = (py - (py < 0)) / 2;
+        }
+    }
     out->quality = quality(cx, cy, sigma);
 
     out->pose.x = B2->x + px;
