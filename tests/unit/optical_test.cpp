@@ -795,6 +795,53 @@ TEST(Pipeline, TenThousandRandomRevolutions)
     EXPECT_GE(good_acc, 0.95 * good);
 }
 
+TEST(Pipeline, BadInputIsRefusedNotTrusted)
+{
+    optical_config_t cfg;
+    optical_config_default(&cfg);
+    std::vector<optical_xy_t> m = {q16(V2(0, 0)), q16(V2(10, 0)), q16(V2(0, 10)), q16(V2(10, 10))};
+    optical_map_t map = {m.data(), 4};
+    optical_pose_t ap = {q16(V2(5, 5)).x, q16(V2(5, 5)).y, 0};
+    optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
+    for (int i = 0; i < 4; i++) { // the four beacons from (5, 5), heading 0
+        V2 d = V2(i % 2 ? 10 : 0, i / 2 ? 10 : 0) - V2(5, 5);
+        s[i] = {fx_angle_from_rad(std::atan2(d.y(), d.x())),
+                (uint16_t)std::lround(2 * std::asin(kD / (2 * d.norm())) / kTau * 65536)};
+    }
+    std::sort(s, s + 4, [](const optical_sighting_t &a, const optical_sighting_t &b) {
+        return a.angle < b.angle;
+    });
+    optical_fix_t f;
+    ASSERT_EQ(optical_fix(&map, &cfg, &ap, s, 4, nullptr, &f), OPTICAL_OK);
+    EXPECT_LT((from_q16(f.pose.x, f.pose.y) - V2(5, 5)).norm(), 1e-3);
+    EXPECT_EQ(f.n_ident, 4);
+    optical_map_t small = {m.data(), 2};
+    EXPECT_EQ(optical_fix(&small, &cfg, &ap, s, 4, nullptr, &f), OPTICAL_E_ARG);
+    EXPECT_EQ(optical_fix(&map, &cfg, &ap, s, 16, nullptr, &f), OPTICAL_E_ARG);
+    EXPECT_EQ(optical_fix(&map, &cfg, &ap, s, 2, nullptr, &f), OPTICAL_E_FEW);
+    std::vector<optical_xy_t> far = m;
+    far[3].x = OPTICAL_COORD_LIMIT; // beyond the coordinate range
+    optical_map_t farmap = {far.data(), 4};
+    EXPECT_EQ(optical_fix(&farmap, &cfg, &ap, s, 4, nullptr, &f), OPTICAL_E_ARG);
+    // A heading 20 degrees off the stated 5 degrees: refused (never a wrong fix), and
+    // found again with the window widened to cover it.
+    optical_pose_t off = ap;
+    off.heading = fx_angle_from_deg(20);
+    int st = optical_fix(&map, &cfg, &off, s, 4, nullptr, &f);
+    EXPECT_NE(st, OPTICAL_OK);
+    cfg.widen_max = fx_angle_from_deg(25);
+    cfg.widen_steps = 4;
+    st = optical_fix(&map, &cfg, &off, s, 4, nullptr, &f);
+    // four sightings cannot confirm a widened identification (five are needed)
+    EXPECT_EQ(st, OPTICAL_E_UNCONFIRMED);
+    EXPECT_GT(f.widened, 0);
+    // Every sighting a glint (one count wide): nothing is identified.
+    for (int i = 0; i < 4; i++)
+        s[i].width = 1;
+    optical_config_default(&cfg);
+    EXPECT_EQ(optical_fix(&map, &cfg, &ap, s, 4, nullptr, &f), OPTICAL_E_FEW);
+}
+
 // ---------------------------------------------------------------- O11 fixes while driving
 
 // The vehicle's true pose t seconds after the first index pulse: standing, on a straight at v,

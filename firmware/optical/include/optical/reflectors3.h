@@ -32,7 +32,8 @@ extern "C" {
 /** Most candidate positions (one per assignment). */
 #define OPTICAL_R3_MAX_CAND  6
 
-/** Result codes beyond optical_status_t. */
+/** Result codes (optical_r3_fix also returns OPTICAL_E_SINGULAR: the only fits lie too close
+ * to the reflectors' circle). */
 typedef enum {
     OPTICAL_R3_OK = 0,
     OPTICAL_R3_E_ARG = 1,       /**< bad arguments (coordinates, field polygon) */
