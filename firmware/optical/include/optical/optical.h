@@ -164,8 +164,9 @@ int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
  * Returns OPTICAL_OK, OPTICAL_E_DEGENERATE (coincident beacons or sightings), OPTICAL_E_SINGULAR
  * (quality beyond the limit, or the circles coincide), OPTICAL_E_INCONSISTENT (the solution
  * does not reproduce all three angles) or OPTICAL_E_ARG.
- * Accuracy: within 1 mm of the exact solution of the same inputs wherever quality <= 8 m/mrad
- * in a 50 m field (tests/unit/optical_test.cpp measures it).
+ * Accuracy: within 1 mm of the exact solution of the same inputs wherever quality <=
+ * OPTICAL_QUALITY_LIMIT in a 50 m field (measured worst 0.2 mm, tests/unit/optical_test.cpp).
+ * Not reentrant (static work memory).
  */
 int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], uint32_t quality_max,
                            optical_tri_t *out);
