@@ -6,13 +6,14 @@
  *     heading interval  +-  asin((eps + |c_i|) / r_k)  + margin
  * with eps the position uncertainty of the approximate pose, c_i the sighting's parallax
  * lever (vehicle moving) and r_k the beacon's range from the approximate position (its
- * reciprocal bounded from above cheaply: octagonal norm and leading bit, at most 1.5 times
- * too wide). A sighting of beacon j then always lies in j's window, so a match that is unique
- * both ways (one beacon for the sighting, one sighting for the beacon) is safe. Every safe
- * match shrinks the heading interval (the true heading offset lies within its position part
- * of its own offset), which narrows all windows for the next pass. Only when fewer than three
- * remain are the windows widened beyond the bounds, by the seed's computed step a bounded
- * number of times; widened matches are checked with the seed's overlapping-window rule.
+ * reciprocal bounded from above cheaply, g_bound: at most 1.16 times too wide). A sighting of
+ * beacon j then always lies in j's window, so a match that is unique both ways (one beacon
+ * for the sighting, one sighting for the beacon) is safe. Every safe match shrinks the heading
+ * interval (the true heading offset lies within its position part of its own offset), which
+ * narrows all windows for the next pass. Only when fewer than three remain: a guess (the
+ * offset most candidate pairs agree on), then the seed's widening by a computed step a
+ * bounded number of times, checked with the seed's overlapping-window rule; a fix from
+ * either is used only when five sightings identified again from it confirm it.
  *
  * Cost on the MSP430: per beacon one 16-bit arctangent (optical_angle16, assembly) and a few
  * compares; per candidate pair a few 16-bit operations; the precise fixed-point work is left
