@@ -1,0 +1,202 @@
+/*
+ * optical/optical.h - optical navigation on the main board (SPEC O2-O11): from one mirror
+ * revolution of beacon sightings to a position and bearing that can be trusted.
+ *
+ * Pipeline of optical_fix() (docs/optical.md has the derivations):
+ *   motion      each sighting is moved into the vehicle frame of one reference instant, using
+ *               the dead-reckoning poses the nav board latched at the sightings (O11);
+ *   identify    expected angle of every map beacon from the approximate pose (O2); angle
+ *               windows that bound the pose uncertainty, tightened by the matches found and
+ *               widened a bounded number of times when fewer than three remain (O3); double
+ *               matches and (when widened) overlapping windows rejected; sightings too narrow
+ *               for a beacon within range dropped (O4); width distance against map distance
+ *               (O5);
+ *   select      the seed's adjacent-gap elimination down to three beacons (O7), ordered with
+ *               their angles alpha1..3 (O8);
+ *   triangulate three circles through pairs of beacons and the vehicle, the pairwise
+ *               intersections averaged, with the geometric error bound as quality (O9), and
+ *               the bearing from all three sightings (O10);
+ *   check       refusal near the beacons' circle, implausible jumps and turns from the
+ *               approximate pose, and the other identified sightings that disagree with the
+ *               fix (O6).
+ *
+ * Formats: fx/fx.h (binary angles, Q15.16 metres). Sighting angles are counter-clockwise from
+ * the vehicle heading (the index pulse marks straight ahead). Nothing here allocates; the fix
+ * works in a static area (optical_fix is not reentrant: main loop only).
+ */
+#ifndef OPTICAL_OPTICAL_H
+#define OPTICAL_OPTICAL_H
+
+#include <stdint.h>
+
+#include "fx/fx.h"
+#include "optical/capture.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Most beacons a map may hold. */
+#define OPTICAL_MAX_BEACONS 32
+
+/** Map coordinates and poses must lie within +-OPTICAL_COORD_LIMIT metres (Q15.16). */
+#define OPTICAL_COORD_LIMIT (8192l * FX_Q16_ONE)
+
+/**
+ * Quality limit of optical_triangulate() where its result is still within 1 mm of the exact
+ * solution of the same inputs (Q16 m per mrad: 2 m per mrad, 0.25 m per count). Beyond it the
+ * geometry, not the arithmetic, has made the fix meaningless: one count of bearing error
+ * moves it by more than 25 cm (docs/optical.md, "The refused region").
+ */
+#define OPTICAL_QUALITY_LIMIT (2ul * 65536ul)
+
+/** A point in the world frame (x east, y north), Q15.16 metres. */
+typedef struct {
+    fx_q16_t x, y;
+} optical_xy_t;
+
+/** A pose: position of the goniometer (rear-axle centre) and heading, CCW from +x. */
+typedef struct {
+    fx_q16_t x, y;
+    fx_angle_t heading;
+} optical_pose_t;
+
+/** One sighting: centre of the pulse and its apparent width. */
+typedef struct {
+    fx_angle_t angle; /**< CCW from the vehicle heading at the sighting instant */
+    uint16_t width;   /**< apparent angular width, 2^-16 turn (0.0055 degrees) */
+} optical_sighting_t;
+
+/** The beacon map. */
+typedef struct {
+    const optical_xy_t *b; /**< beacon positions (the centres of the posts) */
+    uint8_t n;             /**< 3..OPTICAL_MAX_BEACONS */
+} optical_map_t;
+
+/** Result codes (optical_fix_t.status, optical_triangulate). */
+typedef enum {
+    OPTICAL_OK = 0,
+    OPTICAL_E_ARG,          /**< bad arguments (map size, coordinates beyond the limit) */
+    OPTICAL_E_REV,          /**< implausible revolution (period, lost captures) */
+    OPTICAL_E_FEW,          /**< fewer than three beacons identified */
+    OPTICAL_E_DEGENERATE,   /**< two beacons or two sightings coincide */
+    OPTICAL_E_SINGULAR,     /**< too close to the beacons' circle: quality beyond the limit */
+    OPTICAL_E_JUMP,         /**< the fix is implausibly far from the approximate position */
+    OPTICAL_E_TURN,         /**< the bearing is implausibly far from the approximate one */
+    OPTICAL_E_DISAGREE,     /**< other identified sightings disagree: likely misidentified */
+    OPTICAL_E_INCONSISTENT, /**< no position sees the beacons under the angles (a solution
+                                 on the wrong arc of a circle: inconsistent input, or a
+                                 quantised one near the beacons' circle); in optical_fix also
+                                 matches that contradict the stated pose uncertainty */
+    OPTICAL_E_UNCONFIRMED   /**< identified only beyond the bounds (a guess or widened
+                                 windows) and fewer than five sightings confirm the fix */
+} optical_status_t;
+
+/**
+ * Identification and checking parameters. optical_config_default() fills the defaults
+ * (docs/optical.md lists them with their agvcalc names). Angles are binary angles, lengths
+ * Q15.16 metres.
+ */
+typedef struct {
+    fx_q16_t beacon_diameter; /**< D: effective post diameter (m); flat: strip width */
+    uint8_t beacon_flat;      /**< 0 cylindrical posts, 1 flat strips (width is then an upper
+                                   bound of the distance: only D_map <= d_w + tol is checked) */
+    fx_angle_t window;        /**< heading uncertainty of the approximate pose (O3 +-dpsi) */
+    fx_q16_t window_pos;      /**< position uncertainty of the approximate pose (m) */
+    fx_angle_t widen_max;     /**< heading window after the last widening */
+    uint8_t widen_steps;      /**< widenings allowed; step = (widen_max - window) / steps */
+    uint8_t reject_overlap;   /**< 0: only when widened, 1: always (the seed's rule) */
+    fx_q16_t range;           /**< T: sightings narrower than a post at T are dropped (O4) */
+    fx_q16_t range_max;       /**< T after the last widening of T */
+    uint8_t range_steps;      /**< widenings of T; step = (range_max - range) / steps */
+    fx_q16_t dist_tol;        /**< O5: |D_map - d_width| > dist_tol + dist_rel * D_map rejects */
+    fx_q16_t dist_rel;        /**< relative part of that tolerance, Q16 fraction */
+    fx_q16_t jump_max;        /**< O6: largest accepted distance fix - approximate (m) */
+    fx_angle_t turn_max;      /**< O6: largest accepted bearing - approximate bearing */
+    fx_angle_t resid_max;     /**< O6: largest accepted residual of the other identified */
+    uint32_t quality_max;     /**< O9: largest accepted quality (Q16 m of RMS error per mrad) */
+    uint8_t motion_passes;    /**< O11: triangulations with refined parallax (1..4) */
+} optical_config_t;
+
+/** The result of one triangulation (optical_triangulate). */
+typedef struct {
+    optical_pose_t pose; /**< position and bearing of the vehicle */
+    /**
+     * Predicted RMS position error for independent bearing errors of 1 mrad RMS on each of
+     * the three sightings, Q15.16 metres (the Cramer-Rao bound of the geometry, linearised);
+     * saturates at UINT32_MAX. Multiply by 0.12566 for one count of a 50,000-count goniometer.
+     */
+    uint32_t quality;
+} optical_tri_t;
+
+/** The result of optical_fix(). */
+typedef struct {
+    optical_pose_t pose;                 /**< the vehicle at the reference instant */
+    uint32_t quality;                    /**< as optical_tri_t.quality */
+    int8_t ident[OPTICAL_MAX_SIGHTINGS]; /**< map index per sighting (input order), -1 none */
+    uint8_t used[3];                     /**< map indices of the triplet, in ring order */
+    uint8_t n_ident;                     /**< sightings identified */
+    uint8_t widened;                     /**< window widenings used (0: within the bounds) */
+    uint8_t status;                      /**< optical_status_t */
+} optical_fix_t;
+
+/** Fill @p cfg with the defaults (docs/optical.md). */
+void optical_config_default(optical_config_t *cfg);
+
+/**
+ * Convert a captured revolution into sightings for optical_fix(): centre = start + (width + 1)
+ * / 2 counts (an edge at angle a reads floor(a) counts after the index pulse, which the angle
+ * clock's encoder aligns with a count) on a goniometer of @p counts_per_turn counts (exact to
+ * one binary-angle LSB), sorted by angle. Returns the number of sightings
+ * (0..OPTICAL_MAX_SIGHTINGS) or -1 when the revolution is implausible: its period is not @p
+ * counts_per_turn (lost angle-clock pulses or a lost index pulse) or the timer lost a capture
+ * (COV). Widths beyond 2^-16 turn units saturate.
+ */
+int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
+                             optical_sighting_t *out);
+
+/**
+ * Triangulate from three beacons and their sighting angles (O8-O10).
+ * @param b     the three beacons (any order), within OPTICAL_COORD_LIMIT, at most 2048 m apart
+ * @param theta their sighting angles (CCW from the vehicle heading), same order
+ * @param out   pose and quality; written on OPTICAL_OK and on OPTICAL_E_SINGULAR
+ * @param quality_max refuse (OPTICAL_E_SINGULAR) when the quality exceeds it
+ * Returns OPTICAL_OK, OPTICAL_E_DEGENERATE (coincident beacons or sightings), OPTICAL_E_SINGULAR
+ * (quality beyond the limit, or the circles coincide), OPTICAL_E_INCONSISTENT (the solution
+ * does not reproduce all three angles) or OPTICAL_E_ARG.
+ * Accuracy: within 1 mm of the exact solution of the same inputs wherever quality <=
+ * OPTICAL_QUALITY_LIMIT in a 50 m field (measured worst 0.2 mm, tests/unit/optical_test.cpp).
+ * Not reentrant (static work memory).
+ */
+int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], uint32_t quality_max,
+                           optical_tri_t *out);
+
+/**
+ * Select three of @p n identified beacons (O7): with their sighting angles @p angle sorted
+ * ascending, repeatedly drop the beacon beside the smallest adjacent gap (around the circle),
+ * on the side of the smaller neighbouring gap. Writes the positions (0..n-1) of the three
+ * kept into @p keep, ascending. 3 <= n <= OPTICAL_MAX_SIGHTINGS.
+ */
+void optical_select(const fx_angle_t *angle, uint8_t n, uint8_t keep[3]);
+
+/**
+ * One revolution's fix (O2-O11).
+ * @param map     beacon map (3..OPTICAL_MAX_BEACONS beacons)
+ * @param cfg     parameters (optical_config_default)
+ * @param approx  approximate pose at the reference instant: the nav board's dead-reckoning
+ *                pose there. The fix is the pose at that same instant.
+ * @param s       sightings sorted by angle (optical_rev_sightings), @p n of them (<= 15)
+ * @param latched dead-reckoning pose latched at each sighting (same frame as @p approx), or
+ *                NULL when the vehicle stood still during the revolution
+ * @param out     the fix; out->status tells whether it may be used (OPTICAL_OK)
+ * Returns out->status.
+ */
+int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
+                   const optical_pose_t *approx, const optical_sighting_t *s, uint8_t n,
+                   const optical_pose_t *latched, optical_fix_t *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,254 @@
+/*
+ * op_fix.c - agvcalc op "fix": the whole optical pipeline of one revolution (identify,
+ * select, triangulate, bearing, checks) with the firmware's own code (SPEC O2-O11).
+ *
+ * {"op":"fix","map":[[x,y],...],"approx":{"x","y","heading_deg"},
+ *  "sightings":[{"angle_deg":..,"width_deg":..,"pose":{...}?},...],"config":{...}?}
+ * -> {"ok":true,"x","y","heading_deg","used":[i,j,k],"identified":[k|-1,...],"quality",
+ *     "widened"}
+ * A sighting's optional "pose" is the dead-reckoning pose latched at that sighting (give it
+ * for all sightings or none); the fix is then the pose at the instant of "approx". Config
+ * names and defaults: docs/optical.md. On failure "identified" is still given.
+ */
+#define _DEFAULT_SOURCE /* M_PI */
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+
+#include "agvcalc.h"
+#include "fx/fx_host.h"
+#include "optical/optical.h"
+
+#define PER_COUNT (2.0 * M_PI / 50000.0 * 1000.0 / 65536.0)
+#define LIM       8191.0
+
+typedef struct {
+    const char *key;
+    double lo, hi;
+    int kind; /* 0 metres, 1 degrees, 2 count, 3 bool, 4 fraction, 5 m per count */
+    size_t off;
+} cfg_key_t;
+
+#define OFF(f) offsetof(optical_config_t, f)
+static const cfg_key_t keys[] = {
+    {"beacon_diameter_m", 0.001, 2.0, 0, OFF(beacon_diameter)},
+    {"beacon_flat", 0, 1, 3, OFF(beacon_flat)},
+    {"window_deg", 0.0, 90.0, 1, OFF(window)},
+    {"window_pos_m", 0.0, 100.0, 0, OFF(window_pos)},
+    {"widen_max_deg", 0.0, 90.0, 1, OFF(widen_max)},
+    {"widen_steps", 0, 10, 2, OFF(widen_steps)},
+    {"reject_overlap", 0, 1, 3, OFF(reject_overlap)},
+    {"range_m", 0.1, 8000.0, 0, OFF(range)},
+    {"range_max_m", 0.1, 8000.0, 0, OFF(range_max)},
+    {"range_steps", 0, 10, 2, OFF(range_steps)},
+    {"dist_tol_m", 0.0, 1000.0, 0, OFF(dist_tol)},
+    {"dist_rel", 0.0, 10.0, 4, OFF(dist_rel)},
+    {"jump_max_m", 0.0, 8000.0, 0, OFF(jump_max)},
+    {"turn_max_deg", 0.0, 180.0, 1, OFF(turn_max)},
+    {"resid_max_deg", 0.0, 180.0, 1, OFF(resid_max)},
+    {"quality_max", 1e-6, OPTICAL_QUALITY_LIMIT *PER_COUNT, 5, OFF(quality_max)},
+    {"motion_passes", 1, 4, 2, OFF(motion_passes)},
+};
+
+static int read_config(json_t *req, optical_config_t *cfg, char *err, size_t errlen)
+{
+    optical_config_default(cfg);
+    json_t *c = json_object_get(req, "config");
+    if (!c)
+        return 0;
+    if (!json_is_object(c))
+        return ac_fail(err, errlen, "config: expected an object");
+    const char *k;
+    json_t *v;
+    json_object_foreach(c, k, v)
+    {
+        size_t i = 0;
+        while (i < sizeof keys / sizeof keys[0] && strcmp(keys[i].key, k) != 0)
+            i++;
+        if (i == sizeof keys / sizeof keys[0])
+            return ac_fail(err, errlen,
+                           "config: unknown key \"%.40s\" (docs/optical.md lists them)", k);
+        const cfg_key_t *d = &keys[i];
+        char what[64];
+        snprintf(what, sizeof what, "config.%s", k);
+        char *field = (char *)cfg + d->off;
+        if (d->kind == 3) {
+            bool b;
+            if (ac_bool(c, k, false, &b, err, errlen))
+                return -1;
+            *(uint8_t *)field = b;
+            continue;
+        }
+        double x;
+        if (ac_number_value(v, what, d->lo, d->hi, &x, err, errlen))
+            return -1;
+        switch (d->kind) {
+        case 0:
+        case 4:
+            *(fx_q16_t *)field = fx_q16_from_double(x);
+            break;
+        case 1:
+            *(fx_angle_t *)field = fx_angle_from_deg(x);
+            break;
+        case 2:
+            if (x != floor(x))
+                return ac_fail(err, errlen, "%s: %g is not a whole number", what, x);
+            *(uint8_t *)field = (uint8_t)x;
+            break;
+        default:
+            *(uint32_t *)field = (uint32_t)floor(x / PER_COUNT);
+            break;
+        }
+    }
+    return 0;
+}
+
+static int read_pose(json_t *obj, const char *key, optical_pose_t *p, char *err, size_t errlen)
+{
+    ac_pose_t a;
+    if (ac_pose(obj, key, LIM, true, &a, err, errlen))
+        return -1;
+    p->x = fx_q16_from_double(a.x);
+    p->y = fx_q16_from_double(a.y);
+    p->heading = fx_angle_from_deg(a.heading_deg);
+    return 0;
+}
+
+static const char *why(int8_t st)
+{
+    switch (st) {
+    case OPTICAL_E_FEW:
+        return "fewer than 3 beacons identified";
+    case OPTICAL_E_DEGENERATE:
+        return "degenerate triplet: two beacons coincide or two sightings share an angle";
+    case OPTICAL_E_SINGULAR:
+        return "too close to singular: the vehicle lies near the circle through the three "
+               "beacons (quality beyond quality_max)";
+    case OPTICAL_E_JUMP:
+        return "the fix jumps farther than jump_max_m from the approximate position: likely "
+               "misidentification";
+    case OPTICAL_E_TURN:
+        return "the bearing differs more than turn_max_deg from the approximate heading: "
+               "likely misidentification";
+    case OPTICAL_E_DISAGREE:
+        return "other identified sightings disagree with the fix by more than resid_max_deg: "
+               "likely misidentification";
+    case OPTICAL_E_INCONSISTENT:
+        return "the sightings contradict the approximate pose within window_deg and "
+               "window_pos_m, or no position sees the selected beacons under their angles";
+    case OPTICAL_E_UNCONFIRMED:
+        return "identified only beyond the stated uncertainty (a guess or widened windows) "
+               "and fewer than five sightings confirm the fix";
+    default:
+        return "coordinates beyond +-8192 m";
+    }
+}
+
+int agvcalc_op_fix(json_t *req, json_t *resp, char *err, size_t errlen);
+
+int agvcalc_op_fix(json_t *req, json_t *resp, char *err, size_t errlen)
+{
+    double pts[OPTICAL_MAX_BEACONS][2];
+    size_t nb;
+    if (ac_points(req, "map", 3, OPTICAL_MAX_BEACONS, LIM, pts, &nb, err, errlen))
+        return -1;
+    optical_pose_t approx;
+    if (read_pose(req, "approx", &approx, err, errlen))
+        return -1;
+    json_t *arr = json_object_get(req, "sightings");
+    if (!arr)
+        return ac_fail(err, errlen, "missing \"sightings\"");
+    if (!json_is_array(arr) || json_array_size(arr) > OPTICAL_MAX_SIGHTINGS)
+        return ac_fail(err, errlen, "sightings: expected an array of at most %d objects",
+                       OPTICAL_MAX_SIGHTINGS);
+    size_t n = json_array_size(arr);
+    optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
+    optical_pose_t lat[OPTICAL_MAX_SIGHTINGS] = {{0, 0, 0}};
+    size_t with_pose = 0;
+    for (size_t i = 0; i < n; i++) {
+        json_t *o = json_array_get(arr, i);
+        char what[48];
+        snprintf(what, sizeof what, "sightings[%zu]", i);
+        if (!json_is_object(o))
+            return ac_fail(err, errlen, "%s: expected {\"angle_deg\",\"width_deg\"}", what);
+        double a, w;
+        snprintf(what, sizeof what, "sightings[%zu].angle_deg", i);
+        json_t *v = json_object_get(o, "angle_deg");
+        if (!v)
+            return ac_fail(err, errlen, "missing \"%s\"", what);
+        if (ac_number_value(v, what, -1e6, 1e6, &a, err, errlen))
+            return -1;
+        snprintf(what, sizeof what, "sightings[%zu].width_deg", i);
+        v = json_object_get(o, "width_deg");
+        if (!v)
+            return ac_fail(err, errlen, "missing \"%s\"", what);
+        if (ac_number_value(v, what, 0.0, 180.0, &w, err, errlen))
+            return -1;
+        s[i].angle = fx_angle_from_deg(a);
+        double w16 = round(w / 360.0 * 65536.0);
+        s[i].width = (uint16_t)(w16 > 65535.0 ? 65535.0 : w16);
+        if (json_object_get(o, "pose")) {
+            char inner[400];
+            if (read_pose(o, "pose", &lat[i], inner, sizeof inner))
+                return ac_fail(err, errlen, "sightings[%zu].%s", i, inner);
+            with_pose++;
+        }
+    }
+    if (with_pose != 0 && with_pose != n)
+        return ac_fail(err, errlen, "sightings: give \"pose\" for every sighting or for none");
+    optical_config_t cfg;
+    if (read_config(req, &cfg, err, errlen))
+        return -1;
+
+    /* The firmware takes the sightings sorted by angle. */
+    size_t ord[OPTICAL_MAX_SIGHTINGS];
+    for (size_t i = 0; i < n; i++) {
+        size_t j = i;
+        while (j > 0 && s[ord[j - 1]].angle > s[i].angle) {
+            ord[j] = ord[j - 1];
+            j--;
+        }
+        ord[j] = i;
+    }
+    optical_sighting_t ss[OPTICAL_MAX_SIGHTINGS];
+    optical_pose_t sl[OPTICAL_MAX_SIGHTINGS];
+    for (size_t j = 0; j < n; j++) {
+        ss[j] = s[ord[j]];
+        sl[j] = lat[ord[j]];
+    }
+    optical_xy_t b[OPTICAL_MAX_BEACONS];
+    for (size_t k = 0; k < nb; k++) {
+        b[k].x = fx_q16_from_double(pts[k][0]);
+        b[k].y = fx_q16_from_double(pts[k][1]);
+    }
+    optical_map_t map = {b, (uint8_t)nb};
+    optical_fix_t fix;
+    int8_t st = optical_fix(&map, &cfg, &approx, ss, (uint8_t)n, with_pose ? sl : NULL, &fix);
+
+    json_t *ident = json_array();
+    int idx[OPTICAL_MAX_SIGHTINGS];
+    for (size_t j = 0; j < n; j++)
+        idx[ord[j]] = fix.ident[j];
+    for (size_t i = 0; i < n; i++)
+        json_array_append_new(ident, json_integer(idx[i]));
+    if (st != OPTICAL_OK) {
+        json_object_set_new(resp, "identified", ident);
+        if (st == OPTICAL_E_FEW)
+            return ac_fail(err, errlen, "fewer than 3 beacons identified (%u)", fix.n_ident);
+        if (st == OPTICAL_E_SINGULAR && fix.quality != UINT32_MAX)
+            ac_set(resp, "quality", fix.quality * PER_COUNT, 6);
+        return ac_fail(err, errlen, "%s", why(st));
+    }
+    ac_set(resp, "x", fx_q16_to_double(fix.pose.x), 6);
+    ac_set(resp, "y", fx_q16_to_double(fix.pose.y), 6);
+    double h = fx_angle_to_deg(fix.pose.heading);
+    ac_set(resp, "heading_deg", round(h * 1e6) >= 360e6 ? 0.0 : h, 6);
+    json_t *used = json_array();
+    for (int i = 0; i < 3; i++)
+        json_array_append_new(used, json_integer(fix.used[i]));
+    json_object_set_new(resp, "used", used);
+    json_object_set_new(resp, "identified", ident);
+    ac_set(resp, "quality", fix.quality * PER_COUNT, 6);
+    json_object_set_new(resp, "widened", json_integer(fix.widened));
+    return 0;
+}
