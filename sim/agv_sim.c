@@ -8,7 +8,7 @@
  *
  * Exit status: 0 the run met the scenario's success criteria, 1 it did not, 2 bad input.
  *
- * The world (sim/*.c): truth motion of a tricycle on constant-steering segments, a goniometer
+ * The world (sim/): truth motion of a tricycle on constant-steering segments, a goniometer
  * whose photodetector edges come from the beam's geometry while the vehicle moves, an
  * odometer pulse every dl of front-wheel travel, a gyro step whenever the measured heading
  * (truth plus drift) crosses a step boundary, and a drive board that decodes the port writes
@@ -49,18 +49,18 @@
 #include "sim/rng.h"
 #include "sim/scenario.h"
 
-#define DEG            (M_PI / 180.0)
-#define NS(t)          ((uint64_t)llround((t)*1e9))
-#define SEC(ns)        ((double)(ns)*1e-9)
-#define MAX_EDGES      256
-#define RISE_RING      256u
-#define SAMPLE_PERIOD  0.01   /* s: cross-track samples and telemetry decimation */
-#define LOG_PERIOD     0.05   /* s: CSV and LCM pose/truth rows */
-#define DS_MARGIN      0.02   /* m: the drive board's delta-S comes this far before an arc ends */
-#define BRAKE          0.5    /* m/s^2: the drive board's braking when told speed 0 */
-#define BRAKE_STEP     0.01   /* s: speed steps while braking */
-#define STOP_DISTANCE  5.0    /* m: the nav board's stop request without a fix (G6) */
-#define ARC_SPACING    0.8    /* m: secondary points on the path (the double-arc length) */
+#define DEG           (M_PI / 180.0)
+#define NS(t)         ((uint64_t)llround((t)*1e9))
+#define SEC(ns)       ((double)(ns)*1e-9)
+#define MAX_EDGES     256
+#define RISE_RING     256u
+#define SAMPLE_PERIOD 0.01 /* s: cross-track samples and telemetry decimation */
+#define LOG_PERIOD    0.05 /* s: CSV and LCM pose/truth rows */
+#define DS_MARGIN     0.02 /* m: the drive board's delta-S comes this far before an arc ends */
+#define BRAKE         0.5  /* m/s^2: the drive board's braking when told speed 0 */
+#define BRAKE_STEP    0.01 /* s: speed steps while braking */
+#define STOP_DISTANCE 5.0  /* m: the nav board's stop request without a fix (G6) */
+#define ARC_SPACING   0.8  /* m: secondary points on the path (the double-arc length) */
 
 /* The drive board: what the main board loaded, and where it is in it. */
 typedef struct {
@@ -289,8 +289,8 @@ static void schedule_drive(double t)
         next = fmin(next, t + ds / v);
     }
     if (isfinite(next))
-        S.ev_drive = posix_schedule(NS(next) > posix_now_ns() ? NS(next) : posix_now_ns() + 1,
-                                    on_drive, 0);
+        S.ev_drive =
+            posix_schedule(NS(next) > posix_now_ns() ? NS(next) : posix_now_ns() + 1, on_drive, 0);
 }
 
 static void schedule_all(void)
@@ -438,6 +438,13 @@ static void on_fix(void *ctx, const main_board_fix_event_t *ev)
         double fx = fx_q16_to_double(ev->fix.pose.x), fy = fx_q16_to_double(ev->fix.pose.y);
         err = hypot(fx - tp.x, fy - tp.y);
         herr = fabs(remainder(fx_angle_to_deg(ev->fix.pose.heading) - tp.th / DEG, 360.0));
+        if (getenv("AGV_SIM_DEBUG"))
+            fprintf(stderr,
+                    "fix ref %u: approx (%.4f %.4f %.3f) truth (%.4f %.4f %.3f) fix (%.4f %.4f) n "
+                    "%u st %d\n",
+                    ev->ref_latch, fx_q16_to_double(ev->approx.x), fx_q16_to_double(ev->approx.y),
+                    fx_angle_to_deg(ev->approx.heading), tp.x, tp.y, wrap_deg(tp.th / DEG), fx, fy,
+                    ev->n, ev->status);
     }
     if (accepted) {
         S.rep.fixes_accepted++;
@@ -491,6 +498,16 @@ static void on_fix(void *ctx, const main_board_fix_event_t *ev)
     }
 }
 
+static void on_state(void *ctx, drive_state_t st)
+{
+    (void)ctx;
+    if (getenv("AGV_SIM_DEBUG")) {
+        sim_pose_t p = truth_at(now_s());
+        fprintf(stderr, "t=%.3f state %s at (%.4f %.4f %.2f)\n", now_s(), drive_seq_state_name(st),
+                p.x, p.y, wrap_deg(p.th / DEG));
+    }
+}
+
 static void sample(void *ctx, uint64_t t_ns)
 {
     (void)ctx;
@@ -514,8 +531,8 @@ static void sample(void *ctx, uint64_t t_ns)
         if (S.f_est)
             fprintf(S.f_est, "%.4f,%.6f,%.6f,%.5f\n", t, ex, ey, eh);
         if (S.lcm) {
-            cyclopion_truth_t tm = {(int64_t)(t_ns / 1000), p.x, p.y, wrap_deg(p.th / DEG),
-                                    S.seg.v, S.alpha / DEG, ct};
+            cyclopion_truth_t tm = {(int64_t)(t_ns / 1000), p.x, p.y, wrap_deg(p.th / DEG), S.seg.v,
+                                    S.alpha / DEG,          ct};
             cyclopion_truth_t_publish(S.lcm, "CYCLOPION_TRUTH", &tm);
             int src = posix_source_find(S.nav_b, (int)hal_edge_vector(HAL_EDGE_DELTA_L),
                                         (int)hal_edge_pin(HAL_EDGE_DELTA_L));
@@ -550,13 +567,13 @@ static void build_nominal(const main_board_config_t *mc)
     for (size_t i = 0; i < S.sc.n_path; i++) {
         drive_pose_t to = mc->path[i].pose;
         drive_solution_t sol;
-        drive_status_t st = drive_solve(&from, &to, mc->path_cfg.nominal_radius,
-                                        mc->path_cfg.reverse, &sol, NULL);
+        drive_status_t st =
+            drive_solve(&from, &to, mc->path_cfg.nominal_radius, mc->path_cfg.reverse, &sol, NULL);
         if (st != DRIVE_OK) {
             char msg[256];
             snprintf(msg, sizeof msg,
-                     "path[%zu]: no double arc from the previous point: %s (min_radius_m %.3f)",
-                     i, drive_status_text(st), S.sc.min_radius);
+                     "path[%zu]: no double arc from the previous point: %s (min_radius_m %.3f)", i,
+                     drive_status_text(st), S.sc.min_radius);
             die_input(msg);
         }
         for (int k = 0; k < 2; k++) {
@@ -606,14 +623,11 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
-    static const struct option opts[] = {{"scenario", required_argument, 0, 's'},
-                                         {"seed", required_argument, 0, 'S'},
-                                         {"report", required_argument, 0, 'r'},
-                                         {"log-dir", required_argument, 0, 'l'},
-                                         {"lcm", required_argument, 0, 'L'},
-                                         {"quiet", no_argument, 0, 'q'},
-                                         {"help", no_argument, 0, 'h'},
-                                         {0, 0, 0, 0}};
+    static const struct option opts[] = {
+        {"scenario", required_argument, 0, 's'}, {"seed", required_argument, 0, 'S'},
+        {"report", required_argument, 0, 'r'},   {"log-dir", required_argument, 0, 'l'},
+        {"lcm", required_argument, 0, 'L'},      {"quiet", no_argument, 0, 'q'},
+        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0}};
     const char *scenario = NULL, *report = NULL, *log_dir = NULL, *lcm_url = NULL;
     long long seed = -1;
     int c;
@@ -627,8 +641,7 @@ int main(int argc, char **argv)
             errno = 0;
             seed = strtoll(optarg, &end, 10);
             if (errno || *end || seed < 0) {
-                fprintf(stderr, "agv-sim: --seed: \"%s\" is not a non-negative integer\n",
-                        optarg);
+                fprintf(stderr, "agv-sim: --seed: \"%s\" is not a non-negative integer\n", optarg);
                 return 2;
             }
             break;
@@ -669,8 +682,8 @@ int main(int argc, char **argv)
     if (seed >= 0)
         S.sc.seed = (uint64_t)seed;
     if (S.sc.n_path > MAIN_BOARD_MAX_PATH) {
-        snprintf(err, sizeof err, "path: %zu points, the main board holds at most %d",
-                 S.sc.n_path, MAIN_BOARD_MAX_PATH);
+        snprintf(err, sizeof err, "path: %zu points, the main board holds at most %d", S.sc.n_path,
+                 MAIN_BOARD_MAX_PATH);
         die_input(err);
     }
     if (S.sc.world.n_beacons > OPTICAL_MAX_BEACONS) {
@@ -755,6 +768,7 @@ int main(int argc, char **argv)
     }
     posix_board_select(S.main_b);
     hal_cpu_init();
+    posix_drive_port_set_sink(S.main_b, drive_sink, 0); /* the drive board sees every write */
     drive_status_t ds = main_board_init(&mc);
     if (ds != DRIVE_OK) {
         const drive_path_t *pp = main_board_path();
@@ -762,10 +776,9 @@ int main(int argc, char **argv)
                  pp->bad_leg, pp->bad_sub, drive_status_text(pp->bad_why));
         die_input(err);
     }
-    main_board_observer_t obs = {0, on_fix, 0, 0};
+    main_board_observer_t obs = {0, on_fix, 0, on_state};
     main_board_set_observer(&obs);
     posix_signal_connect(S.main_b, HAL_SIGNAL_COORD_REQUEST, S.nav_b, HAL_EDGE_COORD_REQUEST);
-    posix_drive_port_set_sink(S.main_b, drive_sink, 0);
 
     /* ---- outputs ---- */
     if (log_dir) {
@@ -853,7 +866,8 @@ int main(int argc, char **argv)
         if (!S.quiet) {
             double frac = now_s() / S.sc.duration;
             clock_gettime(CLOCK_MONOTONIC, &w1);
-            double wall = (double)(w1.tv_sec - w0.tv_sec) + 1e-9 * (double)(w1.tv_nsec - w0.tv_nsec);
+            double wall =
+                (double)(w1.tv_sec - w0.tv_sec) + 1e-9 * (double)(w1.tv_nsec - w0.tv_nsec);
             if (frac >= next_progress || wall >= wall_next) {
                 fprintf(stderr, "agv-sim: %s t=%.1f/%.0f s, fixes %u/%u accepted, state %s\n",
                         S.sc.name, now_s(), S.sc.duration, S.rep.fixes_accepted,
@@ -876,7 +890,7 @@ int main(int argc, char **argv)
     r->wall_time = (double)(w1.tv_sec - w0.tv_sec) + 1e-9 * (double)(w1.tv_nsec - w0.tv_nsec);
     posix_board_select(S.main_b);
     main_board_stats(&ms);
-    r->reached_goal = ms.done && !ms.fault;
+    r->reached_goal = ms.done && !ms.fault && !ms.stop_requested;
     sim_pose_t end = truth_at(now_s());
     const sim_waypoint_t *goal = &S.sc.path[S.sc.n_path - 1];
     r->final_error = hypot(end.x - goal->x, end.y - goal->y);
@@ -934,7 +948,9 @@ int main(int argc, char **argv)
                                __VA_ARGS__);                                                       \
     } while (0)
     if (sc->require_goal && !r->reached_goal)
-        MISS(" goal not reached (%s);", ms.fault ? "fault" : "time out");
+        MISS(" goal not reached (%s);", ms.fault            ? "fault"
+                                        : ms.stop_requested ? "stop request: no fix for too long"
+                                                            : "time out");
     if (sim_stat_mean(&r->cross_track) > sc->max_cross_track_mean)
         MISS(" cross-track mean %.4f m > %.4f;", sim_stat_mean(&r->cross_track),
              sc->max_cross_track_mean);

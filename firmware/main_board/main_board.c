@@ -13,6 +13,7 @@
 #include "hal/clock.h"
 #include "hal/cpu.h"
 #include "hal/drive_port.h"
+#include "hal/edge.h"
 #include "hal/irq.h"
 #include "hal/link.h"
 #include "hal/signal.h"
@@ -46,26 +47,28 @@ static struct {
     main_board_observer_t obs;
     main_board_stats_t stats;
     /* handlers -> main loop */
-    uint16_t rises;             /* photodetector rising edges so far (= the nav board's latches) */
-    uint16_t rise_at_rev[4];    /* rises when revolution (seq & 3) started */
-    volatile uint16_t indexes;  /* index pulses not yet fed to the sequencer */
-    uint8_t ack_in;             /* FIX_ACK received */
+    uint16_t rises;            /* photodetector rising edges so far (= the nav board's latches) */
+    uint16_t rise_at_rev[4];   /* rises when revolution (seq & 3) started */
+    volatile uint16_t indexes; /* index pulses not yet fed to the sequencer */
+    uint8_t ack_in;            /* FIX_ACK received */
     int8_t ack_status;
-    uint8_t pose_in;            /* POSE received */
+    uint8_t pose_in; /* POSE received */
     optical_pose_t pose;
     uint8_t stop_in;
     /* the fix in progress */
     uint8_t fix_state;
     uint32_t fix_deadline;
-    int8_t n;                   /* sightings of the revolution */
-    uint16_t latch_first;       /* latch number of the first sighting in time */
-    uint16_t latch_have;        /* bit i: latch first + i arrived */
-    uint8_t order[OPTICAL_MAX_SIGHTINGS];       /* sorted position -> capture order */
+    int8_t n;                             /* sightings of the revolution */
+    uint16_t latch_first;                 /* latch number of the first sighting in time */
+    uint16_t latch_have;                  /* bit i: latch first + i arrived */
+    int32_t rise[OPTICAL_MAX_SIGHTINGS];  /* rising edges, counts after the index pulse */
+    uint16_t half[OPTICAL_MAX_SIGHTINGS]; /* half widths, counts */
+    uint8_t order[OPTICAL_MAX_SIGHTINGS]; /* sorted position -> capture order */
     optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
-    optical_pose_t latched_raw[OPTICAL_MAX_SIGHTINGS]; /* capture order */
-    optical_pose_t latched[OPTICAL_MAX_SIGHTINGS];     /* sorted order */
+    optical_pose_t latched_raw[OPTICAL_MAX_SIGHTINGS]; /* capture order, at rising edges */
+    optical_pose_t latched[OPTICAL_MAX_SIGHTINGS];     /* sorted order, at pulse centres */
     optical_fix_t fix;
-    uint16_t fix_ref;           /* reference latch of the last good fix */
+    uint16_t fix_ref; /* reference latch of the last good fix */
     /* the pose request */
     uint8_t pose_state;
     uint16_t pose_ms;
@@ -162,6 +165,8 @@ static void send_wseq(const drive_wseq_t *w)
     drive_port_send(w);
 }
 
+static void correct_nav(void);
+
 static void fix_done(int8_t status)
 {
     main_board_fix_event_t ev;
@@ -176,6 +181,11 @@ static void fix_done(int8_t status)
     if (status == OPTICAL_OK) {
         mb.stats.fixes_ok++;
         mb.fix_ref = ev.ref_latch;
+        /* Simplified travel drives from the fix alone (seed 5.2, written when the ground
+         * navigator did not work yet); the nav board is corrected all the same, so that its
+         * stop request (G6) watches real dead reckoning. */
+        if (mb.seq_cfg.mode == DRIVE_MODE_SIMPLIFIED)
+            correct_nav();
         push(DRIVE_EVT_FIX_READY, &mb.fix.pose);
     } else {
         mb.stats.fixes_failed++;
@@ -212,6 +222,11 @@ static void fix_start(void)
     uint16_t first = mb.rise_at_rev[rev->seq & 3u];
     if (rev->s[0].start >= mb.counts_per_turn)
         first--;
+    for (int8_t i = 0; i < mb.n; i++) {
+        uint16_t st = rev->s[i].start;
+        mb.rise[i] = st >= mb.counts_per_turn ? (int32_t)st - 65536l : (int32_t)st;
+        mb.half[i] = (uint16_t)((rev->s[i].width + 1u) >> 1);
+    }
     hal_critical_enter();
     mb.latch_first = first;
     mb.latch_have = 0;
@@ -235,9 +250,30 @@ static void fix_finish(void)
         fix_done(OPTICAL_E_REV);
         return;
     }
+    /*
+     * The nav board latches at the pulse's rising edge; the sighting is the pulse's centre,
+     * half a width later (up to a few ms: millimetres at 1 m/s). Each sighting's pose is
+     * interpolated between its latch and the next one (extrapolated for the last) by the
+     * angle clock, which is time.
+     */
+    uint8_t sorted_pos[OPTICAL_MAX_SIGHTINGS];
     for (int8_t j = 0; j < mb.n; j++)
-        mb.latched[j] = mb.latched_raw[mb.order[j]];
-    /* Reference instant: the last sighting in time; its latch is the approximate pose. */
+        sorted_pos[mb.order[j]] = (uint8_t)j;
+    for (int8_t i = 0; i < mb.n; i++) {
+        int8_t a = i + 1 < mb.n ? i : (int8_t)(i - 1), b = (int8_t)(a + 1);
+        optical_pose_t p = mb.latched_raw[i];
+        int32_t span = mb.rise[b] - mb.rise[a];
+        int32_t frac = 0; /* Q16 */
+        if (a >= 0 && span > 0 && fx_div_shift((int32_t)mb.half[i], span, 16, &frac)) {
+            const optical_pose_t *pa = &mb.latched_raw[a], *pb = &mb.latched_raw[b];
+            p.x += fx_mul_q16(pb->x - pa->x, frac);
+            p.y += fx_mul_q16(pb->y - pa->y, frac);
+            p.heading += (fx_angle_t)fx_mul_q16((int32_t)(pb->heading - pa->heading), frac);
+        }
+        mb.latched[sorted_pos[i]] = p;
+    }
+    /* Reference instant: the last sighting's rising edge; its latch is the approximate pose
+     * and the nav board applies the fix to that latch. */
     const optical_pose_t *approx = &mb.latched_raw[mb.n - 1];
     int8_t st = optical_fix(&mb.map, &mb.optical, approx, mb.s, (uint8_t)mb.n, mb.latched, &mb.fix);
     fix_done(st);
@@ -287,8 +323,8 @@ static optical_pose_t predict(const optical_pose_t *now, uint16_t ms)
             k = 0;
     }
     int32_t v = mb.loaded.speed < 0 ? -mb.loaded.speed : mb.loaded.speed;
-    fx_q16_t rate = v * mb.board.speed_lsb;                          /* m/s, Q16 */
-    fx_q16_t secs = (fx_q16_t)(((uint32_t)ms << 16) / 1000u);        /* s, Q16 */
+    fx_q16_t rate = v * mb.board.speed_lsb;                   /* m/s, Q16 */
+    fx_q16_t secs = (fx_q16_t)(((uint32_t)ms << 16) / 1000u); /* s, Q16 */
     fx_q16_t dist = fx_mul_q16(rate, secs);
     drive_pose_t d = {p.x, p.y, p.heading};
     d = drive_pose_advance(&d, k, dist, mb.loaded.speed < 0);
@@ -425,8 +461,8 @@ drive_status_t main_board_init(const main_board_config_t *cfg)
     drive_ppi_init(&w);
     send_wseq(&w);
 
-    drive_status_t st = drive_path_prepare(&mb.path, &mb.start, mb.pts, cfg->n_path,
-                                           &cfg->path_cfg, &mb.board);
+    drive_status_t st =
+        drive_path_prepare(&mb.path, &mb.start, mb.pts, cfg->n_path, &cfg->path_cfg, &mb.board);
     drive_seq_init(&mb.seq, &mb.path, &mb.seq_cfg);
     return st;
 }

@@ -29,8 +29,9 @@
 extern "C" {
 #endif
 
-/** Most primary path points the board holds (18 bytes of RAM each). */
-#define MAIN_BOARD_MAX_PATH 32
+/** Most primary path points the board holds (18 bytes of RAM each; secondary points are
+ * computed on the way, so a path needs points only where it bends). */
+#define MAIN_BOARD_MAX_PATH 16
 
 /** What the board is told before a run (the base station's download, seed 5.1 step 1). */
 typedef struct {
@@ -48,11 +49,11 @@ typedef struct {
 
 /** One fix attempt, as the observer sees it. */
 typedef struct {
-    int8_t status;        /**< optical_status_t; OPTICAL_E_REV also for missing latches */
-    uint8_t n;            /**< sightings of the revolution */
-    uint16_t ref_latch;   /**< the latch (photodetector rising edge number) it refers to */
-    optical_fix_t fix;    /**< the pipeline's result */
-    optical_pose_t approx; /**< the dead-reckoning pose at the reference instant */
+    int8_t status;               /**< optical_status_t; OPTICAL_E_REV also for missing latches */
+    uint8_t n;                   /**< sightings of the revolution */
+    uint16_t ref_latch;          /**< the latch (photodetector rising edge number) it refers to */
+    optical_fix_t fix;           /**< the pipeline's result */
+    optical_pose_t approx;       /**< the dead-reckoning pose at the reference instant */
     const optical_sighting_t *s; /**< the sightings (sorted by angle), valid during the call */
 } main_board_fix_event_t;
 
@@ -66,15 +67,15 @@ typedef struct {
 
 /** Counters for diagnostics. */
 typedef struct {
-    uint32_t revolutions;    /**< index pulses */
+    uint32_t revolutions; /**< index pulses */
     uint16_t fixes_ok, fixes_failed;
     uint16_t fixes_acked;    /**< fixes the nav board installed */
     uint16_t latch_timeouts; /**< fixes abandoned waiting for latches */
     uint16_t loads;          /**< double arcs loaded */
     uint16_t link_errors;
     uint8_t done, fault;
-    uint8_t fault_why;       /**< drive_fault_t */
-    uint8_t stop_requested;  /**< the nav board asked for a stop (G6) */
+    uint8_t fault_why;      /**< drive_fault_t */
+    uint8_t stop_requested; /**< the nav board asked for a stop (G6) */
 } main_board_stats_t;
 
 /**

@@ -188,6 +188,13 @@ static uint32_t oct_norm(int32_t dx, int32_t dy)
 int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
                              optical_sighting_t *out)
 {
+    uint8_t order[OPTICAL_MAX_SIGHTINGS];
+    return optical_rev_order(rev, counts_per_turn, out, order);
+}
+
+int8_t optical_rev_order(const optical_rev_t *rev, uint16_t counts_per_turn,
+                         optical_sighting_t *out, uint8_t *order)
+{
     if (rev->cov || rev->period != counts_per_turn || counts_per_turn == 0)
         return -1;
     uint8_t n = rev->n;
@@ -209,8 +216,10 @@ int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
         uint8_t j = i;
         while (j > 0 && out[j - 1].angle > a) {
             out[j] = out[j - 1];
+            order[j] = order[j - 1];
             j--;
         }
+        order[j] = i;
         out[j].angle = a;
         out[j].width = w16 > 0xFFFFu ? 0xFFFFu : (uint16_t)w16;
     }

@@ -10,7 +10,6 @@
  * for all sightings or none); the fix is then the pose at the instant of "approx". Config
  * names and defaults: docs/optical.md. On failure "identified" is still given.
  */
-#define _DEFAULT_SOURCE /* M_PI */
 #include <math.h>
 #include <stddef.h>
 #include <string.h>

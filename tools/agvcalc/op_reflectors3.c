@@ -10,7 +10,6 @@
  * than one assignment of reflectors fits inside the field and no "approx" is given, the
  * answer is ok:false with "candidates":[[x,y],...].
  */
-#define _DEFAULT_SOURCE /* M_PI */
 #include <math.h>
 
 #include "agvcalc.h"

@@ -8,7 +8,6 @@
  * error on each sighting; ok:false when it exceeds quality_max (default 0.25) or the geometry
  * is degenerate.
  */
-#define _DEFAULT_SOURCE /* M_PI */
 #include <math.h>
 
 #include "agvcalc.h"

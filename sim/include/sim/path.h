@@ -28,8 +28,7 @@ typedef struct {
 int sim_path_append(sim_path_t *p, sim_pose_t start, double kappa, double length, int reverse);
 
 /** Append a piece that starts at @p start whatever the path's end. Returns 0 or -1 (full). */
-int sim_path_append_from(sim_path_t *p, sim_pose_t start, double kappa, double length,
-                         int reverse);
+int sim_path_append_from(sim_path_t *p, sim_pose_t start, double kappa, double length, int reverse);
 
 /** The pose at the end of a piece. */
 sim_pose_t sim_piece_end(const sim_piece_t *pc);

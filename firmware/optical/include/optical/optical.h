@@ -156,6 +156,14 @@ int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
                              optical_sighting_t *out);
 
 /**
+ * optical_rev_sightings() that also tells where each sorted sighting came from: @p order[j]
+ * is the capture (time) order of sorted sighting j, so that per-sighting data kept in time
+ * order (the nav board's latches) can follow the sort. Same return value.
+ */
+int8_t optical_rev_order(const optical_rev_t *rev, uint16_t counts_per_turn,
+                         optical_sighting_t *out, uint8_t *order);
+
+/**
  * Triangulate from three beacons and their sighting angles (O8-O10).
  * @param b     the three beacons (any order), within OPTICAL_COORD_LIMIT, at most 2048 m apart
  * @param theta their sighting angles (CCW from the vehicle heading), same order
