@@ -50,7 +50,7 @@
 #include "sim/scenario.h"
 
 #define DEG           (M_PI / 180.0)
-#define NS(t)         ((uint64_t)llround((t)*1e9))
+#define NS(t)         ((uint64_t)((t)*1e9 + 0.5)) /* t >= 0 */
 #define SEC(ns)       ((double)(ns)*1e-9)
 #define MAX_EDGES     256
 #define RISE_RING     256u
@@ -166,10 +166,10 @@ static void on_dl(void *ctx, uint64_t t_ns)
         S.ev_dl = posix_schedule(NS(t) > t_ns ? NS(t) : t_ns + 1, on_dl, 0);
 }
 
-/* Measured heading: truth plus the gyro's drift. */
+/* Measured heading: truth (linear in time on a segment) plus the gyro's drift. */
 static double gyro_heading(double t)
 {
-    return truth_at(t).th + S.sc.gyro_drift * t;
+    return S.seg.p0.th + sim_segment_omega(&S.seg) * (t - S.seg.t0) + S.sc.gyro_drift * t;
 }
 
 static void schedule_gyro(double t0)
@@ -857,9 +857,8 @@ int main(int argc, char **argv)
             if (!any)
                 break;
         }
-        posix_board_select(S.main_b);
-        main_board_stats(&ms);
-        if ((ms.done || ms.fault) && done_at < 0)
+        drive_state_t st = main_board_state();
+        if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT) && done_at < 0)
             done_at = now_s();
         if (done_at >= 0 && S.v == 0 && !S.braking && now_s() > done_at + 0.5)
             break; /* finished and standing */

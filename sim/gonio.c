@@ -56,15 +56,19 @@ static double solve(const crossing_t *c, double t_from, double t_to)
     /* Next multiple of 2 pi above f0: F grows at about the mirror rate. */
     double target = ceil(f0 / (2.0 * M_PI)) * 2.0 * M_PI;
     double t = t_from + (target - f0) / w;
+    /* Newton with the derivative from the last step (secant): F is close to linear. */
+    double df = w;
     for (int i = 0; i < 8; i++) {
-        double h = 1e-6;
         double f = F(c, t) - target;
-        double df = (F(c, t + h) - F(c, t - h)) / (2.0 * h);
+        double dt = f / df;
+        double h = 1e-6;
+        if (i == 0)
+            df = (F(c, t + h) - F(c, t - h)) / (2.0 * h);
         if (df <= 0.0)
             df = w;
-        double dt = f / df;
+        dt = f / df;
         t -= dt;
-        if (fabs(dt) < 1e-13)
+        if (fabs(dt) < 1e-12)
             break;
     }
     if (!(t >= t_from) || !(t < t_to))

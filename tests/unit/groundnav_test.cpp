@@ -1003,6 +1003,9 @@ struct LandAt {
     int landed;
 };
 
+// A hook that only lets the harness count the points (they are counted under a hook).
+void count_only(void *, int, uint64_t) {}
+
 void land_hook(void *ctx, int board, uint64_t point)
 {
     auto *l = static_cast<LandAt *>(ctx);
@@ -1039,9 +1042,11 @@ TEST_F(GroundNavHarness, CoordinateRequestAtEveryPointIsNeverTorn)
         }
         // how many points does this event pass? (a dry run on a copy)
         gnav_t saved = g;
+        posix_set_preempt_hook(count_only, nullptr); /* points are counted under a hook */
         uint64_t p0 = posix_preempt_points(board);
         deliver(e);
         uint64_t points = posix_preempt_points(board) - p0;
+        posix_set_preempt_hook(nullptr, nullptr);
         g = saved;
         max_points = std::max<size_t>(max_points, points);
         for (uint64_t k = 1; k <= points; k++) {
@@ -1079,10 +1084,12 @@ TEST_F(GroundNavHarness, HandlersInterruptingAReaderAtEveryPoint)
                                : e == UP  ? HAL_EDGE_GYRO_UP
                                           : HAL_EDGE_GYRO_DOWN;
         gnav_t saved = g;
+        posix_set_preempt_hook(count_only, nullptr); /* points are counted under a hook */
         uint64_t p0 = posix_preempt_points(board);
         gnav_pose_t p;
         gnav_pose(&g, &p);
         uint64_t points = posix_preempt_points(board) - p0;
+        posix_set_preempt_hook(nullptr, nullptr);
         for (int two = 0; two <= 1; two++) {
             // the poses a consistent reader may return
             gnav_pose_t expect[3];
