@@ -36,6 +36,10 @@ extern "C" {
 #define GNAV_TABLE_N 32u
 /** Pose latches kept (a power of two, at least the 15 sightings of a revolution). */
 #define GNAV_LATCH_N 16u
+/** Closed gyro intervals remembered to interpolate latch headings (a power of two). */
+#define GNAV_RING_N  8u
+/** gnav_pub_t.k while a gyro edge has not been followed by a pulse yet. */
+#define GNAV_K_EDGE  INT16_MIN
 /** Fix corrections kept to bring latches of older frames forward. */
 #define GNAV_CORR_N  4u
 
@@ -87,12 +91,19 @@ typedef void (*gnav_stop_fn)(void *ctx);
 typedef struct {
     int64_t x, y;       /* pulses, Q25 */
     fx_angle_t heading; /* centre of the gyro cell */
+    int16_t k;          /* pulses since the interval's first pulse (GNAV_K_EDGE: none yet) */
+    uint16_t rate;      /* the rate it entered at, pulses per step (0: unknown) */
+    uint16_t ival;      /* its number: gyro edges so far */
+    int8_t dir;         /* its entry edge: +1 up, -1 down, 0 the start at the cell centre */
 } gnav_pub_t;
 
 typedef struct {
-    int32_t x4, y4; /* pulses, Q4 */
-    fx_angle_t heading;
-    uint16_t seq;
+    int32_t x4, y4;     /* pulses, Q4 */
+    fx_angle_t heading; /* centre of the gyro cell */
+    int16_t k;          /* the published k, rate, interval number and dir */
+    uint16_t rate;
+    uint16_t ival;
+    int8_t dir;
     uint8_t gen;
 } gnav_latch_raw_t;
 
@@ -127,7 +138,11 @@ typedef struct gnav {
     uint16_t cell, cell_int; /* gyro count now and of the interval (both wrap) */
     uint16_t h_p, h_first, h_last; /* half-step indices of P and of the edges since */
     uint16_t version;              /* bumped by every closing and gyro edge (fix installation) */
-    uint8_t gen;                   /* fixes applied (mod 256): the frame generation */
+    /* the heading inside the cell: the interval since the last edge (published with the pose) */
+    uint16_t ival;  /* gyro edges so far: the interval's number */
+    uint16_t hrate; /* the rate it entered at, pulses per step (0: unknown) */
+    int8_t hdir;    /* direction of the last edge (0: none since init) */
+    uint8_t gen;    /* fixes applied (mod 256): the frame generation */
     /* the published pose: the writer fills pub[(seq + 1) & 1], then bumps seq */
     volatile uint16_t pub_seq;
     gnav_pub_t pub[2];
@@ -147,7 +162,9 @@ typedef struct gnav {
     int32_t tab_e[GNAV_TABLE_N];    /* E(n), pulses Q16 */
     uint16_t tab_rho[GNAV_TABLE_N]; /* E(n) / n, Q15 */
     uint32_t closings[4];           /* situation 1, arcs, reversals, extra edges */
-    /* latches and frames */
+    /* latches and frames; the intervals closed last (by number mod GNAV_RING_N): pulses from
+     * the entry edge to the exit edge, bit 15 set when the exit edge went up */
+    uint16_t ring[GNAV_RING_N];
     uint16_t latch_seq;
     gnav_latch_raw_t latch[GNAV_LATCH_N];
     gnav_corr_t corr[GNAV_CORR_N];
