@@ -152,13 +152,19 @@ static int32_t mul_rho(int16_t rho, int32_t v)
     return a * 2 + (int32_t)((b + (1u << 14)) >> 15);
 }
 
-/* The heading inside the cell (gyro edge, readers): a turn entered at @p rate pulses per step
- * (<= 2^15) is overdue, i.e. it changed, once a one-step interval has lasted more
- * than the rate plus 1/8 and 2 pulses (a steady arc's intervals differ by a pulse), or an
- * excursion into the cell and back (@p twice) more than twice that. */
+/* The heading inside the cell (gyro edge, readers): a one-step interval entered at @p rate
+ * pulses per step (<= 2^15) that lasts longer than the rate plus 1/8 and 2 pulses (a steady
+ * arc's intervals differ by a pulse) has seen its turn change. */
+static uint16_t rate_limit(uint16_t rate)
+{
+    return (uint16_t)(rate + (rate >> 3) + 2u);
+}
+
+/* ... overdue: the one-step limit passed, or twice it for an excursion into the cell and back
+ * (@p twice). */
 static bool overdue(uint16_t pulses, uint16_t rate, bool twice)
 {
-    uint16_t limit = (uint16_t)(rate + (rate >> 3) + 2u);
+    uint16_t limit = rate_limit(rate);
     if (pulses <= limit)
         return false;
     return !twice || (uint16_t)(pulses - limit) > limit;
@@ -504,7 +510,7 @@ static fx_q16_t q4_to_m(const gnav_t *g, int32_t v)
 
 /* num / den in Q15 (truncated), at most 1.0 = 2^15; 0 < den <= 2^15. A restoring division
  * of 15 bits in 16-bit registers (the coordinate request runs it). */
-static uint16_t frac15(uint16_t num, uint16_t den)
+__attribute__((noinline)) static uint16_t frac15(uint16_t num, uint16_t den)
 {
     if (num >= den)
         return 0x8000u;
@@ -521,7 +527,7 @@ static uint16_t frac15(uint16_t num, uint16_t den)
 }
 
 /* E[min(x, u)] for u uniform in [0, 1], Q15: x - x^2 / 2 up to 1, then 1/2. */
-static uint16_t ended_somewhere(uint16_t x)
+__attribute__((noinline)) static uint16_t ended_somewhere(uint16_t x)
 {
     if (x >= 0x8000u)
         return 0x4000u;
@@ -530,7 +536,7 @@ static uint16_t ended_somewhere(uint16_t x)
 
 /* beta * f / 2^15 for a binary angle beta (the step, < 2^27) and f in Q15, [0, 1], rounded:
  * 16 x 16 products only. */
-static int32_t of_step(uint32_t beta, uint16_t f)
+__attribute__((noinline)) static int32_t of_step(uint32_t beta, uint16_t f)
 {
     if (f >= 0x8000u)
         return (int32_t)beta;
@@ -548,59 +554,62 @@ static uint16_t pulses_since_edge(int16_t k)
     return (uint16_t)(k < 0 ? 1 - k : k + 1);
 }
 
+/* An excursion into the cell and back over len pulses: up at r_in pulses per step from the
+ * entry threshold, down at r_out back to it (Q15 of a step), exact for two arcs; once it
+ * lasted longer than those rates allow, with a plateau at an unknown height between. */
+static uint16_t excursion(uint16_t a, uint16_t len, uint16_t r_in, uint16_t r_out)
+{
+    uint16_t up = frac15(a, r_in), down = frac15((uint16_t)(len - a), r_out);
+    if ((uint32_t)len > (uint32_t)rate_limit(r_in) + rate_limit(r_out)) {
+        up = ended_somewhere(up);
+        down = ended_somewhere(down);
+    }
+    return up < down ? up : down;
+}
+
 /*
  * The heading inside the cell, as the offset from its centre (binary angle, within +-half a
  * step): @p a pulses after the interval's entry edge (direction @p dir; 0 = the start at the
  * cell centre), entered at @p rate pulses per step (0 = unknown). @p exit = the edge that
  * closed the interval @p len pulses after its entry edge (a <= len), 0 while it is open
- * (then @p a_now pulses have passed since the entry). In fractions f of a step from the entry
- * threshold:
+ * (then @p a_now pulses have passed since the entry); @p rate_out = the rate of the interval
+ * after it when that was one step on in the exit direction (0 = unknown). In fractions f of
+ * a step from the entry threshold:
  *  - open: at the entry rate up to the far threshold; once the turn is overdue it ended
- *    somewhere in the interval, evenly likely: f = E[min(a / rate, u)]; rate unknown: the
- *    middle of what the tightest turn (one step in M pulses: L |d heading| <= dl) can have
- *    reached, min(a / M, 1) / 2;
+ *    somewhere in the interval, evenly likely: f = E[min(a / rate, u)], u uniform in [0, 1];
+ *    rate unknown: the middle of what the tightest turn (one step in M pulses: L |d heading|
+ *    <= dl) can have reached, min(a / M, 1) / 2;
  *  - closed by an edge in the entry direction: evenly between the edges (the mean rate),
  *    unless the interval outlasted its entry rate (then as an overdue open one);
  *  - closed back through the entry threshold (an excursion, an S-curve's inflection): up at
- *    the entry rate and down as fast, f = min(a, len - a) / rate (overdue: as above).
+ *    the entry rate, down at the exit rate (either for both when one is unknown).
  */
 static int32_t cell_offset(const gnav_t *g, int8_t dir, uint16_t rate, uint16_t a, uint16_t a_now,
-                           int8_t exit, uint16_t len)
+                           int8_t exit, uint16_t len, uint16_t rate_out)
 {
-    enum { EVEN, HALF, ENDED, FROM_CENTRE } how = EVEN; /* what f is made of num / den */
-    uint16_t num = a, den = rate;
+    uint16_t f;
     if (dir == 0) {
         /* from the cell centre (init) towards the exit threshold, evenly */
         if (exit == 0)
             return 0;
         dir = exit;
-        den = len;
-        how = FROM_CENTRE;
-    } else if (exit == dir) {
-        if (rate != 0u && overdue(len, rate, false))
-            how = ENDED;
-        else
-            den = len;
-    } else if (exit != 0) {
-        num = a < (uint16_t)(len - a) ? a : (uint16_t)(len - a);
+        f = (uint16_t)(0x4000u + (frac15(a, len) >> 1));
+    } else if (exit == -dir) {
         if (rate == 0u)
-            how = HALF;
-        else if (overdue(len, rate, true))
-            how = ENDED;
+            rate = rate_out;
+        if (rate == 0u)
+            f = frac15(a < (uint16_t)(len - a) ? a : (uint16_t)(len - a), g->n0) >> 1;
+        else
+            f = excursion(a, len, rate, rate_out != 0u ? rate_out : rate);
+    } else if (exit == dir && (rate == 0u || !overdue(len, rate, false))) {
+        f = frac15(a, len);
     } else if (rate == 0u) {
-        how = HALF;
-    } else if (overdue(a_now, rate, false)) {
-        how = ENDED;
+        f = frac15(a, g->n0) >> 1;
+    } else {
+        f = frac15(a, rate);
+        if (exit != 0 || overdue(a_now, rate, false))
+            f = ended_somewhere(f);
     }
-    if (how == HALF)
-        den = g->n0;
-    uint16_t f = frac15(num, den);
-    if (how == HALF)
-        f >>= 1;
-    else if (how == ENDED)
-        f = ended_somewhere(f);
-    else if (how == FROM_CENTRE)
-        f = (uint16_t)(0x4000u + (f >> 1));
     uint32_t beta = g->step_whole;
     int32_t off = of_step(beta, f) - (int32_t)(beta >> 1);
     return dir < 0 ? -off : off;
@@ -610,7 +619,7 @@ static int32_t cell_offset(const gnav_t *g, int8_t dir, uint16_t rate, uint16_t 
 static int32_t pub_offset(const gnav_t *g, const gnav_pub_t *p)
 {
     uint16_t a = pulses_since_edge(p->k);
-    return cell_offset(g, p->dir, p->rate, a, a, 0, 0);
+    return cell_offset(g, p->dir, p->rate, a, a, 0, 0, 0);
 }
 
 static void pub_to_pose(const gnav_t *g, const gnav_pub_t *p, gnav_pose_t *out)
@@ -802,21 +811,24 @@ static int bring_forward(const gnav_t *g, uint8_t from, int32_t *x4, int32_t *y4
 
 /*
  * The latch's offset from its cell's centre: between the edges of its interval when that has
- * closed since and is still in the ring (@p ring_end: the ring's entry for it), else from its
- * entry edge, with @p k_now the pulses of the current interval.
+ * closed since and is still in the ring (@p ring_end: the ring's entry for it, @p next_end
+ * the one after), else from its entry edge, with @p k_now the pulses of the current interval.
  */
 static int32_t latch_offset(const gnav_t *g, const gnav_latch_raw_t *l, uint16_t ival,
-                            uint16_t ring_end, int16_t k_now)
+                            uint16_t ring_end, uint16_t next_end, int16_t k_now)
 {
     uint16_t age = (uint16_t)(ival - l->ival);
     uint16_t a = pulses_since_edge(l->k);
     if (age == 0u)
-        return cell_offset(g, l->dir, l->rate, a, pulses_since_edge(k_now), 0, 0);
+        return cell_offset(g, l->dir, l->rate, a, pulses_since_edge(k_now), 0, 0, 0);
     if (age > GNAV_RING_N)
-        return cell_offset(g, l->dir, l->rate, a, a, 0, 0);
+        return cell_offset(g, l->dir, l->rate, a, a, 0, 0, 0);
     uint16_t len = ring_end & 0x7FFFu;
-    return cell_offset(g, l->dir, l->rate, a < len ? a : len, a, (ring_end & 0x8000u) ? 1 : -1,
-                       len);
+    int8_t exit = (ring_end & 0x8000u) ? 1 : -1;
+    uint16_t rate_out = 0;
+    if (age >= 2u && (int8_t)((next_end & 0x8000u) ? 1 : -1) == exit)
+        rate_out = next_end & 0x7FFFu;
+    return cell_offset(g, l->dir, l->rate, a < len ? a : len, a, exit, len, rate_out);
 }
 
 int gnav_latch_read(gnav_t *g, uint16_t seq, gnav_latch_t *out)
@@ -829,12 +841,13 @@ int gnav_latch_read(gnav_t *g, uint16_t seq, gnav_latch_t *out)
     uint8_t gen = g->gen;
     uint16_t ival = g->ival;
     uint16_t ring_end = g->ring[l.ival & (GNAV_RING_N - 1u)];
+    uint16_t next_end = g->ring[(l.ival + 1u) & (GNAV_RING_N - 1u)];
     int16_t k_now = g->pub[g->pub_seq & 1u].k;
     hal_irq_restore(st);
     /* the slot holds latch seq when it is one of the last GNAV_LATCH_N */
     if ((uint16_t)(next - seq) == 0u || (uint16_t)(next - seq) > GNAV_LATCH_N)
         return GNAV_ERR_LATCH;
-    l.heading += (fx_angle_t)latch_offset(g, &l, ival, ring_end, k_now);
+    l.heading += (fx_angle_t)latch_offset(g, &l, ival, ring_end, next_end, k_now);
     int r = bring_forward(g, l.gen, &l.x4, &l.y4, &l.heading);
     if (r != GNAV_OK)
         return r;
