@@ -13,6 +13,10 @@
  * M = L * step / dl (the seed's situation 3); fewer than M pulses for a step leave the
  * position where it was (situation 1); between edges the pose is continued from the last
  * curvature for at most the last interval's length, then straight (situation 2, bounded).
+ * The headings handed out (pose, coordinate request, latches) are placed inside the gyro's
+ * cell: on the threshold at an edge, then on at the rate the intervals showed, between the
+ * edges once the next one is known (latches read later); the handlers store pulse counts
+ * only, the readers divide (docs/groundnav.md, "The heading inside the cell").
  *
  * Contexts: the five handlers below have the hal_edge_cb_t signature (arg = the gnav_t) and
  * run in interrupt context. gnav_on_coord_request() is meant for the non-maskable line: it may
@@ -194,7 +198,8 @@ void gnav_on_delta_l(void *arg);
 void gnav_on_gyro_up(void *arg);
 /** Gyro handler: the heading went down (clockwise) by one step. */
 void gnav_on_gyro_down(void *arg);
-/** Beacon Sighted handler: latch the current pose as the next latch (seq = count so far). */
+/** Beacon Sighted handler: latch the current pose as the next latch (seq = count so far),
+ * with what its heading inside the cell needs (no division: gnav_latch_read places it). */
 void gnav_on_beacon_sighted(void *arg);
 /**
  * Coordinate Request handler (NMI): copy the published pose (never torn, even when it
@@ -214,7 +219,9 @@ void gnav_set_stop_callback(gnav_t *g, gnav_stop_fn fn, void *ctx);
 /**
  * The current pose, consistent (never torn), from any context: retries while dl or gyro
  * handlers publish under it. Position error: at most 8 um of rounding on top of the dead
- * reckoning itself.
+ * reckoning itself. Heading: inside the current gyro cell (within +-half a step of its centre),
+ * extrapolated from the last edge at the rate the intervals showed (1,700 cycles on the
+ * MSP430).
  */
 void gnav_pose(gnav_t *g, gnav_pose_t *out);
 
@@ -226,8 +233,11 @@ uint16_t gnav_latch_next(const gnav_t *g);
 
 /**
  * Latch number @p seq brought into the current frame (all fixes since applied), into *out.
- * GNAV_ERR_LATCH when it is not in the buffer (more than GNAV_LATCH_N newer ones, or not yet
- * taken), GNAV_ERR_STALE when more than GNAV_CORR_N fixes came after it.
+ * Its heading is placed inside its gyro cell with what is known now: between the edges of its
+ * interval when that has closed since (one of the last GNAV_RING_N), else from the edge
+ * before it; reading later can only refine it. GNAV_ERR_LATCH when it is not in the buffer
+ * (more than GNAV_LATCH_N newer ones, or not yet taken), GNAV_ERR_STALE when more than
+ * GNAV_CORR_N fixes came after it.
  */
 int gnav_latch_read(gnav_t *g, uint16_t seq, gnav_latch_t *out);
 
@@ -236,7 +246,8 @@ int gnav_latch_read(gnav_t *g, uint16_t seq, gnav_latch_t *out);
  * gnav_latch_read(), any generation not older than GNAV_CORR_N fixes), or now when @p ref is
  * NULL. The motion since that instant is carried forward: the whole dead-reckoning state
  * (position, closing point, heading and the gyro's cell, i.e. "set the gyroscope") is moved
- * by the rigid transform that takes the reference pose onto the fix, never overwritten. Resets
+ * by the rigid transform that takes the reference pose onto the fix, never overwritten; the
+ * reference's heading is its estimate inside the cell, whose offset from the centre is kept. Resets
  * the travel counted for the stop request and clears the request. Interrupts are held off for
  * the final install only. Returns GNAV_OK, GNAV_ERR_LATCH/STALE (ref), GNAV_ERR_POSE, or
  * GNAV_ERR_BUSY when 8 attempts in a row were overtaken by gyro edges or arc closings.
