@@ -39,6 +39,7 @@ static cy_bench_stat_t st_sighted = {"isr_beacon_sighted", 0, 0, 0};
 static cy_bench_stat_t st_coord = {"isr_coord_request", 0, 0, 0};
 static cy_bench_stat_t st_fix = {"gnav_fix", 0, 0, 0};
 static cy_bench_stat_t st_pose = {"gnav_pose", 0, 0, 0};
+static cy_bench_stat_t st_latch = {"gnav_latch_read", 0, 0, 0};
 
 /* Raise @p line and let its handler run; on the MSP430 returns the cycles of the whole
  * interrupt (entry, HAL shim, portable handler, return), 0 on the host. */
@@ -92,6 +93,14 @@ static void print_pose_raw(const char *tag)
     cy_print_hex64((uint64_t)p->y);
     cy_print(" ");
     cy_print_hex32(p->heading);
+    cy_print(" k ");
+    cy_print_dec(p->k);
+    cy_print(" rate ");
+    cy_print_dec(p->rate);
+    cy_print(" dir ");
+    cy_print_dec(p->dir);
+    cy_print(" ival ");
+    cy_print_dec(p->ival);
     cy_print(" n ");
     cy_print_dec((int32_t)(((uint32_t)(uint16_t)nav.n_hi << 16) | nav.n_lo));
     for (unsigned k = 0; k < 4u; k++) {
@@ -111,6 +120,23 @@ static void print_pose(const char *tag, const gnav_pose_t *p)
     cy_print(" ");
     cy_print_hex32(p->heading);
     cy_println();
+}
+
+/* The last (up to) 8 latches as the main loop reads them now: their headings inside the cell
+ * come from closed, open and forgotten intervals of every kind. */
+static void print_latches(void)
+{
+    uint16_t next = gnav_latch_next(&nav);
+    for (uint16_t k = 1; k <= 8u && k <= next; k++) {
+        gnav_latch_t l;
+        int r = 0;
+        volatile uint16_t seq = (uint16_t)(next - k);
+        CY_BENCH(&st_latch, r = gnav_latch_read(&nav, seq, &l));
+        cy_check(r == GNAV_OK, "latch read");
+        cy_print("latch ");
+        cy_print_dec(l.seq);
+        print_pose("", &l.pose);
+    }
 }
 
 static const gnav_config_t cfg = {
@@ -156,6 +182,9 @@ static void replay(void)
             gnav_pose_t c;
             gnav_coord(&nav, &c);
             print_pose("coord", &c);
+            gnav_pose(&nav, &c);
+            print_pose("pose_now", &c);
+            print_latches();
             break;
         }
         }
@@ -265,6 +294,7 @@ int main(void)
     cy_bench_report(&st_coord);
     cy_bench_report(&st_fix);
     cy_bench_report(&st_pose);
+    cy_bench_report(&st_latch);
     cy_test_end();
     return 0;
 }
