@@ -89,6 +89,7 @@ typedef struct {
     long gyro_count;   /* measured heading, in steps from the start */
     double t_index;    /* last index pulse */
     sim_gonio_event_t edges[MAX_EDGES];
+    sim_photo_t photo;
     size_t n_edges, next_edge;
     uint32_t rises;
     double rise_t[RISE_RING];
@@ -231,6 +232,10 @@ static void on_gonio(void *ctx, uint64_t t_ns)
     if (S.next_edge < S.n_edges) {
         const sim_gonio_event_t *e = &S.edges[S.next_edge++];
         int rising = e->edge == SIM_GEV_RISE;
+        if (!sim_photo_feed(&S.photo, e)) {
+            schedule_gonio(); /* overlapping pulses: the photodetector stays lit */
+            return;
+        }
         posix_capture_raise(S.main_b, HAL_CAPTURE_BEACON, count, (uint8_t)rising);
         if (rising) {
             /* The photodetector is wired to the nav board too: it latches its pose. */
@@ -701,6 +706,7 @@ int main(int argc, char **argv)
     S.gcfg.noise_rad = S.sc.gonio_noise;
     S.gcfg.max_range = S.sc.gonio_range;
     sim_rng_seed(&S.rng_gonio, S.sc.seed, 1);
+    sim_photo_init(&S.photo);
     sim_pose_t start = {S.sc.start_x, S.sc.start_y, S.sc.start_heading};
     S.seg = sim_segment(0.0, start, 0.0, 0.0, 0.0, S.sc.wheelbase);
     S.cur = 2;
