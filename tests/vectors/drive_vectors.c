@@ -25,6 +25,8 @@
 #define DOMAIN_N 300u
 #define NEAR_N   100u
 #define WIDE_N   100u
+#define ANY_N    600u
+#define POSE_N   300u
 
 static uint32_t rng = 0x2545F491u;
 
@@ -223,6 +225,100 @@ static void solver_vectors(void)
     }
 }
 
+/* Anywhere (untimed): any bearing and heading change, 1.5 mm - 100 m, minimum radii 0.05 -
+ * 200 m (a few out of range), near-straight targets, poses all over the Q16 plane, and
+ * configurations that a search on the host found to take the rarer ways through the solver
+ * (the long-leg length series, the minimum radius too large to scale, a case 4/5 arc just
+ * below the minimum radius). */
+static void solver_anywhere(void)
+{
+    static const struct {
+        drive_pose_t f, t;
+        int32_t rmin;
+        uint8_t rev;
+    } rare[] = {
+        {{0x491dc8ec, (int32_t)0xb91f14f9, 0x6d6304d0},
+         {0x48ebd4ad, (int32_t)0xb936fc4c, 0x6b5e1c5e},
+         0x00002e64,
+         0},
+        {{(int32_t)0xde6995c8, (int32_t)0xf6b5b1fb, 0xba8e27ff},
+         {(int32_t)0xde616318, (int32_t)0xf678b3ce, 0xb8f7fb87},
+         0x000f587e,
+         0},
+        {{(int32_t)0xc2535b55, 0x4afa9a6d, 0x253c4a02},
+         {(int32_t)0xc26ab4cd, 0x4b18e1dd, 0x238bebbc},
+         0x002248e9,
+         0},
+        {{(int32_t)0xbdb79103, (int32_t)0xa559da1b, 0x91657167},
+         {(int32_t)0xbdb7a816, (int32_t)0xa559e49a, 0x9147d0c1},
+         0x000a6db1,
+         1},
+        {{(int32_t)0xfc75e331, 0x45a2a803, 0x2b613149},
+         {(int32_t)0xfc75e01f, 0x45a2a279, 0x2b5c9d51},
+         0x003f1b82,
+         1},
+        {{(int32_t)0xdf39df2a, 0x4f200ec6, 0x6ead3d2b},
+         {(int32_t)0xdf02dccc, 0x4f38f73a, 0x6ec0fedc},
+         0x0000a658,
+         0},
+        {{0x30370d64, 0x412360e1, 0x34767897}, {0x3045b988, 0x4155cd3a, 0x346f04b4}, 0x000c1e33, 0},
+        {{0x0081f604, 0x16865631, 0x5f98188e}, {0x00620b2f, 0x16a6e575, 0x5f9e4a89}, 0x0005e8ad, 0},
+        {{0x7ff00000, 0, 0}, {(int32_t)0x80100000, 0, 0}, 0x00010000, 0},
+    };
+    for (uint16_t i = 0; i < sizeof rare / sizeof rare[0]; i++)
+        print_solution("rare", &rare[i].f, &rare[i].t, rare[i].rmin, rare[i].rev != 0, NULL);
+    for (uint16_t i = 0; i < ANY_N; i++) {
+        uint32_t dist = rnd_span(100ul << 16) >> (rnd32() & 15u);
+        int32_t bearing = (int32_t)rnd32();
+        int32_t dth = (int32_t)rnd32() >> (rnd32() & 7u);
+        if (i % 4u == 1u) { /* near straight */
+            bearing >>= 8u + (rnd32() & 15u);
+            dth >>= 8u + (rnd32() & 15u);
+        } else if (i % 4u == 2u) { /* the seed's domain: ahead, heading change under 90 degrees */
+            bearing >>= 2;
+            dth >>= 2;
+        }
+        fx_q16_t rmin = (fx_q16_t)(rnd_span(200ul << 16) >> (rnd32() & 11u)) + 7000;
+        bool rev = (rnd32() & 1u) != 0;
+        drive_pose_t f, t;
+        make_config(dist, bearing, dth, rev, &f, &t);
+        int32_t ox = (int32_t)rnd32() >> 2, oy = (int32_t)rnd32() >> 2; /* anywhere */
+        f.x += ox;
+        t.x += ox;
+        f.y += oy;
+        t.y += oy;
+        print_solution("any", &f, &t, rmin, rev, NULL);
+    }
+}
+
+/* drive_pose_advance: curvatures of either sign up to 8 /m, distances up to 10 m (some zero
+ * or negative, some whose change saturates), forward and reverse. */
+static void pose_vectors(void)
+{
+    for (uint16_t i = 0; i < POSE_N; i++) {
+        drive_pose_t p = {(int32_t)rnd32() >> 4, (int32_t)rnd32() >> 4, rnd32()};
+        int32_t k = (int32_t)rnd32() >> (2u + (rnd32() & 31u));
+        fx_q16_t dist = (fx_q16_t)(rnd_span(10ul << 16) >> (rnd32() & 7u));
+        if (i % 16u == 3u)
+            dist = -dist;
+        else if (i % 16u == 7u)
+            dist = (fx_q16_t)rnd32() & 0x7FFFFFFF; /* up to 32768 m: the change saturates */
+        bool rev = (rnd32() & 1u) != 0;
+        drive_pose_t r = drive_pose_advance(&p, k, dist, rev);
+        cy_print("pose");
+        out_hex((uint32_t)p.x);
+        out_hex((uint32_t)p.y);
+        out_hex(p.heading);
+        out_hex((uint32_t)k);
+        out_hex((uint32_t)dist);
+        cy_print(rev ? " r" : " f");
+        out_hex((uint32_t)r.x);
+        out_hex((uint32_t)r.y);
+        out_hex(r.heading);
+        cy_println();
+    }
+}
+
 static void print_wseq(const char *tag, const drive_wseq_t *w)
 {
     cy_print(tag);
@@ -374,6 +470,8 @@ int main(void)
 {
     cy_bench_init();
     solver_vectors();
+    solver_anywhere();
+    pose_vectors();
     proto_vectors();
     path_vectors();
     cy_bench_report(&st_solve);
