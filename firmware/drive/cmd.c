@@ -54,6 +54,7 @@ drive_status_t drive_speed_counts(fx_q16_t speed_mps, bool reverse, const drive_
     return DRIVE_OK;
 }
 
+#ifndef DRIVE_ASM /* MSP430: msp430/cmd.S, the same steps */
 drive_status_t drive_cmd_build(const drive_solution_t *sol, const drive_board_t *board,
                                fx_q16_t speed_mps, bool reverse, drive_cmd_t *cmd)
 {
@@ -108,3 +109,4 @@ drive_status_t drive_cmd_build(const drive_solution_t *sol, const drive_board_t 
     *cmd = c;
     return DRIVE_OK;
 }
+#endif

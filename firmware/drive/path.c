@@ -28,19 +28,20 @@ drive_status_t drive_path_leg(drive_path_t *path, uint8_t leg, const drive_solut
     return DRIVE_OK;
 }
 
-/* Secondary point @p sub of leg @p leg into *out: at sub / nsub of the leg's nominal solution
- * (cached), the primary point itself for sub == nsub. */
-static void secondary(const drive_path_t *path, uint8_t leg, uint8_t sub, drive_pose_t *out)
+/* Secondary point @p sub of the leg from @p from to @p pt (whose solution is cached) into
+ * *out: at sub / nsub of the nominal solution, the primary point itself for sub == nsub. */
+static void secondary(const drive_path_t *path, const drive_pose_t *from,
+                      const drive_path_point_t *pt, uint8_t sub, drive_pose_t *out)
 {
-    const drive_path_point_t *pt = &path->pts[leg];
-    *out = pt->pose;
-    if (sub >= pt->nsub)
-        return;
     const drive_segment_t *g = path->cache.seg;
+    if (sub >= pt->nsub) {
+        *out = pt->pose;
+        return;
+    }
     int32_t frac = 0; /* sub / nsub, Q30 */
     (void)fx_div_shift(sub, pt->nsub, 30, &frac);
     fx_q16_t t = fx_mul_q30(g[0].length + g[1].length, frac);
-    drive_pose_t p = *leg_start(path, leg);
+    drive_pose_t p = *from;
     if (t > g->length) { /* past the first segment */
         p = drive_pose_advance(&p, g->curvature, g->length, path->cfg.reverse);
         t -= g->length;
@@ -59,8 +60,9 @@ drive_status_t drive_path_target(drive_path_t *path, drive_path_cursor_t cur, dr
     drive_status_t st = drive_path_leg(path, cur.leg, &sol);
     if (st != DRIVE_OK)
         return st;
-    secondary(path, cur.leg, cur.sub, pose);
-    *speed = path->pts[cur.leg].speed;
+    const drive_path_point_t *pt = &path->pts[cur.leg];
+    secondary(path, leg_start(path, cur.leg), pt, cur.sub, pose);
+    *speed = pt->speed;
     return DRIVE_OK;
 }
 
@@ -117,9 +119,11 @@ drive_status_t drive_path_prepare(drive_path_t *path, const drive_pose_t *start,
         cfg->spacing < FX_Q16_ONE / 20 || cfg->spacing > 8 * FX_Q16_ONE)
         return reject(path, 0, 0, DRIVE_ERR_PARAM);
 
-    for (uint8_t leg = 0; leg < n; leg++) {
+    const drive_pose_t *from = &path->start;
+    drive_path_point_t *pt = pts;
+    for (uint8_t leg = 0; leg < n; leg++, from = &pt->pose, pt++) {
         int8_t counts;
-        drive_status_t st = drive_speed_counts(pts[leg].speed, cfg->reverse, board, &counts);
+        drive_status_t st = drive_speed_counts(pt->speed, cfg->reverse, board, &counts);
         if (st == DRIVE_OK && counts == 0)
             st = DRIVE_ERR_PARAM; /* a speed that rounds to a stop */
         const drive_solution_t *sol;
@@ -132,16 +136,16 @@ drive_status_t drive_path_prepare(drive_path_t *path, const drive_pose_t *start,
         uint32_t nsub = (len + (uint32_t)cfg->spacing - 1u) / (uint32_t)cfg->spacing;
         if (nsub > 255u)
             return reject(path, leg, 0, DRIVE_ERR_PATH);
-        pts[leg].nsub = (uint8_t)(nsub ? nsub : 1u);
+        pt->nsub = (uint8_t)(nsub ? nsub : 1u);
         /* Every piece between secondary points, as the vehicle will drive it. */
-        drive_pose_t a = *leg_start(path, leg), b;
-        for (uint8_t sub = 1; sub <= pts[leg].nsub; sub++) {
-            secondary(path, leg, sub, &b);
+        drive_pose_t a = *from, b;
+        for (uint8_t sub = 1; sub <= pt->nsub; sub++) {
+            secondary(path, from, pt, sub, &b);
             drive_solution_t piece;
             drive_cmd_t cmd;
             st = drive_solve(&a, &b, board->min_radius, cfg->reverse, &piece, NULL);
             if (st == DRIVE_OK)
-                st = drive_cmd_build(&piece, board, pts[leg].speed, cfg->reverse, &cmd);
+                st = drive_cmd_build(&piece, board, pt->speed, cfg->reverse, &cmd);
             if (st != DRIVE_OK)
                 return reject(path, leg, sub, st);
             a = b;

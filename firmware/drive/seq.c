@@ -7,6 +7,8 @@
 #include "hal/edge.h"
 #include "hal/irq.h"
 
+#include "drive_internal.h"
+
 /* Guards: conditions a row needs besides its state and event. */
 enum {
     G_ANY = 0,
@@ -126,17 +128,10 @@ const char *drive_seq_state_name(drive_state_t st)
 
 void drive_seq_init(drive_seq_t *seq, drive_path_t *path, const drive_seq_config_t *cfg)
 {
+    *seq = (drive_seq_t){0}; /* idle, nothing loaded or pending, no counts */
     seq->cfg = *cfg;
     seq->path = path;
-    seq->state = DRIVE_ST_IDLE;
     seq->target = drive_path_first(path);
-    seq->pending_last = seq->loaded_last = false;
-    seq->pulses_seen = 0;
-    seq->fix_failures = 0;
-    seq->solve_status = DRIVE_OK;
-    seq->ignored = seq->underruns = seq->loads = 0;
-    seq->loaded.pulses = 0;
-    seq->pending.pulses = 0;
 }
 
 /* Outcome of picking a target and solving toward it. */
@@ -145,9 +140,9 @@ enum { PICK_NONE = 0, PICK_ARRIVED, PICK_SOLVED, PICK_FAILED };
 /* Distance from @p pose to @p target along the target's direction of travel, Q16 m. */
 static int32_t along(const drive_pose_t *pose, const drive_pose_t *target, bool reverse)
 {
-    fx_q30_t s, c;
-    fx_sincos(target->heading + (reverse ? FX_ANGLE_HALF : 0u), &s, &c);
-    return fx_mul_q30(target->x - pose->x, c) + fx_mul_q30(target->y - pose->y, s);
+    int32_t d[2] = {target->x - pose->x, target->y - pose->y}, r[2];
+    drive_rot(r, d, target->heading + (reverse ? FX_ANGLE_HALF : 0u));
+    return r[0];
 }
 
 /*
@@ -168,111 +163,83 @@ static uint8_t pick(drive_seq_t *seq, const drive_pose_t *pose)
             return PICK_FAILED;
         }
         bool last = drive_path_is_last(path, seq->target);
-        if (!last && seq->cfg.mode == DRIVE_MODE_FULL && along(pose, &tp, rev) < seq->cfg.advance) {
-            seq->target = drive_path_next(path, seq->target);
-            continue;
+        if (last || seq->cfg.mode != DRIVE_MODE_FULL || along(pose, &tp, rev) >= seq->cfg.advance) {
+            drive_solution_t sol;
+            st = drive_solve(pose, &tp, path->board->min_radius, rev, &sol, NULL);
+            if (st == DRIVE_OK)
+                st = drive_cmd_build(&sol, path->board, speed, rev, &seq->pending);
+            seq->solve_status = st;
+            bool reached = st == DRIVE_ERR_TOO_CLOSE || st == DRIVE_ERR_BEHIND ||
+                           (st == DRIVE_OK && seq->pending.pulses == 0);
+            if (st == DRIVE_OK && !reached) {
+                seq->pending_last = last;
+                return PICK_SOLVED;
+            }
+            if (last)
+                return reached ? PICK_ARRIVED : PICK_FAILED;
         }
-        drive_solution_t sol;
-        st = drive_solve(pose, &tp, path->board->min_radius, rev, &sol, NULL);
-        if (st == DRIVE_OK)
-            st = drive_cmd_build(&sol, path->board, speed, rev, &seq->pending);
-        seq->solve_status = st;
-        bool reached = st == DRIVE_ERR_TOO_CLOSE || st == DRIVE_ERR_BEHIND ||
-                       (st == DRIVE_OK && seq->pending.pulses == 0);
-        if (st == DRIVE_OK && !reached) {
-            seq->pending_last = last;
-            return PICK_SOLVED;
-        }
-        if (reached && last)
-            return PICK_ARRIVED;
-        if (reached || !last) {
-            seq->target = drive_path_next(path, seq->target);
-            continue;
-        }
-        return PICK_FAILED;
+        seq->target = drive_path_next(path, seq->target);
     }
     return PICK_FAILED;
 }
 
-static bool guard(const drive_seq_t *seq, uint8_t g, uint8_t picked)
+/* The guards that hold (bit G_*) in the state the event left. */
+static uint16_t guards(const drive_seq_t *seq, uint8_t picked)
 {
-    bool final = seq->pulses_seen == seq->loaded.pulses;
-    switch (g) {
-    case G_ANY:
-        return true;
-    case G_FULL:
-        return seq->path->ready && seq->cfg.mode == DRIVE_MODE_FULL;
-    case G_SIMPLIFIED:
-        return seq->path->ready && seq->cfg.mode == DRIVE_MODE_SIMPLIFIED;
-    case G_NOT_READY:
-        return !seq->path->ready;
-    case G_ARRIVED:
-        return picked == PICK_ARRIVED;
-    case G_SOLVED_LAST:
-        return picked == PICK_SOLVED && seq->pending_last;
-    case G_SOLVED:
-        return picked == PICK_SOLVED && !seq->pending_last;
-    case G_FAILED:
-        return picked == PICK_FAILED;
-    case G_PULSE_MORE:
-        return seq->pulses_seen < seq->loaded.pulses;
-    case G_PULSE_FINAL:
-        return final;
-    case G_FINAL_LAST:
-        return final && seq->loaded_last;
-    case G_FINAL_PLAST:
-        return final && seq->pending_last;
-    case G_PENDING_LAST:
-        return seq->pending_last;
-    case G_FIX_RETRY:
-        return seq->fix_failures <= seq->cfg.max_fix_failures;
-    case G_FIX_GIVE_UP:
-        return seq->fix_failures > seq->cfg.max_fix_failures;
-    default:
-        return false;
+    uint16_t g = 1u << G_ANY;
+    if (!seq->path->ready)
+        g |= 1u << G_NOT_READY;
+    else
+        g |= seq->cfg.mode == DRIVE_MODE_FULL ? 1u << G_FULL : 1u << G_SIMPLIFIED;
+    if (picked == PICK_ARRIVED)
+        g |= 1u << G_ARRIVED;
+    if (picked == PICK_SOLVED)
+        g |= seq->pending_last ? 1u << G_SOLVED_LAST : 1u << G_SOLVED;
+    if (picked == PICK_FAILED)
+        g |= 1u << G_FAILED;
+    if (seq->pending_last)
+        g |= 1u << G_PENDING_LAST;
+    if (seq->pulses_seen < seq->loaded.pulses)
+        g |= 1u << G_PULSE_MORE;
+    if (seq->pulses_seen == seq->loaded.pulses) {
+        g |= 1u << G_PULSE_FINAL;
+        if (seq->loaded_last)
+            g |= 1u << G_FINAL_LAST;
+        if (seq->pending_last)
+            g |= 1u << G_FINAL_PLAST;
     }
+    g |= seq->fix_failures <= seq->cfg.max_fix_failures ? 1u << G_FIX_RETRY : 1u << G_FIX_GIVE_UP;
+    return g;
 }
 
 void drive_seq_step(drive_seq_t *seq, const drive_seq_event_t *ev, drive_seq_out_t *out)
 {
-    out->actions = 0;
-    out->timer_ms = 0;
-    out->pose_ms = 0;
-    out->speed = 0;
-    out->fault = DRIVE_FAULT_NONE;
-    out->status = DRIVE_OK;
+    *out = (drive_seq_out_t){0}; /* no actions; DRIVE_FAULT_NONE, DRIVE_OK */
 
     /* Effects of the event that guards look at. */
-    uint8_t picked = PICK_NONE;
-    bool picks = (ev->type == DRIVE_EVT_POSE &&
-                  (seq->state == DRIVE_ST_F_START || seq->state == DRIVE_ST_F_PREDICT)) ||
-                 (ev->type == DRIVE_EVT_FIX_READY && seq->state == DRIVE_ST_S_FIX);
-    if (picks)
+    uint8_t picked = PICK_NONE, e = (uint8_t)ev->type, st = (uint8_t)seq->state;
+    if ((e == DRIVE_EVT_POSE && (st == DRIVE_ST_F_START || st == DRIVE_ST_F_PREDICT)) ||
+        (e == DRIVE_EVT_FIX_READY && st == DRIVE_ST_S_FIX))
         picked = pick(seq, &ev->pose);
-    if (ev->type == DRIVE_EVT_DELTA_S && seq->pulses_seen < 255u)
+    if (e == DRIVE_EVT_DELTA_S && seq->pulses_seen < 255u)
         seq->pulses_seen++;
-    if (ev->type == DRIVE_EVT_FIX_FAILED && seq->fix_failures < 255u)
+    if (e == DRIVE_EVT_FIX_FAILED && seq->fix_failures < 255u)
         seq->fix_failures++;
-    if (ev->type == DRIVE_EVT_FIX_READY)
+    if (e == DRIVE_EVT_FIX_READY)
         seq->fix_failures = 0;
 
-    const drive_seq_row_t *row = NULL;
-    for (uint16_t i = 0; i < sizeof table / sizeof table[0]; i++) {
-        const drive_seq_row_t *r = &table[i];
-        if ((r->state == (uint8_t)seq->state || r->state == DRIVE_ST_ANY) &&
-            r->event == (uint8_t)ev->type && guard(seq, r->guard, picked)) {
-            row = r;
-            break;
+    uint16_t g = guards(seq, picked);
+    const drive_seq_row_t *row = table;
+    while (!((row->state == st || row->state == DRIVE_ST_ANY) && row->event == e &&
+             ((g >> row->guard) & 1u))) {
+        if (++row == table + sizeof table / sizeof table[0]) {
+            if (seq->ignored < UINT16_MAX)
+                seq->ignored++;
+            return;
         }
-    }
-    if (row == NULL) {
-        if (seq->ignored < UINT16_MAX)
-            seq->ignored++;
-        return;
     }
 
     uint16_t act = row->actions;
-    bool rev = seq->path->cfg.reverse;
     if (act & DRIVE_ACT_LOAD) {
         seq->loaded = seq->pending;
         seq->loaded_last = seq->pending_last;
@@ -281,7 +248,8 @@ void drive_seq_step(drive_seq_t *seq, const drive_seq_event_t *ev, drive_seq_out
         out->cmd = seq->loaded;
     }
     if (act & DRIVE_ACT_SET_SPEED)
-        (void)drive_speed_counts(seq->cfg.stop_speed, rev, seq->path->board, &out->speed);
+        (void)drive_speed_counts(seq->cfg.stop_speed, seq->path->cfg.reverse, seq->path->board,
+                                 &out->speed);
     if (act & (X_TIMER_SETTLE | X_TIMER_LOAD)) {
         act |= DRIVE_ACT_TIMER;
         out->timer_ms = (act & X_TIMER_LOAD) ? seq->cfg.load_ms : seq->cfg.settle_ms;

@@ -36,7 +36,8 @@ _Static_assert(DRIVE_ERR_PARAM_N == DRIVE_ERR_PARAM &&
                    DRIVE_ERR_TOO_FAR_N == DRIVE_ERR_TOO_FAR &&
                    DRIVE_ERR_BEHIND_N == DRIVE_ERR_BEHIND &&
                    DRIVE_ERR_HEADING_N == DRIVE_ERR_HEADING &&
-                   DRIVE_ERR_RADIUS_N == DRIVE_ERR_RADIUS && DRIVE_ERR_SWEEP_N == DRIVE_ERR_SWEEP,
+                   DRIVE_ERR_RADIUS_N == DRIVE_ERR_RADIUS && DRIVE_ERR_SWEEP_N == DRIVE_ERR_SWEEP &&
+                   DRIVE_ERR_RANGE_N == DRIVE_ERR_RANGE,
                "solve_frame.h: the status codes differ from drive.h's");
 _Static_assert(SV_KC + 1 == SV_ARCQ && SV_ARCQ + 1 == SV_DL && SV_K0 + 3 == SV_K1,
                "solve_frame.h: a segment's slots must follow each other");

@@ -99,5 +99,6 @@
 #define DRIVE_ERR_HEADING_N      5
 #define DRIVE_ERR_RADIUS_N       6
 #define DRIVE_ERR_SWEEP_N        7
+#define DRIVE_ERR_RANGE_N        8
 
 #endif
