@@ -385,6 +385,83 @@ static void proto_vectors(void)
     print_wseq("dac-stop", &w);
 }
 
+static void print_step(const drive_seq_t *seq, const drive_seq_out_t *out)
+{
+    cy_print("seq ");
+    cy_print_dec(seq->state);
+    out_hex(out->actions);
+    if (out->actions & DRIVE_ACT_LOAD) {
+        out_hex(out->cmd.steer[0]);
+        out_hex(out->cmd.arc[0]);
+        out_hex(out->cmd.steer[1]);
+        out_hex(out->cmd.arc[1]);
+        out_hex((uint8_t)out->cmd.speed);
+        out_hex(out->cmd.pulses);
+    }
+    out_hex((uint8_t)out->speed);
+    out_hex(out->timer_ms);
+    out_hex(out->pose_ms);
+    out_hex(out->fault);
+    out_hex(out->status);
+    out_hex(seq->target.leg);
+    out_hex(seq->target.sub);
+    out_hex(seq->ignored);
+    out_hex(seq->underruns);
+    out_hex(seq->loads);
+    cy_println();
+}
+
+/* Both travel modes through the state table with synthetic events: the vehicle reaches each
+ * target it is loaded for, some fixes fail, spurious events come in between, one run is
+ * stopped on request and one runs out of fixes. */
+static void seq_vectors(drive_path_t *path, const drive_pose_t *start)
+{
+    static const drive_seq_config_t modes[4] = {
+        {DRIVE_MODE_SIMPLIFIED, 35, 50, 9830, 26214, 3},
+        {DRIVE_MODE_FULL, 35, 50, 9830, 26214, 3},
+        {DRIVE_MODE_FULL, 40, 60, 0, 0, 0},        /* every fix fails: out of fixes */
+        {DRIVE_MODE_FULL, 35, 50, 6554, 13107, 2}, /* stopped on request */
+    };
+    for (uint8_t m = 0; m < 4u; m++) {
+        drive_seq_t seq;
+        drive_seq_init(&seq, path, &modes[m]);
+        drive_seq_event_t ev = {DRIVE_EVT_START, *start};
+        drive_seq_out_t out;
+        drive_pose_t here = *start;
+        uint8_t spurious = 0;
+        for (uint16_t step = 0;
+             step < 300u && seq.state != DRIVE_ST_DONE && seq.state != DRIVE_ST_FAULT; step++) {
+            drive_seq_step(&seq, &ev, &out);
+            print_step(&seq, &out);
+            if (out.actions & DRIVE_ACT_LOAD) { /* the vehicle gets where it was sent */
+                fx_q16_t sp;
+                (void)drive_path_target(path, seq.target, &here, &sp);
+            }
+            /* The next event the world would raise. */
+            ev.pose = here;
+            drive_state_t s = seq.state;
+            if (step % 7u == 3u) {
+                ev.type = (drive_evt_t)(spurious++ % DRIVE_EVT_COUNT);
+                if (ev.type == DRIVE_EVT_STOP && m != 3u)
+                    ev.type = DRIVE_EVT_START;
+            } else if (m == 3u && step == 40u) {
+                ev.type = DRIVE_EVT_STOP;
+            } else if (s == DRIVE_ST_F_FIX || s == DRIVE_ST_S_FIX) {
+                ev.type = (m == 2u || step % 5u == 0u) ? DRIVE_EVT_FIX_FAILED : DRIVE_EVT_FIX_READY;
+            } else if (s == DRIVE_ST_F_START || s == DRIVE_ST_F_PREDICT) {
+                ev.type = DRIVE_EVT_POSE;
+            } else if (s == DRIVE_ST_S_SKIP_INDEX || s == DRIVE_ST_S_WAIT_INDEX ||
+                       s == DRIVE_ST_F_WAIT_INDEX) {
+                ev.type = DRIVE_EVT_INDEX;
+            } else if (s == DRIVE_ST_F_SETTLE || (s == DRIVE_ST_F_LOAD && step % 3u != 0u)) {
+                ev.type = DRIVE_EVT_TIMER;
+            } else {
+                ev.type = DRIVE_EVT_DELTA_S;
+            }
+        }
+    }
+}
+
 /* The seed's typical run (thesis table 6-1, inches) as a path, prepared and driven through
  * the state table with the vehicle placed exactly on each pose it is asked for. */
 #define IN(v) ((int32_t)((v)*1664.6016)) /* inches to Q16 metres (0.0254 * 65536) */
@@ -430,40 +507,22 @@ static void path_vectors(void)
             break;
         c = drive_path_next(&path, c);
     }
-    /* Simplified travel with synthetic events: the vehicle reaches each target exactly. */
-    drive_seq_config_t sc = {DRIVE_MODE_SIMPLIFIED, 35, 50, 9830, 26214, 3};
-    drive_seq_t seq;
-    drive_seq_init(&seq, &path, &sc);
-    drive_seq_event_t ev = {DRIVE_EVT_START, start};
-    drive_seq_out_t out;
-    drive_pose_t here = start;
-    for (uint16_t step = 0;
-         step < 400u && seq.state != DRIVE_ST_DONE && seq.state != DRIVE_ST_FAULT; step++) {
-        drive_seq_step(&seq, &ev, &out);
-        cy_print("seq ");
-        cy_print_dec(seq.state);
-        out_hex(out.actions);
-        if (out.actions & DRIVE_ACT_LOAD) {
-            out_hex(out.cmd.steer[0]);
-            out_hex(out.cmd.arc[0]);
-            out_hex(out.cmd.steer[1]);
-            out_hex(out.cmd.arc[1]);
-        }
-        cy_println();
-        /* The next event the world would raise. */
-        if (out.actions & DRIVE_ACT_REQUEST_FIX) {
-            ev.type = DRIVE_EVT_FIX_READY;
-            ev.pose = here;
-        } else if (seq.state == DRIVE_ST_S_SKIP_INDEX || seq.state == DRIVE_ST_S_WAIT_INDEX) {
-            ev.type = DRIVE_EVT_INDEX;
-        } else if (seq.state == DRIVE_ST_S_ARC1 || seq.state == DRIVE_ST_S_ARC2) {
-            if (out.actions & DRIVE_ACT_LOAD) {
-                fx_q16_t sp;
-                (void)drive_path_target(&path, seq.target, &here, &sp);
-            }
-            ev.type = DRIVE_EVT_DELTA_S;
-        }
-    }
+    seq_vectors(&path, &start);
+
+    /* The same path tail first, and a path that is not ready. */
+    drive_pose_t bstart = start;
+    bstart.heading += FX_ANGLE_HALF;
+    for (uint8_t i = 0; i < 6u; i++)
+        pts[i].pose.heading += FX_ANGLE_HALF;
+    cfg.reverse = true;
+    st = drive_path_prepare(&path, &bstart, pts, 6, &cfg, &board);
+    cy_print("path-reverse ");
+    cy_print_dec((int32_t)st);
+    cy_println();
+    seq_vectors(&path, &bstart);
+    cfg.spacing = 1; /* out of range */
+    (void)drive_path_prepare(&path, &bstart, pts, 6, &cfg, &board);
+    seq_vectors(&path, &bstart);
 }
 
 int main(void)
