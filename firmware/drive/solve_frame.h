@@ -100,5 +100,6 @@
 #define DRIVE_ERR_RADIUS_N       6
 #define DRIVE_ERR_SWEEP_N        7
 #define DRIVE_ERR_RANGE_N        8
+#define DRIVE_ERR_PATH_N         9
 
 #endif

@@ -319,6 +319,64 @@ static void pose_vectors(void)
     }
 }
 
+/* The command builder against boards at and beyond its limits, arcs beyond the bytes, and
+ * missing arguments. */
+static void cmd_edges(void)
+{
+    static const int32_t wheelbase[5] = {3275, 3276, 49938, 262144, 262145};
+    static const struct {
+        int32_t k0, len0, k1, len1;
+    } segs[6] = {
+        {DRIVE_CURV_ONE * 7, 6554, -DRIVE_CURV_ONE * 7, 6554},  /* 7 /m both ways, 0.1 m */
+        {0, 131072, 0, 6554},                                   /* 2 m straight: no byte */
+        {INT32_MAX, 655, INT32_MIN + 1, 655},                   /* the tightest curvature */
+        {-DRIVE_CURV_ONE, 300, DRIVE_CURV_ONE / 3, 400},        /* short arcs (D7) */
+        {DRIVE_CURV_ONE / 2, 65536, DRIVE_CURV_ONE / 2, 65536}, /* the same magnitude twice */
+        {1, 1000, -1, 1000},                                    /* almost straight */
+    };
+    for (uint8_t w = 0; w < 5u; w++) {
+        for (uint8_t i = 0; i < 6u; i++) {
+            drive_board_t b = board;
+            b.wheelbase = wheelbase[w];
+            b.min_pulse_counts = (uint8_t)(i * 3u);
+            if (i == 5u)
+                b.counts_per_m = w == 2u ? 0 : -1;
+            drive_solution_t sol = {DRIVE_CASE_1,
+                                    {{segs[i].k0, segs[i].len0, 0}, {segs[i].k1, segs[i].len1, 0}}};
+            drive_cmd_t cmd = {{0, 0}, {0, 0}, 0, 0, {0, 0}};
+            drive_status_t st = drive_cmd_build(&sol, &b, (fx_q16_t)(w * 20000), i == 3u, &cmd);
+            cy_print("cmd ");
+            cy_print_dec(w);
+            cy_print(" ");
+            cy_print_dec(i);
+            cy_print(" ");
+            cy_print_dec((int32_t)st);
+            if (st == DRIVE_OK) {
+                for (uint8_t j = 0; j < 2u; j++) {
+                    out_hex(cmd.steer[j]);
+                    out_hex(cmd.arc[j]);
+                    out_hex(cmd.alpha[j]);
+                }
+                out_hex((uint8_t)cmd.speed);
+                out_hex(cmd.pulses);
+            }
+            cy_println();
+        }
+    }
+    drive_solution_t sol = {DRIVE_CASE_STRAIGHT, {{0, 6554, 0}, {0, 6554, 0}}};
+    drive_cmd_t cmd;
+    drive_board_t slow = board;
+    slow.speed_lsb = 0;
+    cy_print("cmd-refuse ");
+    cy_print_dec((int32_t)drive_cmd_build(NULL, &board, 0, false, &cmd));
+    cy_print_dec((int32_t)drive_cmd_build(&sol, NULL, 0, false, &cmd));
+    cy_print_dec((int32_t)drive_cmd_build(&sol, &board, 0, false, NULL));
+    cy_print_dec((int32_t)drive_cmd_build(&sol, &slow, 0, false, &cmd));
+    cy_print_dec((int32_t)drive_cmd_build(&sol, &board, -1, false, &cmd));
+    cy_print_dec((int32_t)drive_cmd_build(&sol, &board, 3 * FX_Q16_ONE, true, &cmd));
+    cy_println();
+}
+
 static void print_wseq(const char *tag, const drive_wseq_t *w)
 {
     cy_print(tag);
@@ -467,6 +525,169 @@ static void seq_vectors(drive_path_t *path, const drive_pose_t *start)
 #define IN(v) ((int32_t)((v)*1664.6016)) /* inches to Q16 metres (0.0254 * 65536) */
 static drive_path_point_t pts[6];
 
+/* Paths that preparation refuses, each with where and why, and the cursor calls that must
+ * refuse; the seed path (pts, start, cfg) is spoilt one way at a time. */
+static void path_refusals(const drive_pose_t *start, const drive_path_config_t *good)
+{
+    drive_path_point_t p[6];
+    drive_path_t path;
+    for (uint8_t k = 0; k < 17u; k++) {
+        drive_path_config_t cfg = *good;
+        drive_board_t b = board;
+        const drive_pose_t *s = start;
+        drive_path_point_t *q = p;
+        uint8_t n = 6;
+        for (uint8_t i = 0; i < 6u; i++)
+            p[i] = pts[i];
+        switch (k) {
+        case 0:
+            s = NULL;
+            break;
+        case 1:
+            q = NULL;
+            break;
+        case 2:
+            n = 0;
+            break;
+        case 3:
+            n = 255;
+            break;
+        case 4:
+            cfg.nominal_radius = b.min_radius - 1;
+            break;
+        case 5:
+            cfg.nominal_radius = DRIVE_MIN_RADIUS_MAX + 1;
+            break;
+        case 6:
+            b.min_radius = DRIVE_MIN_RADIUS_MIN - 1;
+            cfg.nominal_radius = b.min_radius;
+            break;
+        case 7:
+            cfg.spacing = FX_Q16_ONE / 20 - 1;
+            break;
+        case 8:
+            cfg.spacing = 8 * FX_Q16_ONE + 1;
+            break;
+        case 9:
+            p[4].speed = 0;
+            break;
+        case 10:
+            p[0].speed = 5 * FX_Q16_ONE;
+            break;
+        case 11:
+            p[2].pose.heading += 1431655765u;
+            break; /* 120 degrees */
+        case 12:
+            p[3].pose = p[2].pose;
+            p[3].pose.x -= FX_Q16_ONE;
+            break; /* behind */
+        case 13:
+            cfg.nominal_radius = 3 * FX_Q16_ONE / 2;
+            break; /* too tight */
+        case 14:
+            p[5].pose.x += 5 * FX_Q16_ONE / 2;
+            cfg.spacing = 8 * FX_Q16_ONE;
+            break;
+        case 15:
+            p[5].pose.x += 14 * FX_Q16_ONE;
+            cfg.spacing = FX_Q16_ONE / 20;
+            break;
+        default:
+            b.speed_lsb = 0;
+            break;
+        }
+        drive_status_t st = drive_path_prepare(&path, s, q, n, &cfg, &b);
+        cy_print("refuse ");
+        cy_print_dec(k);
+        cy_print(" ");
+        cy_print_dec((int32_t)st);
+        cy_print(path.ready ? " ready" : " not-ready");
+        if (st != DRIVE_OK) {
+            cy_print(" ");
+            cy_print_dec(path.bad_leg);
+            cy_print(" ");
+            cy_print_dec(path.bad_sub);
+            cy_print(" ");
+            cy_print_dec((int32_t)path.bad_why);
+        }
+        cy_println();
+    }
+    /* The cursor calls on a ready path and on a refused one. */
+    cy_print("prepare-null ");
+    cy_print_dec((int32_t)drive_path_prepare(NULL, start, p, 6, good, &board));
+    cy_println();
+    for (uint8_t r = 0; r < 2u; r++) {
+        drive_path_config_t cfg = *good;
+        if (r)
+            cfg.spacing = 0;
+        (void)drive_path_prepare(&path, start, p, 6, &cfg, &board);
+        static const drive_path_cursor_t curs[6] = {{0, 0}, {0, 1}, {0, 9},
+                                                    {5, 2}, {6, 1}, {255, 1}};
+        for (uint8_t i = 0; i < 6u; i++) {
+            drive_pose_t tp = {0, 0, 0};
+            fx_q16_t sp = 0;
+            const drive_solution_t *sol = NULL;
+            cy_print("cursor ");
+            cy_print_dec(r);
+            cy_print(" ");
+            cy_print_dec(i);
+            cy_print(" ");
+            cy_print_dec((int32_t)drive_path_target(&path, curs[i], &tp, &sp));
+            out_hex((uint32_t)tp.x);
+            out_hex((uint32_t)sp);
+            cy_print(" ");
+            cy_print_dec((int32_t)drive_path_leg(&path, curs[i].leg, &sol));
+            if (sol != NULL)
+                out_hex((uint32_t)sol->seg[0].length);
+            if (curs[i].leg < 6u) {
+                drive_path_cursor_t nx = drive_path_next(&path, curs[i]);
+                cy_print(drive_path_is_last(&path, curs[i]) ? " last " : " more ");
+                cy_print_dec(nx.leg);
+                cy_print(" ");
+                cy_print_dec(nx.sub);
+            }
+            cy_println();
+        }
+    }
+    cy_print("leg-null ");
+    cy_print_dec((int32_t)drive_path_leg(NULL, 0, NULL));
+    cy_println();
+}
+
+/* The rarer rows: arriving at once, no double arc to any target, a target the path cannot
+ * give (its preparation redone and refused under way), a loaded double arc that ends while
+ * the next waits (underrun). */
+static void seq_edges(drive_path_t *path, const drive_pose_t *start, const drive_path_config_t *cfg)
+{
+    static const drive_seq_config_t full = {DRIVE_MODE_FULL, 35, 50, 9830, 26214, 3};
+    for (uint8_t k = 0; k < 4u; k++) {
+        (void)drive_path_prepare(path, start, pts, 6, cfg, &board);
+        drive_seq_t seq;
+        drive_seq_init(&seq, path, &full);
+        drive_seq_event_t ev = {DRIVE_EVT_START, *start};
+        drive_seq_out_t out;
+        drive_seq_step(&seq, &ev, &out);
+        print_step(&seq, &out);
+        ev.type = DRIVE_EVT_POSE;
+        if (k == 0) {
+            ev.pose = pts[5].pose; /* already at the last point */
+        } else if (k == 1) {
+            ev.pose.x += 2000l * FX_Q16_ONE; /* every target too far */
+        } else if (k == 2) {
+            drive_path_config_t bad = *cfg;
+            bad.spacing = 0;
+            (void)drive_path_prepare(path, start, pts, 6, &bad, &board);
+        }
+        drive_seq_step(&seq, &ev, &out);
+        print_step(&seq, &out);
+        for (uint8_t i = 0; k == 3u && i < 3u; i++) { /* the loaded arc ends while settling */
+            ev.type = DRIVE_EVT_DELTA_S;
+            drive_seq_step(&seq, &ev, &out);
+            print_step(&seq, &out);
+        }
+    }
+}
+
 static void path_vectors(void)
 {
     static const int16_t seed[7][3] = {{36, 142, 270}, {42, 108, 300}, {36, 60, 270}, {48, 36, 315},
@@ -488,6 +709,8 @@ static void path_vectors(void)
         cy_print_dec(pts[i].nsub);
     }
     cy_println();
+    path_refusals(&start, &cfg);
+    st = drive_path_prepare(&path, &start, pts, 6, &cfg, &board);
     drive_path_cursor_t c = drive_path_first(&path);
     for (;;) {
         drive_pose_t tp;
@@ -508,6 +731,7 @@ static void path_vectors(void)
         c = drive_path_next(&path, c);
     }
     seq_vectors(&path, &start);
+    seq_edges(&path, &start, &cfg);
 
     /* The same path tail first, and a path that is not ready. */
     drive_pose_t bstart = start;
@@ -531,6 +755,7 @@ int main(void)
     solver_vectors();
     solver_anywhere();
     pose_vectors();
+    cmd_edges();
     proto_vectors();
     path_vectors();
     cy_bench_report(&st_solve);

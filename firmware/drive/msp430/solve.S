@@ -11,13 +11,12 @@
  */
 #include "../drive_internal.h"
 #include "../solve_frame.h"
+#include "layout.h"
 
 /* Slot s's low and high word. (LLVM's MSP430 assembler silently drops an instruction whose
  * indexed operand starts with a parenthesis: these must not.) */
 #define V(s)  4 * (s)(r9)
 #define VH(s) 4 * (s) + 2(r9)
-#define HI(x) ((x) >> 16)
-#define LO(x) ((x)&0xFFFF)
 
     .set FRAME, 4 + SV_NSLOTS * 4   /* 0(SP): outgoing stack arguments, then the slots */
     .set ARG, SV_NSLOTS * 4 + 16    /* from R9: reverse, out, needed (the caller's) */
