@@ -42,6 +42,7 @@ uint8_t drive_dac_speed_byte(int8_t speed)
     return (uint8_t)(128 + speed);
 }
 
+#ifndef DRIVE_ASM /* MSP430: msp430/cmd.S, the same steps */
 drive_status_t drive_speed_counts(fx_q16_t speed_mps, bool reverse, const drive_board_t *board,
                                   int8_t *out)
 {
@@ -54,7 +55,6 @@ drive_status_t drive_speed_counts(fx_q16_t speed_mps, bool reverse, const drive_
     return DRIVE_OK;
 }
 
-#ifndef DRIVE_ASM /* MSP430: msp430/cmd.S, the same steps */
 drive_status_t drive_cmd_build(const drive_solution_t *sol, const drive_board_t *board,
                                fx_q16_t speed_mps, bool reverse, drive_cmd_t *cmd)
 {

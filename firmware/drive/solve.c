@@ -111,6 +111,17 @@ const uint8_t drive_p_junction[] = {
     DRIVE_ATAN2(SV_G, SV_Q, SV_JX2),  DRIVE_ADD(SV_TAU0, SV_G, SV_ETA), DRIVE_NEG(SV_TAU1, SV_G),
     DRIVE_END};
 
+/* Double arc: the segments (KC with the first turn's sign set), the lengths still L24. */
+const uint8_t drive_p_da_tail[] = {
+    DRIVE_SHL(SV_K0, SV_KC, 0),       DRIVE_NEG(SV_K1, SV_KC),
+    DRIVE_SHL(SV_W0, SV_TAU0, 1),     DRIVE_SUB(SV_W1, SV_DL, SV_W0),
+    DRIVE_END};
+
+/* Straight case: the two halves of P, L24. */
+const uint8_t drive_p_halves[] = {
+    DRIVE_HALF(SV_T0, SV_PP),         DRIVE_SUB(SV_T1, SV_PP, SV_T0),
+    DRIVE_END};
+
 /* Arc lengths, |tau| < 0.03 rad: chord * sec(chord angle) * tau / sin(tau) with the factor
  * from the squares of the binary angles scaled by 32 (a' = (32 tau)^2 / 2^30, tau^2 =
  * a' pi^2 / 4096 in Q30): 1 + g^2/2 + tau^2/6 = 1 + (a' + 3 b') pi^2 / 24576; the fourth-order
@@ -233,12 +244,11 @@ static drive_status_t double_arc(int32_t *v, uint8_t sh, fx_q16_t rmin, int32_t 
     drive_vm_run(v, len);
     if (v[SV_LEN0] < 0 || v[SV_LEN1] < 0)
         return DRIVE_ERR_SWEEP;
-    v[SV_K0] = v[SV_Q] >= 0 ? v[SV_KC] : -v[SV_KC];
+    if (v[SV_Q] < 0)
+        v[SV_KC] = -v[SV_KC];
+    drive_vm_run(v, drive_p_da_tail);
     v[SV_L0] = unscale(v[SV_LEN0], sh);
-    v[SV_W0] = (int32_t)((uint32_t)v[SV_TAU0] * 2u);
-    v[SV_K1] = -v[SV_K0];
     v[SV_L1] = unscale(v[SV_LEN1], sh);
-    v[SV_W1] = (int32_t)((uint32_t)v[SV_DL] - (uint32_t)v[SV_W0]);
     return DRIVE_OK;
 }
 
@@ -294,10 +304,10 @@ drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_
     if (dl < STRAIGHT_ANGLE && dl > -STRAIGHT_ANGLE && v[SV_AQ] <= ((int32_t)1 << sh)) {
         /* Straight case: two halves along A. */
         kase = DRIVE_CASE_STRAIGHT;
-        int32_t half = v[SV_PP] / 2;
+        drive_vm_run(v, drive_p_halves);
         v[SV_K0] = v[SV_W0] = v[SV_K1] = v[SV_W1] = 0;
-        v[SV_L0] = unscale(half, sh);
-        v[SV_L1] = unscale(v[SV_PP] - half, sh);
+        v[SV_L0] = unscale(v[SV_T0], sh);
+        v[SV_L1] = unscale(v[SV_T1], sh);
     } else {
         /* A5 = p sin(eta) - |q| cos(eta) = Lc sin(eta) > 0 when an arc and a straight fit
          * (rotation and translation the same way, eta > beta), and then the arc's radius

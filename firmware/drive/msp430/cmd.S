@@ -220,3 +220,53 @@ c_param:
 c_range:
     mov     #DRIVE_ERR_RANGE_N, r12
     jmp     c_exit
+
+/*
+ * drive_status_t drive_speed_counts(fx_q16_t speed_mps, bool reverse,
+ *     const drive_board_t *board, int8_t *out): R13:R12 = speed_mps, R14 = reverse,
+ * R15 = board, out on the stack. round(v / speed_lsb), negated for reverse travel.
+ */
+    .section .text.drive_speed_counts,"ax",@progbits
+    .global drive_speed_counts
+    .type drive_speed_counts,@function
+drive_speed_counts:
+    push    r10
+    sub     #8, r1                  ; outgoing arguments, then the counts at 4(SP)
+    mov.b   r14, r10
+    tst     r15                     ; a board with speed_lsb > 0, a speed >= 0
+    jz      3f
+    tst     14(r15)
+    jn      3f
+    jnz     1f
+    tst     12(r15)
+    jz      3f
+1:  tst     r13
+    jn      3f
+    clr     0(r1)                   ; fx_div_shift(speed, lsb, 0, &counts)
+    mov     r1, r14
+    add     #4, r14
+    mov     r14, 2(r1)
+    mov     12(r15), r14
+    mov     14(r15), r15
+    call    #fx_div_shift
+    mov     #DRIVE_ERR_RANGE_N, r14 ; over 127 counts
+    tst.b   r12
+    jz      4f
+    tst     6(r1)
+    jnz     4f
+    mov     4(r1), r12
+    cmp     #128, r12
+    jhs     4f
+    tst.b   r10
+    jz      2f
+    inv     r12
+    inc     r12
+2:  mov     12(r1), r13
+    mov.b   r12, 0(r13)
+    clr     r14
+    jmp     4f
+3:  mov     #DRIVE_ERR_PARAM_N, r14
+4:  mov     r14, r12
+    add     #8, r1
+    pop     r10
+    ret

@@ -120,26 +120,27 @@ drive_solve:
     jz      7f
     xor     #0x8000, r15
 7:  ST      r14, r15, SV_T0
-    mov     @r13, r14               ; D, each difference checked for overflow
-    mov     2(r13), r15
-    sub     @r12, r14
-    subc    2(r12), r15
-    ST      r14, r15, SV_DX
-    mov     2(r13), r11
-    xor     2(r12), r11
-    xor     2(r13), r15
+    clr     r7                      ; D, each difference checked for overflow
+1:  mov     r13, r10                ; &to->x, &to->y
+    add     r7, r10
+    mov     r12, r6                 ; &from->x, &from->y
+    add     r7, r6
+    mov     @r10, r14
+    mov     2(r10), r15
+    sub     @r6, r14
+    subc    2(r6), r15
+    mov     r9, r11                 ; DX, DY
+    add     r7, r11
+    mov     r14, 0(r11)
+    mov     r15, 2(r11)
+    mov     2(r10), r11
+    xor     2(r6), r11
+    xor     2(r10), r15
     and     r11, r15
     jn      e_far
-    mov     4(r13), r14
-    mov     6(r13), r15
-    sub     4(r12), r14
-    subc    6(r12), r15
-    ST      r14, r15, SV_DY
-    mov     6(r13), r11
-    xor     6(r12), r11
-    xor     6(r13), r15
-    and     r11, r15
-    jn      e_far
+    add     #4, r7
+    cmp     #8, r7
+    jne     1b
     mov     #SV_DX*4, r11           ; m = max(|dx|, |dy|) <= 64 m
     call    #absmax
     cmp     #HI(DRIVE_MAX_DIST_Q16), r15
@@ -224,18 +225,13 @@ drive_solve:
     jlo     filter
     call    #clear_out
     clr     r7
-    LD      SV_PP, r12, r13         ; the two halves of P (> 0)
-    rra     r13
-    rrc     r12
-    LD      SV_PP, r14, r15
-    sub     r12, r14
-    subc    r13, r15
-    ST      r14, r15, SV_T0
-    call    #unscale
-    ST      r12, r13, SV_L0
-    LD      SV_T0, r12, r13
-    call    #unscale
-    ST      r12, r13, SV_L1
+    RUN     drive_p_halves          ; the two halves of P
+    mov     #SV_T0*4, r11
+    mov     #SV_L0*4, r14
+    call    #usc
+    mov     #SV_T1*4, r11
+    mov     #SV_L1*4, r14
+    call    #usc
 
 /* Back to the real world: mirror (sweeps and curvatures), reverse (curvatures). */
 output:
@@ -522,32 +518,22 @@ darc:
     jn      e_sweep
     tst     VH(SV_LEN1)
     jn      e_sweep
-    LD      SV_KC, r12, r13         ; the case and the segments
-    mov     #1, r7
+    mov     #1, r7                  ; the case, the first turn's sign, the segments
     tst     VH(SV_Q)
     jge     49f
-    NEG32   r12, r13
+    mov     #SV_KC*4, r11
+    call    #negv
     mov     #2, r7
     tst     VH(SV_A5)
     jge     49f
     mov     #3, r7
-49: ST      r12, r13, SV_K0
-    NEG32   r12, r13
-    ST      r12, r13, SV_K1
-    LD      SV_LEN0, r12, r13
-    call    #unscale
-    ST      r12, r13, SV_L0
-    LD      SV_LEN1, r12, r13
-    call    #unscale
-    ST      r12, r13, SV_L1
-    LD      SV_TAU0, r12, r13
-    rla     r12
-    rlc     r13
-    ST      r12, r13, SV_W0
-    LD      SV_DL, r14, r15
-    sub     r12, r14
-    subc    r13, r15
-    ST      r14, r15, SV_W1
+49: RUN     drive_p_da_tail
+    mov     #SV_LEN0*4, r11
+    mov     #SV_L0*4, r14
+    call    #usc
+    mov     #SV_LEN1*4, r11
+    mov     #SV_L1*4, r14
+    call    #usc
     br      #output
 
 /* Helpers (R9, R10 as in drive_solve). */
@@ -599,6 +585,17 @@ unscale:
     adc     r13
     rra     r13
     rrc     r12
+    ret
+
+/* The slot at byte offset R11 unscaled into the one at R14. */
+usc:
+    add     r9, r11
+    mov     @r11+, r12
+    mov     @r11, r13
+    call    #unscale
+    add     r9, r14
+    mov     r12, 0(r14)
+    mov     r13, 2(r14)
     ret
 
 /* R13:R12 <<= 4. */
