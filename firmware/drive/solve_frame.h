@@ -1,8 +1,13 @@
 /*
- * solve_frame.h - the slots of drive_solve()'s frame (solve.c, msp430/solve.S): int32 values
- * of the canonical problem (heading change 2 eta >= 0 to the left, target E = (p, q) in the
- * frame of the mean heading u), lengths in L24. Pairs that an instruction writes or reads
- * together are adjacent; slots whose values are dead by then are shared (noted).
+ * solve_frame.h - the frames of drive_solve() and drive_pose_advance() (solve.c,
+ * msp430/solve.S) and the numbers the C and the assembly share: the solver's thresholds, and
+ * drive.h's limits and status codes as plain numbers (solve.c checks them against drive.h).
+ * Only #defines: the assembly reads it too.
+ *
+ * drive_solve()'s slots are int32 values of the canonical problem (heading change 2 eta >= 0
+ * to the left, target E = (p, q) in the frame of the mean heading u), lengths in L24. Pairs
+ * that an instruction writes or reads together are adjacent; slots whose values are dead by
+ * then are shared (noted).
  */
 #ifndef DRIVE_SOLVE_FRAME_H
 #define DRIVE_SOLVE_FRAME_H
