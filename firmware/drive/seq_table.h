@@ -1,5 +1,6 @@
 /*
- * seq_table.h - the state table's guards and internal actions (seq.c, msp430/seq.S).
+ * seq_table.h - the state table's guards and internal actions (seq.c, msp430/seq.S); only
+ * #defines outside the __ASSEMBLER__ guard.
  */
 #ifndef DRIVE_SEQ_TABLE_H
 #define DRIVE_SEQ_TABLE_H
@@ -39,5 +40,12 @@
 
 /* Rows of the table. */
 #define DRIVE_SEQ_ROWS 42
+
+#ifndef __ASSEMBLER__
+#include "drive/drive_seq.h"
+
+/* The table (seq.c), read by the C and the assembly step. */
+extern const drive_seq_row_t drive_seq_rows[DRIVE_SEQ_ROWS];
+#endif
 
 #endif

@@ -2,7 +2,7 @@
  * solve_frame.h - the frames of drive_solve() and drive_pose_advance() (solve.c,
  * msp430/solve.S) and the numbers the C and the assembly share: the solver's thresholds, and
  * drive.h's limits and status codes as plain numbers (solve.c checks them against drive.h).
- * Only #defines: the assembly reads it too.
+ * The assembly reads it too: only #defines outside the __ASSEMBLER__ guard.
  *
  * drive_solve()'s slots are int32 values of the canonical problem (heading change 2 eta >= 0
  * to the left, target E = (p, q) in the frame of the mean heading u), lengths in L24. Pairs
@@ -106,5 +106,24 @@
 #define DRIVE_ERR_SWEEP_N        7
 #define DRIVE_ERR_RANGE_N        8
 #define DRIVE_ERR_PATH_N         9
+
+#ifndef __ASSEMBLER__
+#include <stdint.h>
+
+/* The programs on these frames (solve.c; drive_internal.h), run by the C and the assembly. */
+extern const uint8_t drive_p_canon[];
+extern const uint8_t drive_p_line_small[];
+extern const uint8_t drive_p_line_big[];
+extern const uint8_t drive_p_x[];
+extern const uint8_t drive_p_junction[];
+extern const uint8_t drive_p_da_tail[];
+extern const uint8_t drive_p_halves[];
+extern const uint8_t drive_p_len_tiny[];
+extern const uint8_t drive_p_len_small[];
+extern const uint8_t drive_p_len_radius[];
+extern const uint8_t drive_p_pa_angles[];
+extern const uint8_t drive_p_pa_sox[];
+extern const uint8_t drive_p_pa_chord[];
+#endif
 
 #endif
