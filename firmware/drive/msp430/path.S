@@ -292,17 +292,19 @@ drive_path_is_last:
     .type drive_path_next,@function
 drive_path_next:
     push    r10
-    mov     r12, r10
-    mov     2+2(r1), r12            ; the cursor (leg, sub)
+    push    r9
+    mov     r12, r10                ; the result
+    mov     r13, r9                 ; the path
+    mov     6(r1), r12              ; the cursor (leg, sub), also the result so far
     mov     r12, 0(r10)
     push    r12                     ; drive_path_is_last(path, cur)
-    mov     r13, r12
-    mov     r13, r11
+    mov     r9, r12
     call    #drive_path_is_last
-    pop     r13
+    add     #2, r1
     tst.b   r12
     jnz     2f
-    mov.b   r13, r12                ; sub < nsub: the next sub
+    mov     r9, r11                 ; sub < nsub: the next sub
+    mov.b   0(r10), r12
     call    #point_of
     cmp.b   16(r12), 1(r10)
     jhs     1f
@@ -311,6 +313,7 @@ drive_path_next:
 1:  inc.b   0(r10)                  ; the next leg
     mov.b   #1, 1(r10)
 2:  mov     r10, r12
+    pop     r9
     pop     r10
     ret
 

@@ -667,7 +667,8 @@ drive_pose_advance:
     incd    r12
     dec     r8
     jnz     1b
-    LD      PARG / 4, r12, r13      ; dist <= 0: r as it is
+    mov     PARG(r9), r12           ; dist <= 0: r as it is
+    mov     PARG+2(r9), r13
     tst     r13
     jn      5f
     jnz     2f
