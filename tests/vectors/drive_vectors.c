@@ -53,6 +53,7 @@ static void out_hex(uint32_t v)
 static cy_bench_stat_t st_solve = {"doublearc", 0, 0, 0};
 static cy_bench_stat_t st_cmd = {"drive_cmd", 0, 0, 0};
 static cy_bench_stat_t st_wide = {"doublearc_wide", 0, 0, 0};
+static cy_stack_stat_t sk_solve = {"doublearc", 0}, sk_cmd = {"drive_cmd", 0};
 static const drive_board_t board = DRIVE_BOARD_SEED;
 
 /* Operands through volatiles so that the timed call cannot be hoisted. */
@@ -77,9 +78,10 @@ static drive_status_t solve_one(const drive_pose_t *f, const drive_pose_t *t, fx
     b.y = v_to.y;
     b.heading = v_to.heading;
     if (timed)
-        CY_BENCH(timed, st = drive_solve(&a, &b, v_rmin, v_rev != 0, sol, need));
+        CY_STACK(&sk_solve,
+                 CY_BENCH(timed, st = drive_solve(&a, &b, v_rmin, v_rev != 0, sol, need)));
     else
-        st = drive_solve(&a, &b, v_rmin, v_rev != 0, sol, need);
+        CY_STACK(&sk_solve, st = drive_solve(&a, &b, v_rmin, v_rev != 0, sol, need));
     return st;
 }
 
@@ -110,7 +112,8 @@ static void print_solution(const char *tag, const drive_pose_t *f, const drive_p
         drive_cmd_t cmd;
         drive_status_t cs;
         if (timed == &st_solve)
-            CY_BENCH(&st_cmd, cs = drive_cmd_build(&sol, &board, 32768, rev, &cmd));
+            CY_STACK(&sk_cmd,
+                     CY_BENCH(&st_cmd, cs = drive_cmd_build(&sol, &board, 32768, rev, &cmd)));
         else
             cs = drive_cmd_build(&sol, &board, 32768, rev, &cmd);
         cy_print(" cmd ");
@@ -761,6 +764,8 @@ int main(void)
     cy_bench_report(&st_solve);
     cy_bench_report(&st_cmd);
     cy_bench_report(&st_wide);
+    cy_stack_report(&sk_solve);
+    cy_stack_report(&sk_cmd);
     cy_check(st_solve.max <= 10000u, "doublearc within 10,000 cycles (0 on the host)");
     cy_test_end();
     return 0;
