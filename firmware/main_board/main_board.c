@@ -32,7 +32,6 @@ static struct {
     /* configuration */
     optical_map_t map;
     const optical_xy_t *beacons;
-    drive_path_point_t pts[MAIN_BOARD_MAX_PATH];
     drive_board_t board;
     drive_seq_config_t seq_cfg;
     optical_config_t optical;
@@ -457,14 +456,13 @@ static bool due(uint32_t now, uint32_t deadline)
 
 drive_status_t main_board_init(const main_board_config_t *cfg)
 {
-    if (!cfg || cfg->n_path == 0 || cfg->n_path > MAIN_BOARD_MAX_PATH || cfg->n_beacons < 3 ||
+    if (!cfg || !cfg->path || !cfg->beacons || cfg->n_path == 0 ||
+        cfg->n_path > MAIN_BOARD_MAX_PATH || cfg->n_beacons < 3 ||
         cfg->n_beacons > OPTICAL_MAX_BEACONS || cfg->counts_per_turn == 0)
         return DRIVE_ERR_PARAM;
     mb.beacons = cfg->beacons;
     mb.map.b = cfg->beacons;
     mb.map.n = cfg->n_beacons;
-    for (uint8_t i = 0; i < cfg->n_path; i++)
-        mb.pts[i] = cfg->path[i];
     mb.board = cfg->board;
     mb.seq_cfg = cfg->seq_cfg;
     mb.optical = cfg->optical;
@@ -486,7 +484,7 @@ drive_status_t main_board_init(const main_board_config_t *cfg)
     send_wseq(&w);
 
     drive_status_t st =
-        drive_path_prepare(&mb.path, &mb.start, mb.pts, cfg->n_path, &cfg->path_cfg, &mb.board);
+        drive_path_prepare(&mb.path, &mb.start, cfg->path, cfg->n_path, &cfg->path_cfg, &mb.board);
     drive_seq_init(&mb.seq, &mb.path, &mb.seq_cfg);
     return st;
 }
