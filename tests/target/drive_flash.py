@@ -9,7 +9,7 @@ libcy_drive.a, the input sections that land in flash (.text, .rodata and the loa
 .data), prints the table and fails (exit 1) when their total exceeds --budget bytes.
 
   drive_flash.py --lld ld.lld-16 --ld-dir hal/msp430/ld --budget 6656 \
-      --map out.map main_msp430.c.obj libcy_main_board.a ... libcy_drive.a ...
+      --map out.map [--elf out.elf] main_msp430.c.obj libcy_main_board.a ... libcy_drive.a ...
 """
 import argparse
 import os
@@ -61,6 +61,7 @@ def main():
     ap.add_argument("--budget", type=int, required=True, help="bytes of flash for cy_drive")
     ap.add_argument("--library", default="libcy_drive.a", help="whose objects are summed")
     ap.add_argument("--map", help="keep the linker map here")
+    ap.add_argument("--elf", help="keep the linked image here (e.g. for tools/stack_bound.py)")
     args = ap.parse_args()
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -68,8 +69,9 @@ def main():
         with open(ld, "w") as f:
             f.write(LAYOUT)
         map_path = args.map or os.path.join(tmp, "image.map")
+        elf_path = args.elf or os.path.join(tmp, "image.elf")
         run = subprocess.run([args.lld, "-T", ld, "-L", args.ld_dir, "--gc-sections",
-                              "-Map=" + map_path, "-o", os.path.join(tmp, "image.elf")]
+                              "-Map=" + map_path, "-o", elf_path]
                              + args.inputs, capture_output=True, text=True)
         if run.returncode != 0:
             sys.stderr.write(run.stderr)

@@ -1,0 +1,207 @@
+#!/usr/bin/env python3
+"""Unit test of tools/stack_bound.py on hand-written disassembly (no toolchain needed).
+
+The fixtures are written here in llvm-objdump's MSP430 syntax; the expected figures are
+counted by hand from them in the comments."""
+import os
+import sys
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "tools"))
+import stack_bound as sb  # noqa: E402
+
+# reset: sets SP, calls main; main (frame 6: two pushes + sub #2) calls leaf (frame 4: one
+# push, then pushes r2 and pops it inside its body), tail-calls tail via br; tail (frame 8)
+# returns. isr (2 pushes) calls through r12: address-taken are leaf (mov #0x1100) and
+# table_fn (a word in rodata); table_fn (frame 10) reaches deeper than leaf.
+# Deepest reset chain: 2 (call main) + main's 6 + 2 (call leaf) + leaf's 4 = 14; main's
+# br to tail runs at depth 0: 2 + 0 + 8 = 10 is shallower. reset(0) > main(6) > leaf(4).
+# isr: 4 (entry) + 4 (pushes) + 2 + table_fn 10 = 20.
+GOOD = """
+00001000 <reset>:
+    1000:      	mov	#2560, r1
+    1004:      	call	#4112
+    1008:      	jmp	$+0
+
+00001010 <main>:
+    1010:      	push	r10
+    1012:      	push	r9
+    1014:      	sub	#2, r1
+    1018:      	call	#4352
+    101c:      	tst	r12
+    101e:      	jeq	$+6
+    1020:      	mov	#4352, r13
+    1024:      	add	#2, r1
+    1028:      	pop	r9
+    102a:      	pop	r10
+    102c:      	br	#4608
+
+00001100 <leaf>:
+    1100:      	push	r10
+    1102:      	push	r2
+    1104:      	dint
+    1106:      	pop	r2
+    1108:      	pop	r10
+    110a:      	ret
+
+00001200 <tail>:
+    1200:      	sub	#8, r1
+    1204:      	add	#8, r1
+    1208:      	ret
+
+00001300 <table_fn>:
+    1300:      	pushm	#5, r10
+    1302:      	popm	#5, r10
+    1304:      	ret
+
+00001400 <isr>:
+    1400:      	push	r12
+    1402:      	push	r13
+    1404:      	mov	&512, r12
+    1408:      	call	r12
+    140a:      	pop	r13
+    140c:      	pop	r12
+    140e:      	reti
+"""
+
+
+def image(text, data=(), indirect=None):
+    img = sb.Image(sb.parse_disassembly(text), sb.functions_from_headers(text), data, indirect)
+    img.analyse()
+    return img
+
+
+class Frames(unittest.TestCase):
+    def setUp(self):
+        # 0x1300 (table_fn) in a data word at 0x2000; 0x1234 is no function.
+        self.img = image(GOOD, data=[(0x2000, 0x1300), (0x2002, 0x1234)])
+
+    def test_frames(self):
+        f = self.img.funcs
+        self.assertEqual(f["main"].frame, 6)
+        self.assertEqual(f["leaf"].frame, 4)  # push r10 + push r2 inside the body
+        self.assertEqual(f["tail"].frame, 8)
+        self.assertEqual(f["table_fn"].frame, 10)  # pushm #5
+        self.assertEqual(f["isr"].frame, 4)
+        for fn in f.values():
+            self.assertEqual(fn.errors, [], fn.name)
+
+    def test_address_taken(self):
+        self.assertEqual(sorted(self.img.taken), ["leaf", "table_fn"])
+
+    def test_chain_sum(self):
+        b, chain = sb.Bounds(self.img).of("reset")
+        self.assertEqual(b, 2 + 6 + 2 + 4)
+        self.assertEqual(chain, [("reset", 0), ("main", 6), ("leaf", 4)])
+        # the tail call runs at main's depth after its epilogue: 0 + 8
+        self.assertIn(("tail", "tail", 0, 0x102c), self.img.funcs["main"].edges)
+
+    def test_indirect_rule(self):
+        b, chain = sb.Bounds(self.img).of("isr")
+        self.assertEqual(b, 4 + 2 + 10)
+        self.assertEqual(chain[1], ("*table_fn", 10))
+        narrowed = image(GOOD, data=[(0x2000, 0x1300)], indirect={"isr": ["leaf"]})
+        self.assertEqual(sb.Bounds(narrowed).of("isr")[0], 4 + 2 + 4)
+
+    def test_report(self):
+        r = sb.report(self.img, {16: "reset", 5: "isr"}, free_ram=100, limit=None)
+        self.assertEqual(r["errors"], [])
+        self.assertFalse(r["nesting"])
+        self.assertEqual(r["worst"], 14 + 20)
+        # leaf's pop r2 puts back the SR it pushed: a restore, not an enable
+        kinds = {(g["function"], g["kind"]) for x in r["roots"] for g in x["gie"]}
+        self.assertEqual(kinds, {("leaf", "restore")})
+        self.assertEqual(sb.report(self.img, {16: "reset", 5: "isr"}, 30, None)["over"],
+                         ["worst case 34 B exceeds the free RAM 30 B"])
+
+
+class Errors(unittest.TestCase):
+    def test_recursion_names_the_cycle(self):
+        text = """
+00001000 <a>:
+    1000:      	push	r10
+    1002:      	call	#4096
+    1006:      	pop	r10
+    1008:      	ret
+
+00001100 <b>:
+    1100:      	call	#4352
+    1104:      	call	#4608
+    1108:      	ret
+
+00001200 <c>:
+    1200:      	jmp	$-256
+"""
+        img = image(text)
+        with self.assertRaises(sb.Recursion) as e:
+            sb.Bounds(img).of("a")
+        self.assertEqual(str(e.exception), "a -> a")
+        with self.assertRaises(sb.Recursion) as e:
+            sb.Bounds(img).of("b")
+        self.assertEqual(str(e.exception), "b -> b")  # b calls b; c tail-jumps to b too
+
+    def test_unbalanced_return(self):
+        text = """
+00001000 <f>:
+    1000:      	push	r10
+    1002:      	tst	r12
+    1004:      	jeq	$+4
+    1006:      	pop	r10
+    1008:      	ret
+"""
+        img = image(text)
+        self.assertTrue(any("returns with 2 bytes" in e for e in img.funcs["f"].errors))
+
+    def test_join_with_two_depths(self):
+        text = """
+00001000 <f>:
+    1000:      	tst	r12
+    1002:      	jeq	$+4
+    1004:      	push	r10
+    1006:      	pop	r11
+    1008:      	ret
+"""
+        img = image(text)
+        self.assertTrue(any("reached with stack depth" in e for e in img.funcs["f"].errors))
+
+    def test_isr_enabling_interrupts_counts_nesting(self):
+        text = """
+00001000 <reset>:
+    1000:      	mov	#2560, r1
+    1004:      	sub	#10, r1
+    1008:      	jmp	$+0
+
+00001100 <isr_a>:
+    1100:      	push	r12
+    1102:      	bis	#8, r2
+    1106:      	pop	r12
+    1108:      	reti
+
+00001200 <isr_b>:
+    1200:      	sub	#20, r1
+    1204:      	add	#20, r1
+    1208:      	reti
+"""
+        r = sb.report(image(text), {16: "reset", 2: "isr_a", 3: "isr_b"}, 1000, None)
+        self.assertTrue(r["nesting"])
+        self.assertEqual(r["worst"], 10 + (4 + 2) + (4 + 20))
+
+    def test_noreturn_call_does_not_fall_into_the_next_function(self):
+        text = """
+00001000 <f>:
+    1000:      	call	#4352
+
+00001004 <g>:
+    1004:      	sub	#50, r1
+    1008:      	add	#50, r1
+    100c:      	ret
+
+00001100 <halt>:
+    1100:      	jmp	$+0
+"""
+        img = image(text)
+        self.assertEqual(sb.Bounds(img).of("f")[0], 2)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
