@@ -197,27 +197,6 @@ static void helpers(void)
         cy_print_hex16(optical_angle16(x, y));
         cy_println();
     }
-    for (uint16_t t = 0; t < 400u; t++) {
-        /* Operands whose dot product fits: Q30-sized factors against <= 2^30 values. */
-        int32_t a = rnd_mag(), b = rnd_mag() >> 1, c = rnd_mag(), d = rnd_mag() >> 1;
-        if (t < 8) {
-            a = t & 1 ? -0x40000000l : 0x3FFFFFFFl;
-            b = t & 2 ? -0x40000000l : 0x40000000l;
-            c = t & 4 ? 0x7FFFFFFFl : -0x7FFFFFFFl;
-            d = 1;
-        }
-        cy_print("dot2 ");
-        cy_print_hex32((uint32_t)a);
-        cy_print(" ");
-        cy_print_hex32((uint32_t)b);
-        cy_print(" ");
-        cy_print_hex32((uint32_t)c);
-        cy_print(" ");
-        cy_print_hex32((uint32_t)d);
-        cy_print(" ");
-        cy_print_hex32((uint32_t)optical_dot2(a, b, c, d));
-        cy_println();
-    }
 }
 
 static void reflectors(void)
