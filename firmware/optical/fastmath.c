@@ -7,6 +7,21 @@
 
 #include <stddef.h>
 
+optical_work_t optical_work;
+#define W (optical_work)
+
+#ifdef __MSP430__
+/* The assembly addresses the work area by these offsets (msp430/optical_fast.S). */
+_Static_assert(offsetof(optical_work_t, x) == 2 && offsetof(optical_work_t, head) == 10 &&
+                   offsetof(optical_work_t, nb) == 20 && offsetof(optical_work_t, th) == 24 &&
+                   offsetof(optical_work_t, lev) == 54 && offsetof(optical_work_t, we) == 84 &&
+                   offsetof(optical_work_t, sm) == 174 && offsetof(optical_work_t, bstart) == 189 &&
+                   offsetof(optical_work_t, u) == 250 &&
+                   offsetof(optical_work_t, u.id.e) == 314 && offsetof(optical_work_t, u.id.g) == 378 &&
+                   offsetof(optical_work_t, u.id.bm) == 442 && offsetof(optical_work_t, u.id.cand) == 474,
+               "optical_work_t layout (optical_fast.S)");
+#endif
+
 const uint16_t optical_recip_tab[65] = {
     32768, 32264, 31775, 31301, 30840, 30394, 29959, 29537, 29127, 28728, 28340, 27962, 27594,
     27236, 26887, 26546, 26214, 25891, 25575, 25267, 24966, 24672, 24385, 24105, 23831, 23564,
@@ -36,8 +51,6 @@ uint16_t optical_win(uint16_t l, uint16_t g)
     return v > 0x7FFFu ? 0x7FFFu : (uint16_t)v;
 }
 
-#ifndef OPTICAL_ASM
-
 static uint32_t umag(int32_t v)
 {
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
@@ -48,38 +61,22 @@ static uint16_t sat16(uint32_t v)
     return v > 0xFFFFu ? 0xFFFFu : (uint16_t)v;
 }
 
-/* The parts of optical_angle16 that optical_expect_scan reuses. */
+#ifndef OPTICAL_ASM
+
+/* The parts of the arctangent that optical_expect_scan reuses. */
 typedef struct {
-    uint16_t r; /* 2^30 / u, u = max(|dx|, |dy|) 2^-s in [2^15, 2^16) (interpolated) */
-    uint16_t i; /* floor(64 min / max), 0..64 */
-    int8_t s;   /* the shift */
+    uint16_t r; /* 2^30 / u (interpolated) */
+    uint16_t i; /* floor(64 v / u), 0..64 */
 } angle_parts_t;
 
-static uint16_t angle(int32_t dx, int32_t dy, angle_parts_t *p)
+/*
+ * The arctangent of the octant: u in [2^15, 2^16), v <= u (the larger and the smaller
+ * magnitude, scaled alike), then unfolded by the flags (1 swapped, 2 dx < 0, 4 dy < 0).
+ */
+static uint16_t octant(uint16_t u, uint16_t v, uint8_t flags, angle_parts_t *p)
 {
-    uint32_t ax = umag(dx), ay = umag(dy);
-    bool swap = ay > ax;
-    if (swap) {
-        uint32_t t = ax;
-        ax = ay;
-        ay = t;
-    }
-    p->s = 0;
-    if (ax == 0)
-        return 0;
-    while (ax > 0xFFFFu) { /* both to [2^15, 2^16) by the shift that brings ax there */
-        ax >>= 1;
-        ay >>= 1;
-        p->s++;
-    }
-    while (ax < 0x8000u) {
-        ax <<= 1;
-        ay <<= 1;
-        p->s--;
-    }
-    uint16_t u = (uint16_t)ax, v = (uint16_t)ay, a;
     /* r = 2^30 / u (interpolated), q = 2^16 v / u */
-    uint16_t i = (uint16_t)((u >> 9) - 64u), f = (uint16_t)(u << 7);
+    uint16_t i = (uint16_t)((u >> 9) - 64u), f = (uint16_t)(u << 7), a;
     uint16_t d = (uint16_t)(optical_recip_tab[i] - optical_recip_tab[i + 1u]);
     p->r = (uint16_t)(optical_recip_tab[i] - (((uint32_t)d * f + 0x8000u) >> 16));
     if (v >= u) {
@@ -94,19 +91,37 @@ static uint16_t angle(int32_t dx, int32_t dy, angle_parts_t *p)
         p->i = i;
     }
     a = (uint16_t)((a + 2u) >> 2);
-    if (swap)
+    if (flags & 1u)
         a = (uint16_t)(16384u - a);
-    if (dx < 0)
+    if (flags & 2u)
         a = (uint16_t)(32768u - a);
-    if (dy < 0)
+    if (flags & 4u)
         a = (uint16_t)(0u - a);
     return a;
 }
 
 uint16_t optical_angle16(int32_t dx, int32_t dy)
 {
+    uint32_t ax = umag(dx), ay = umag(dy);
+    uint8_t flags = (uint8_t)((dx < 0 ? 2u : 0u) | (dy < 0 ? 4u : 0u));
+    if (ay > ax) {
+        uint32_t t = ax;
+        ax = ay;
+        ay = t;
+        flags |= 1u;
+    }
+    if (ax == 0)
+        return 0;
+    while (ax > 0xFFFFu) { /* both to [2^15, 2^16) by the shift that brings ax there */
+        ax >>= 1;
+        ay >>= 1;
+    }
+    while (ax < 0x8000u) {
+        ax <<= 1;
+        ay <<= 1;
+    }
     angle_parts_t p;
-    return angle(dx, dy, &p);
+    return octant((uint16_t)ax, (uint16_t)ay, flags, &p);
 }
 
 /* |v| < OPTICAL_COORD_LIMIT (2^29): the high word in (-0x2000, 0x2000). */
@@ -115,107 +130,136 @@ static bool coord_ok(int32_t v)
     return (uint32_t)v + 0x1FFFFFFFu < 0x3FFFFFFFu;
 }
 
-static void clear(optical_ident_t *a)
+static void clear(void)
 {
-    for (uint8_t j = 0; j < a->n; j++)
-        if (a->sm[j] != OPTICAL_DROPPED)
-            a->sm[j] = OPTICAL_NONE;
-    for (uint8_t k = 0; k < a->nb; k++)
-        a->bm[k] = OPTICAL_NONE;
+    for (uint8_t j = 0; j < W.n; j++)
+        if (W.sm[j] != OPTICAL_DROPPED)
+            W.sm[j] = OPTICAL_NONE;
+    for (uint8_t k = 0; k < W.nb; k++)
+        W.u.id.bm[k] = OPTICAL_NONE;
 }
 
 /* The window position part of pair (j, k). */
-static uint16_t pair_w(const optical_ident_t *a, uint8_t j, uint8_t k)
+static uint16_t pair_w(uint8_t j, uint8_t k)
 {
-    if (a->lever8 == 0 || a->lev[j] == 0)
-        return a->e[k];
-    return (uint16_t)(optical_win(sat16((uint32_t)a->eps8 + a->lev[j]), a->g[k]) + OPTICAL_MARGIN);
+    if (W.lever8 == 0 || W.lev[j] == 0)
+        return W.u.id.e[k];
+    return (uint16_t)(optical_win(sat16((uint32_t)W.eps8 + W.lev[j]), W.u.id.g[k]) + OPTICAL_MARGIN);
 }
 
 /* Pair (j, k) within the windows (mid, half): marked; true when it is. */
-static bool test(optical_ident_t *a, uint8_t j, uint8_t k, int16_t mid, uint16_t half)
+static bool test(uint8_t j, uint8_t k, int16_t mid, uint16_t half)
 {
-    uint16_t w = pair_w(a, j, k);
-    uint16_t off = (uint16_t)(a->th[j] - a->psi[k] - (uint16_t)mid);
+    uint16_t w = pair_w(j, k);
+    uint16_t off = (uint16_t)(W.th[j] - W.u.id.psi[k] - (uint16_t)mid);
     if ((int16_t)off < 0)
         off = (uint16_t)(0u - off);
     if (off > (uint16_t)(half + w))
         return false;
-    a->sm[j] = a->sm[j] == OPTICAL_NONE ? k : OPTICAL_MULTI;
-    a->bm[k] = a->bm[k] == OPTICAL_NONE ? j : OPTICAL_MULTI;
-    a->we[j] = w;
+    W.sm[j] = W.sm[j] == OPTICAL_NONE ? k : OPTICAL_MULTI;
+    W.u.id.bm[k] = W.u.id.bm[k] == OPTICAL_NONE ? j : OPTICAL_MULTI;
+    W.we[j] = w;
     return true;
 }
 
-uint8_t optical_expect_scan(optical_ident_t *a, int16_t mid, uint16_t half)
+/* ceil(2^(9 + l) k), k = 1 and 2/3, l = 0..6: the window factor's scale (expect_scan). */
+static const uint16_t gscale[2][7] = {{512, 1024, 2048, 4096, 8192, 16384, 32768},
+                                      {342, 683, 1366, 2731, 5462, 10923, 21846}};
+
+uint8_t optical_expect_scan(int16_t mid, uint16_t half)
 {
-    clear(a);
-    a->nc = 0;
-    for (uint8_t k = 0; k < a->nb; k++) {
-        const optical_xy_t *b = &a->b[k];
-        if (!coord_ok(b->x) || !coord_ok(b->y))
-            return 1;
-        int32_t dx = b->x - a->x, dy = b->y - a->y;
-        uint32_t ax = umag(dx), ay = umag(dy);
-        if (ax > a->gate || ay > a->gate) {
-            a->e[k] = 0;
+    uint8_t bad = 0;
+    clear();
+    W.nc = 0;
+    for (uint8_t k = 0; k < W.nb; k++) {
+        const optical_xy_t *b = &W.b[k];
+        bad |= !coord_ok(b->x) || !coord_ok(b->y);
+        /* The offset floored to 2^-8 m (within 128 m, else gated out). */
+        int32_t dx = (int32_t)((uint32_t)b->x - (uint32_t)W.x);
+        int32_t dy = (int32_t)((uint32_t)b->y - (uint32_t)W.y);
+        W.u.id.e[k] = 0;
+        if ((uint32_t)dx + 0x00800000u > 0x00FFFFFFu || (uint32_t)dy + 0x00800000u > 0x00FFFFFFu)
             continue;
+        int16_t x8 = (int16_t)(uint16_t)((uint32_t)dx >> 8), y8 = (int16_t)(uint16_t)((uint32_t)dy >> 8);
+        uint16_t ax = (uint16_t)(x8 < 0 ? 0u - (uint16_t)x8 : (uint16_t)x8);
+        uint16_t ay = (uint16_t)(y8 < 0 ? 0u - (uint16_t)y8 : (uint16_t)y8);
+        if (ax > W.gate8 || ay > W.gate8)
+            continue;
+        uint8_t flags = (uint8_t)((x8 < 0 ? 2u : 0u) | (y8 < 0 ? 4u : 0u));
+        if (ay > ax) {
+            uint16_t t = ax;
+            ax = ay;
+            ay = t;
+            flags |= 1u;
         }
-        angle_parts_t p;
-        uint16_t psi = (uint16_t)(angle(dx, dy, &p) - a->head);
-        a->psi[k] = psi;
-        /* The window factor: the range is at least max(ax, ay) sqrt(1 + t^2). */
-        uint32_t am = ax > ay ? ax : ay;
-        uint16_t m8 = am >= (1ul << 24) ? 0xFFFFu : (uint16_t)(am >> 8);
-        uint16_t g = 0xFFFFu;
-        if (m8 >= 77u && m8 > a->amax8) {
+        uint16_t m8 = ax, psi = 0, g = 0xFFFFu;
+        angle_parts_t p = {0, 0};
+        uint8_t l = 0;
+        if (ax) {
+            for (; ax < 0x8000u; l++) { /* to [2^15, 2^16) */
+                ax = (uint16_t)(ax << 1);
+                ay = (uint16_t)(ay << 1);
+            }
+            psi = octant(ax, ay, flags, &p);
+        }
+        psi = (uint16_t)(psi - W.head);
+        W.u.id.psi[k] = psi;
+        /* The window factor (2^16 / (2 pi) asin(l8 / r8) <= g l8 / 256): the range is at least
+         * m8 sqrt(1 + t^2), asin(x) <= k (pi / 2) x, and 2^16 / (2 pi) (pi / 2) 256 = 2^22, so
+         * g = 2^22 k / r8 <= h k 2^(l - 7). */
+        if (m8 >= 77u && m8 > W.amax8) {
             uint16_t h = (uint16_t)(((uint32_t)p.r * optical_ct_tab[p.i < 64 ? p.i : 63]) >> 16);
-            if (m8 >= 2u * (uint32_t)a->amax8)
-                h = (uint16_t)(((uint32_t)h * 43691u + 65535u) >> 16); /* 2/3, up */
-            uint32_t v = 2u * (uint32_t)h;
-            v = p.s >= 0 ? v >> p.s : v << -p.s;
-            g = v >= 0xFFFEu ? 0xFFFEu : (uint16_t)(v + 1u);
+            uint8_t small = m8 >= 2u * (uint32_t)W.amax8; /* x <= 1/2: k = 2/3 */
+            if (l <= 6) {
+                g = (uint16_t)((((uint32_t)h * gscale[small][l]) >> 16) + 1u);
+            } else {
+                uint32_t v = small ? ((uint32_t)h * 2u + 2u) / 3u : h;
+                v <<= l - 7u;
+                g = v >= 0xFFFEu ? 0xFFFEu : (uint16_t)(v + 1u);
+            }
         }
-        a->g[k] = g;
-        uint16_t ek = (uint16_t)(optical_win(a->eps8, g) + OPTICAL_MARGIN);
-        a->e[k] = ek;
+        W.u.id.g[k] = g;
+        uint16_t ek = (uint16_t)(optical_win(W.eps8, g) + OPTICAL_MARGIN);
+        W.u.id.e[k] = ek;
         /* The candidate sightings: from the bucket of the window's start. */
         uint16_t wmax = ek;
-        if (a->lever8) /* the widest window over the sightings: the largest lever */
-            wmax = (uint16_t)(optical_win(a->amax8, g) + OPTICAL_MARGIN);
+        if (W.lever8) /* the widest window over the sightings: the largest lever */
+            wmax = (uint16_t)(optical_win(W.amax8, g) + OPTICAL_MARGIN);
         wmax = (uint16_t)(wmax + half);
         uint16_t lo = (uint16_t)(psi + (uint16_t)mid - wmax);
         uint16_t span = (uint16_t)(2u * wmax);
         bool all = wmax >= 0x7000u; /* that wide: test every sighting */
-        uint8_t j = all ? 0u : a->bstart[lo >> 12];
-        for (uint8_t c = 0; c < a->n; c++, j = (uint8_t)(j + 1u < a->n ? j + 1u : 0u)) {
+        uint8_t j = all ? 0u : W.bstart[lo >> 12];
+        for (uint8_t c = 0; c < W.n; c++, j = (uint8_t)(j + 1u < W.n ? j + 1u : 0u)) {
             if (!all) {
-                uint16_t rel = (uint16_t)(a->th[j] - lo);
+                uint16_t rel = (uint16_t)(W.th[j] - lo);
                 if (rel >= 0xF000u)
                     continue; /* in lo's 1/16 turn, before lo */
                 if (rel > span)
                     break;
             }
-            if (a->sm[j] == OPTICAL_DROPPED || !test(a, j, k, mid, half) || a->nc == 0xFFu)
+            if (W.sm[j] == OPTICAL_DROPPED || !test(j, k, mid, half) || W.nc == 0xFFu)
                 continue;
-            if (a->nc == OPTICAL_MAX_CAND) {
-                a->nc = 0xFFu;
+            if (W.nc == OPTICAL_MAX_CAND) {
+                W.nc = 0xFFu;
                 continue;
             }
-            a->cand[2u * a->nc] = j;
-            a->cand[2u * a->nc + 1u] = k;
-            a->nc++;
+            W.u.id.cand[2u * W.nc] = j;
+            W.u.id.cand[2u * W.nc + 1u] = k;
+            W.nc++;
         }
     }
-    return 0;
+    return bad;
 }
 
-void optical_eval(optical_ident_t *a, int16_t mid, uint16_t half)
+void optical_eval(int16_t mid, uint16_t half)
 {
-    clear(a);
-    for (uint8_t c = 0; c < a->nc; c++)
-        test(a, a->cand[2u * c], a->cand[2u * c + 1u], mid, half);
+    clear();
+    for (uint8_t c = 0; c < W.nc; c++)
+        test(W.u.id.cand[2u * c], W.u.id.cand[2u * c + 1u], mid, half);
 }
+
+#endif
 
 bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16)
 {
@@ -237,6 +281,15 @@ bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t 
     return a->flat || hi * w16 >= a->dk;
 }
 
+#ifndef OPTICAL_ASM
+
+/* floor(v / 2) */
+static int32_t half32(int32_t v)
+{
+    return (int32_t)(((uint32_t)v >> 1) | ((uint32_t)v & 0x80000000u));
+}
+
+
 /* floor((v + 2^29) / 2^30) without a signed shift */
 static int32_t rnd30(int64_t v)
 {
@@ -245,15 +298,25 @@ static int32_t rnd30(int64_t v)
     return (int32_t)(int64_t)(((s ^ m) >> 30) ^ m);
 }
 
-/* floor(v / 2) */
-static int32_t half32(int32_t v)
+/*
+ * a b without the product of the low words (a mod 2^16)(b mod 2^16) < 2^32: after the
+ * rounding to 2^-30 that leaves at most 4 units, far below the sines' own error (fx_sin:
+ * 118 units of 2^-30), and saves the MSP430 a quarter of the multiplies.
+ */
+static int64_t prod(int32_t a, int32_t b)
 {
-    return (int32_t)(((uint32_t)v >> 1) | ((uint32_t)v & 0x80000000u));
+    return (int64_t)a * b - (int64_t)((uint32_t)a & 0xFFFFu) * ((uint32_t)b & 0xFFFFu);
 }
 
-static int32_t rot(int32_t x, int32_t s, int32_t y, int32_t c)
+/* The two homogeneous centres of one circle from the products of one offset (a, b) with the
+ * sine and cosine (s, c): n0 = (as - bc, bs + ac), n1 = (-as - bc, ac - bs). */
+static void group(int32_t a, int32_t b, int32_t s, int32_t c, int32_t *n0, int32_t *n1)
 {
-    return rnd30((int64_t)x * s + (int64_t)y * c);
+    int64_t pa = prod(a, s), pb = prod(b, c), pc = prod(b, s), pd = prod(a, c);
+    n0[0] = rnd30(pa - pb);
+    n0[1] = rnd30(pc + pd);
+    n1[0] = rnd30(-pa - pb);
+    n1[1] = rnd30(pd - pc);
 }
 
 /*
@@ -262,39 +325,35 @@ static int32_t rot(int32_t x, int32_t s, int32_t y, int32_t c)
  */
 static bool pair(const int32_t *nX, int32_t sX, const int32_t *nY, int32_t sY, int32_t p[2])
 {
-    int32_t wx = rot(nY[0], sX, nX[0], -sY), wy = rot(nY[1], sX, nX[1], -sY);
-    int32_t x = rot(nY[0], nX[1], nY[1], -nX[0]); /* |x| <= 2^28 */
+    int32_t wx = rnd30(prod(nY[0], sX) - prod(nX[0], sY)); /* |W| < 2^30.1 */
+    int32_t wy = rnd30(prod(nY[1], sX) - prod(nX[1], sY));
+    int32_t x = rnd30(prod(nY[0], nX[1]) - prod(nY[1], nX[0])); /* |x| < 2^28 */
     uint32_t m = umag(wx) | umag(wy);
     if (m == 0)
         return false;
-    int8_t e = 2;
-    while (m < (1ul << 28)) { /* W~ = W 2^-e, its larger component in [2^28, 2^29) */
-        m <<= 1;
+    uint8_t e = 2; /* W~ = W 2^(e - 2), its larger component in [2^28, 2^29) */
+    for (; m < (1ul << 28); m <<= 1) {
         wx *= 2;
         wy *= 2;
         e++;
     }
-    while (m >= (1ul << 29)) {
-        m >>= 1;
+    for (; m >= (1ul << 29); m >>= 1) { /* at most twice */
         wx = half32(wx);
         wy = half32(wy);
         e--;
     }
-    uint32_t d = (uint32_t)rnd30((int64_t)wx * wx + (int64_t)wy * wy); /* [2^26, 2^29) */
+    uint32_t d = (uint32_t)rnd30(prod(wx, wx) + prod(wy, wy)); /* [2^26, 2^29) */
     /* t = round(x 2^28 / d) < 2^30.1 */
     uint32_t t = (uint32_t)((((uint64_t)umag(x) << 28) + (d >> 1)) / d);
     int32_t ts = x < 0 ? -(int32_t)t : (int32_t)t;
-    int32_t px = rnd30((int64_t)ts * -wy), py = rnd30((int64_t)ts * wx);
-    for (; e > 0; e--) { /* P = t rot90(W~) 2^(2 - e) / 2^30 */
+    /* exact products here: the shift by e below would magnify the low words' part */
+    int32_t px = rnd30(-(int64_t)ts * wy), py = rnd30((int64_t)ts * wx);
+    for (; e > 0; e--) { /* P = t rot90(W~) 2^e / 2^30 */
         /* beyond 2^30 lambda (eight times the beacons' span) the circles all but coincide */
         if ((umag(px) | umag(py)) >= (1ul << 29))
             return false;
         px *= 2;
         py *= 2;
-    }
-    for (; e < 0; e++) {
-        px = half32(px);
-        py = half32(py);
     }
     p[0] = px;
     p[1] = py;
@@ -303,21 +362,13 @@ static bool pair(const int32_t *nX, int32_t sX, const int32_t *nY, int32_t sY, i
 
 bool optical_tri_core(const int32_t v[4], const int32_t sc[6], int32_t out[2])
 {
-    /* Doubled homogeneous centres, at the common beacon of each pair (triangulate.c). */
+    /* Doubled homogeneous centres, at the common beacon of each pair (triangulate.c):
+     * A at B2 s1 b1 - c1 rot90(b1), at B1 -s1 b1 - c1 rot90(b1); B at B2 s2 b3 + c2 rot90(b3),
+     * at B3 -s2 b3 + c2 rot90(b3); C at B1 s3 q + c3 rot90(q), at B3 -s3 q + c3 rot90(q). */
     int32_t n[12];
-    int32_t qx = v[2] - v[0], qy = v[3] - v[1];
-    n[0] = rot(v[0], sc[0], v[1], sc[1]);   /* A at B2: s1 b1 - c1 rot90(b1) */
-    n[1] = rot(v[1], sc[0], v[0], -sc[1]);  /* */
-    n[2] = rot(v[2], sc[2], v[3], -sc[3]);  /* B at B2: s2 b3 + c2 rot90(b3) */
-    n[3] = rot(v[3], sc[2], v[2], sc[3]);   /* */
-    n[4] = rot(v[0], -sc[0], v[1], sc[1]);  /* A at B1: -s1 b1 - c1 rot90(b1) */
-    n[5] = rot(v[1], -sc[0], v[0], -sc[1]); /* */
-    n[6] = rot(qx, sc[4], qy, -sc[5]);      /* C at B1: s3 q + c3 rot90(q) */
-    n[7] = rot(qy, sc[4], qx, sc[5]);       /* */
-    n[8] = rot(v[2], -sc[2], v[3], -sc[3]); /* B at B3: -s2 b3 + c2 rot90(b3) */
-    n[9] = rot(v[3], -sc[2], v[2], sc[3]);  /* */
-    n[10] = rot(qx, -sc[4], qy, -sc[5]);    /* C at B3: -s3 q + c3 rot90(q) */
-    n[11] = rot(qy, -sc[4], qx, sc[5]);     /* */
+    group(v[0], v[1], sc[0], -sc[1], &n[0], &n[4]);
+    group(v[2], v[3], sc[2], sc[3], &n[2], &n[8]);
+    group(v[2] - v[0], v[3] - v[1], sc[4], sc[5], &n[6], &n[10]);
     int32_t p[2];
     int64_t sx = 0, sy = 0;
     if (!pair(&n[0], sc[0], &n[2], sc[2], p)) /* AB at B2 */
@@ -333,10 +384,14 @@ bool optical_tri_core(const int32_t v[4], const int32_t sc[6], int32_t out[2])
     sx += (int64_t)p[0] + v[2];
     sy += (int64_t)p[1] + v[3];
     /* the mean: floor(sum / 2) (2^30 / 3) / 2^30 * 2 (|sum| < 2^32) */
-    out[0] = 2 * rnd30((int64_t)(int32_t)((sx - (sx < 0)) / 2) * 357913941);
-    out[1] = 2 * rnd30((int64_t)(int32_t)((sy - (sy < 0)) / 2) * 357913941);
+    out[0] = 2 * rnd30(prod((int32_t)((sx - (sx < 0)) / 2), 357913941));
+    out[1] = 2 * rnd30(prod((int32_t)((sy - (sy < 0)) / 2), 357913941));
     return true;
 }
+
+#endif
+
+#ifndef OPTICAL_ASM
 
 /* floor(s / 2^16) */
 static int16_t q14(int32_t s)
@@ -359,7 +414,7 @@ static uint8_t to15(int32_t *v)
     return s;
 }
 
-void optical_quality_parts(const int32_t v[4], const int32_t c[2], const int32_t s[3],
+void optical_quality_parts(const int32_t v[4], const int32_t c[2], const int32_t sc[6],
                            optical_qparts_t *out)
 {
     int32_t ch[6] = {v[0], v[1], v[2], v[3], v[2] - v[0], v[3] - v[1]};
@@ -377,7 +432,7 @@ void optical_quality_parts(const int32_t v[4], const int32_t c[2], const int32_t
     out->num = fx_sqrt32(num2);
     int32_t r1 = fx_sqrt32(sq[3]), r2 = fx_sqrt32(sq[4]), r3 = fx_sqrt32(sq[5]);
     /* a31 = 360 - alpha3: sin a31 = -s3; the sines Q14 (their high words) */
-    int32_t den = r3 * q14(s[0]) + r1 * q14(s[1]) - r2 * q14(s[2]);
+    int32_t den = r3 * q14(sc[0]) + r1 * q14(sc[2]) - r2 * q14(sc[4]);
     out->den = umag(den);
 }
 

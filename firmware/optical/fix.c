@@ -30,6 +30,13 @@
 #include "optical/fastmath.h"
 #include "optical/optical.h"
 
+#ifdef OPTICAL_PROFILE
+extern void optical_prof(uint8_t n);
+#define PROF(n) optical_prof(n)
+#else
+#define PROF(n)
+#endif
+
 #define NONE    OPTICAL_NONE
 #define MULTI   OPTICAL_MULTI
 #define DROPPED OPTICAL_DROPPED
@@ -41,38 +48,8 @@
 /* Heading-interval refinement passes at most. */
 #define MAX_PASSES 6
 
-/*
- * Work area of optical_fix (static: the MSP430's stack is small; not reentrant). The
- * per-beacon arrays and the candidate pairs of the identification share their bytes with
- * the identified set's angles and the triplet being solved: identification (and the
- * confirmation's) is over before the identified angles are gathered.
- */
-static struct {
-    uint16_t th[OPTICAL_MAX_SIGHTINGS];  /* sighting angles in the reference frame, sorted */
-    uint16_t we[OPTICAL_MAX_SIGHTINGS];  /* position part of the window of its match */
-    uint16_t lev[OPTICAL_MAX_SIGHTINGS]; /* |c| in 2^-8 m */
-    int32_t c[OPTICAL_MAX_SIGHTINGS];    /* parallax lever c = cross(u, o), Q16 m */
-    uint8_t ord[OPTICAL_MAX_SIGHTINGS];  /* input index of th[j] */
-    uint8_t sm[OPTICAL_MAX_SIGHTINGS];   /* per sorted sighting: beacon, NONE, MULTI, DROPPED */
-    uint8_t wchk[OPTICAL_MAX_SIGHTINGS]; /* O5 verdict cache: beacon | 0x80 misfit, 0x7F none */
-    uint8_t pos[OPTICAL_MAX_SIGHTINGS];  /* the identified: sorted positions, ring order */
-    uint8_t bstart[16];                  /* first sorted sighting of each 1/16 turn */
-    uint8_t m;                           /* the identified: how many */
-    union {
-        struct {
-            uint16_t psi[OPTICAL_MAX_BEACONS]; /* expected angle, 2^-16 turn, vehicle frame */
-            uint16_t e[OPTICAL_MAX_BEACONS];   /* window position part + margin; 0 gated */
-            uint16_t g[OPTICAL_MAX_BEACONS];   /* window factor (optical_win) */
-            uint8_t bm[OPTICAL_MAX_BEACONS];   /* per beacon: sighting matched, NONE, MULTI */
-            uint8_t cand[2 * OPTICAL_MAX_CAND];
-        } id;
-        struct {
-            fx_angle_t ang[OPTICAL_MAX_SIGHTINGS]; /* the identified, reference-frame angles */
-            optical_xy_t b[3];                     /* the triplet being solved */
-            optical_tri_t tri;                     /* a candidate triplet's solution */
-        } sv;
-    } u;
-} W;
+/* The work area (fastmath.h: the kernels share it). */
+#define W (optical_work)
 
 static const optical_config_t defaults = {
     5243,       /* beacon_diameter 0.08 m */
@@ -119,6 +96,11 @@ static uint16_t abs16(uint16_t d)
 static uint16_t sat16(uint32_t v)
 {
     return v > 0xFFFFu ? 0xFFFFu : (uint16_t)v;
+}
+
+static uint16_t sat15(uint32_t v)
+{
+    return v > 0x7FFFu ? 0x7FFFu : (uint16_t)v;
 }
 
 /* Metres Q16 to 2^-8 m, rounded up, saturating. */
@@ -191,25 +173,24 @@ typedef struct {
     const optical_pose_t *ap;
     const optical_sighting_t *s;
     const optical_pose_t *latched;
-    optical_ident_t id; /* the identification kernels' arguments */
     optical_width_t wd; /* O5 */
 } ctx_t;
 
 /* Position part of beacon k's window for sorted sighting j, with the margin (as
  * optical_eval). */
-static uint16_t pos_part(const ctx_t *x, uint8_t k, uint8_t j)
+static uint16_t pos_part(uint8_t k, uint8_t j)
 {
-    if (!x->id.lever8 || !W.lev[j])
+    if (!W.lever8 || !W.lev[j])
         return W.u.id.e[k];
-    return (uint16_t)(optical_win(sat16((uint32_t)x->id.eps8 + W.lev[j]), W.u.id.g[k]) +
+    return (uint16_t)(optical_win(sat16((uint32_t)W.eps8 + W.lev[j]), W.u.id.g[k]) +
                       OPTICAL_MARGIN);
 }
 
 /* The seed's overlapping-window rule: k's window meets the window of another beacon. */
-static bool overlaps(const ctx_t *x, uint8_t k, uint16_t half)
+static bool overlaps(uint8_t k, uint16_t half)
 {
     uint32_t wk = 2u * (uint32_t)half + W.u.id.e[k];
-    for (uint8_t j = 0; j < x->id.nb; j++) {
+    for (uint8_t j = 0; j < W.nb; j++) {
         if (j == k || W.u.id.e[j] == 0)
             continue;
         if (abs16((uint16_t)(W.u.id.psi[j] - W.u.id.psi[k])) < wk + W.u.id.e[j])
@@ -226,11 +207,11 @@ static bool overlaps(const ctx_t *x, uint8_t k, uint16_t half)
 static int8_t unique(const ctx_t *x, bool overlap_rule, uint16_t half, int32_t *lo, int32_t *hi)
 {
     int8_t found = 0;
-    for (uint8_t j = 0; j < x->id.n; j++) {
+    for (uint8_t j = 0; j < W.n; j++) {
         uint8_t k = W.sm[j];
         if (k >= DROPPED)
             continue;
-        if (W.u.id.bm[k] != j || (overlap_rule && overlaps(x, k, half))) {
+        if (W.u.id.bm[k] != j || (overlap_rule && overlaps(k, half))) {
             W.sm[j] = NONE;
             continue;
         }
@@ -270,7 +251,7 @@ static int8_t guess(ctx_t *x, uint8_t nc)
     const uint8_t *cd = W.u.id.cand;
     for (uint8_t c = 0; c < nc; c++) {
         off[c] = (int16_t)(W.th[cd[2 * c]] - W.u.id.psi[cd[2 * c + 1]]);
-        e[c] = pos_part(x, cd[2 * c + 1], cd[2 * c]);
+        e[c] = pos_part(cd[2 * c + 1], cd[2 * c]);
     }
     int16_t best_h = 0;
     uint16_t best_e = 0;
@@ -294,7 +275,7 @@ static int8_t guess(ctx_t *x, uint8_t nc)
     }
     if (best_n < 3)
         return 0;
-    optical_eval(&x->id, best_h, best_e);
+    optical_eval(best_h, best_e);
     return unique(x, false, best_e, NULL, NULL);
 }
 
@@ -316,7 +297,7 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
 {
     const optical_config_t *cfg = x->cfg;
     int32_t lo = -(int32_t)half0(cfg), hi = -lo;
-    uint8_t nc = x->id.nc; /* the first pass's candidates (0xFF: too many to keep) */
+    uint8_t nc = W.nc; /* the first pass's candidates (0xFF: too many to keep) */
     int8_t found;
     *mode = IDENT_SAFE;
     *widened = 0;
@@ -327,15 +308,15 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
         uint16_t half = (uint16_t)((hi - lo + 1) / 2);
         if (pass > 1) {
             if (nc != 0xFFu)
-                optical_eval(&x->id, mid, half);
+                optical_eval(mid, half);
             else
-                optical_expect_scan(&x->id, mid, half);
+                optical_expect_scan(mid, half);
         }
         int32_t nlo = lo, nhi = hi;
         found = unique(x, cfg->reject_overlap, half, &nlo, &nhi);
         if (nlo > nhi)
             return -1;
-        if (pass < MAX_PASSES && 4 * (nhi - nlo) < 3 * (hi - lo)) {
+        if (pass < MAX_PASSES && found < 3 + CHECK_MAX && 4 * (nhi - nlo) < 3 * (hi - lo)) {
             lo = nlo; /* tighter by a quarter or more: another pass, never fewer matches */
             hi = nhi;
             continue;
@@ -362,7 +343,7 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
             break;
         int16_t mid = (int16_t)((lo + hi) / 2);
         uint16_t half = (uint16_t)((hi - lo + 1) / 2);
-        optical_expect_scan(&x->id, mid, half);
+        optical_expect_scan(mid, half);
         found = unique(x, true, half, NULL, NULL);
         *widened = w;
         if (found >= 3) {
@@ -407,7 +388,7 @@ static int8_t finish(optical_fix_t *out, int8_t status)
 static void gather(const ctx_t *x)
 {
     W.m = 0;
-    for (uint8_t j = 0; j < x->id.n; j++) {
+    for (uint8_t j = 0; j < W.n; j++) {
         if (W.sm[j] >= DROPPED)
             continue;
         W.u.sv.ang[W.m] = ref_angle(x, j);
@@ -458,6 +439,7 @@ static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, 
 static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t *tri)
 {
     optical_select(W.u.sv.ang, W.m, t);
+    PROF(9);
     int8_t st = solve_triplet(x, t, passes, tri);
     if ((st != OPTICAL_E_SINGULAR && st != OPTICAL_E_INCONSISTENT) || W.m <= 3)
         return st;
@@ -495,7 +477,7 @@ static bool prepare(ctx_t *x)
     fx_q30_t sa = 0, ca = FX_Q30_ONE;
     if (lat != NULL)
         fx_sincos(ap->heading, &sa, &ca);
-    for (uint8_t i = 0; i < x->id.n; i++) {
+    for (uint8_t i = 0; i < W.n; i++) {
         fx_angle_t d = x->s[i].angle;
         int32_t c = 0;
         if (lat != NULL) {
@@ -525,20 +507,20 @@ static bool prepare(ctx_t *x)
         W.ord[j] = i;
     }
     uint16_t lever8 = 0;
-    for (uint8_t j = 0; j < x->id.n; j++) {
+    for (uint8_t j = 0; j < W.n; j++) {
         uint16_t l = W.c[j] ? m8(umag(W.c[j])) : 0u;
         W.lev[j] = l;
         if (l > lever8)
             lever8 = l;
     }
-    x->id.lever8 = lever8;
-    x->id.amax8 = sat16((uint32_t)x->id.eps8 + lever8);
+    W.lever8 = lever8;
+    W.amax8 = sat16((uint32_t)W.eps8 + lever8);
     /* Bucket index: first sorted sighting at or after each 1/16 turn (0 when none: wraps). */
     uint8_t j = 0;
     for (uint8_t b = 0; b < 16; b++) {
-        while (j < x->id.n && (W.th[j] >> 12) < b)
+        while (j < W.n && (W.th[j] >> 12) < b)
             j++;
-        W.bstart[b] = j < x->id.n ? j : 0;
+        W.bstart[b] = j < W.n ? j : 0;
     }
     return true;
 }
@@ -557,7 +539,7 @@ static fx_q16_t threshold(const ctx_t *x)
         uint32_t t8 = (uint32_t)t >> 8;
         uint32_t wmin = t8 ? x->wd.dk / t8 : 0xFFFFu; /* 2^-16 turn */
         uint8_t kept = 0;
-        for (uint8_t j = 0; j < x->id.n; j++) {
+        for (uint8_t j = 0; j < W.n; j++) {
             bool keep = x->s[W.ord[j]].width >= wmin;
             W.sm[j] = keep ? NONE : DROPPED;
             W.wchk[j] = 0x7Fu;
@@ -618,40 +600,35 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     x.ap = approx;
     x.s = s;
     x.latched = latched;
-    optical_ident_t *id = &x.id;
-    id->b = map->b;
-    id->psi = W.u.id.psi;
-    id->e = W.u.id.e;
-    id->g = W.u.id.g;
-    id->bm = W.u.id.bm;
-    id->th = W.th;
-    id->lev = W.lev;
-    id->sm = W.sm;
-    id->we = W.we;
-    id->bstart = W.bstart;
-    id->cand = W.u.id.cand;
-    id->x = approx->x;
-    id->y = approx->y;
-    id->head = a16(approx->heading);
-    id->eps8 = m8((uint32_t)cfg->window_pos);
-    id->nb = map->n;
-    id->n = n;
+    W.b = map->b;
+    W.x = approx->x;
+    W.y = approx->y;
+    W.head = a16(approx->heading);
+    /* the expected angles come from offsets floored to 2^-8 m: that adds up to sqrt 2 units
+     * to the position uncertainty */
+    W.eps8 = sat16(m8((uint32_t)cfg->window_pos) + 2u);
+    W.nb = map->n;
+    W.n = n;
     /* D (m) * 2^8 * 2^16 / (2 pi) = D (Q16) * 10430.378 / 2^8 */
     x.wd.dk = ((uint32_t)cfg->beacon_diameter * 10430u) >> 8;
     x.wd.x = approx->x;
     x.wd.y = approx->y;
-    x.wd.eps8 = id->eps8;
+    x.wd.eps8 = m8((uint32_t)cfg->window_pos);
     x.wd.tol8 = sat16((uint32_t)cfg->dist_tol >> 8);
     x.wd.rel16 = sat16((uint32_t)cfg->dist_rel);
     x.wd.flat = cfg->beacon_flat;
 
+    PROF(0);
     if (!prepare(&x))
         return finish(out, OPTICAL_E_ARG);
     /* O4, then O2: expected angles of the beacons within T (+ the position uncertainty),
      * and the first identification pass (O3). */
-    id->gate = (uint32_t)threshold(&x) + (uint32_t)cfg->window_pos;
-    if (optical_expect_scan(id, 0, half0(cfg)))
+    PROF(1);
+    W.gate8 = sat15(((uint32_t)threshold(&x) + (uint32_t)cfg->window_pos) >> 8);
+    PROF(2);
+    if (optical_expect_scan(0, half0(cfg)))
         return finish(out, OPTICAL_E_ARG);
+    PROF(3);
     if (n < 3)
         return finish(out, OPTICAL_E_FEW);
 
@@ -661,7 +638,9 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     out->widened = widened;
     if (found < 0)
         return finish(out, OPTICAL_E_INCONSISTENT);
+    PROF(4);
     gather(&x);
+    PROF(5);
     if (W.m < 3) {
         out->n_ident = W.m;
         return finish(out, OPTICAL_E_FEW);
@@ -672,18 +651,20 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     uint8_t t3[3];
     optical_tri_t tri;
     int8_t st = solve(&x, passes, t3, &tri);
+    PROF(6);
     if (st == OPTICAL_OK && mode != IDENT_SAFE) {
         /* Beyond the bounds the identification is a hypothesis: identify again from the fix
          * (5 cm, the residual tolerance) and use it only when at least five sightings agree. */
         uint16_t rmax = a16(cfg->resid_max);
-        id->eps8 = x.wd.eps8 = 13;
-        id->amax8 = sat16(13u + id->lever8);
-        id->x = x.wd.x = tri.pose.x;
-        id->y = x.wd.y = tri.pose.y;
-        id->head = a16(tri.pose.heading);
+        x.wd.eps8 = 13;
+        W.eps8 = 15;
+        W.amax8 = sat16(15u + W.lever8);
+        W.x = x.wd.x = tri.pose.x;
+        W.y = x.wd.y = tri.pose.y;
+        W.head = a16(tri.pose.heading);
         for (uint8_t j = 0; j < n; j++)
             W.wchk[j] = 0x7Fu;
-        optical_expect_scan(id, 0, rmax);
+        optical_expect_scan(0, rmax);
         if (unique(&x, false, rmax, NULL, NULL) < 5) {
             for (uint8_t j = 0; j < n; j++)
                 if (W.sm[j] < DROPPED)
@@ -704,7 +685,9 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         for (uint8_t i = 0; i < 3; i++)
             out->used[i] = W.sm[W.pos[t3[i]]];
     }
+    PROF(7);
     if (st == OPTICAL_OK)
         st = check(&x, &tri.pose, t3);
+    PROF(8);
     return finish(out, st);
 }

@@ -26,9 +26,6 @@
 #include "optical/fastmath.h"
 #include "optical/optical.h"
 
-/** Largest disagreement of the three bearings of a solution (2e-4 rad). */
-#define CONSISTENT 136707l
-
 /** Offsets beyond this (Q16, 2048 m) are refused: the scaling needs them below 2^27. */
 #define SPAN_LIMIT (1l << 27)
 
@@ -38,24 +35,41 @@ static uint32_t mag(int32_t v)
 }
 
 /*
+ * Largest disagreement of the three directions of a solution with the sightings, 2^-16 turn:
+ * 2e-4 rad (2.1) plus the error of two optical_angle16 (0.97 each) and a gap rounded to 16 bits.
+ */
+#define CONSISTENT 5u
+
+static uint16_t a16(fx_angle_t a)
+{
+    return (uint16_t)((a + 0x8000ul) >> 16);
+}
+
+/* floor(v / 2^n), n < 32 */
+static int32_t asr(int32_t v, uint8_t n)
+{
+    uint32_t u = (uint32_t)v >> n;
+    return (int32_t)(v < 0 ? u | ~(0xFFFFFFFFu >> n) : u);
+}
+
+/*
  * Quality: the RMS position error for unit independent bearing errors,
  *     S = sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2) / |r3 sin a12 + r1 sin a23 + r2 sin a31|
  * (chords c between beacons, ranges r from the vehicle), in Q16 metres per mrad:
  * num 2^(28 + sc) / den lambda per radian (fastmath.h), / 2^sigma, / 1000.
  */
-static uint32_t quality(const int32_t v[4], const int32_t c[2], const int32_t s[3], uint8_t sigma)
+static uint32_t quality(const optical_qparts_t *q, uint8_t sigma)
 {
-    optical_qparts_t q;
-    optical_quality_parts(v, c, s, &q);
-    if (q.den == 0)
+    if (q->den == 0)
         return UINT32_MAX;
-    uint8_t sh = (uint8_t)(28u + q.sc - sigma); /* sc >= 13: b1 or b3 reaches 2^27 */
-    while (q.den >= (1ul << 21)) {              /* den 1000 below 2^31 */
-        q.den >>= 1;
+    uint8_t sh = (uint8_t)(28u + q->sc - sigma); /* sc >= 13: b1 or b3 reaches 2^27 */
+    uint32_t den = q->den;
+    while (den >= (1ul << 21)) { /* den 1000 below 2^31 */
+        den >>= 1;
         sh--;
     }
     int32_t r;
-    if (!fx_div_shift((int32_t)q.num, (int32_t)q.den * 1000, sh, &r) || r < 0)
+    if (!fx_div_shift((int32_t)q->num, (int32_t)den * 1000, sh, &r) || r < 0)
         return UINT32_MAX;
     return (uint32_t)r;
 }
@@ -112,7 +126,7 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     for (; m < (1ul << 27); m <<= 1)
         sigma++;
     for (uint8_t i = 0; i < 4; i++)
-        v[i] *= (int32_t)1 << sigma;
+        v[i] = (int32_t)((uint32_t)v[i] << sigma);
 
     int32_t sc[6];
     fx_sincos(a1, &sc[0], &sc[1]);
@@ -121,32 +135,26 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     int32_t c[2];
     if (!optical_tri_core(v, sc, c))
         return OPTICAL_E_SINGULAR;
-    int32_t s[3] = {sc[0], sc[2], sc[4]};
-    out->quality = quality(v, c, s, sigma);
-
+    optical_qparts_t qp;
+    optical_quality_parts(v, c, sc, &qp);
+    out->quality = quality(&qp, sigma);
     /* Relative to B2 in Q16 metres: / 2^sigma, rounded half up. */
-    int32_t px = c[0], py = c[1];
-    if (sigma) {
-        px += 1l << (sigma - 1);
-        py += 1l << (sigma - 1);
-        for (uint8_t i = 0; i < sigma; i++) {
-            px = (px - (px < 0)) / 2; /* floor halving */
-            py = (py - (py < 0)) / 2;
-        }
-    }
-    out->pose.x = B2->x + px;
-    out->pose.y = B2->y + py;
-    /* O10: bearing = direction to each beacon - its sighting angle, averaged. Each beacon
-     * must lie along its own sighting: a solution on the other arc of a circle (which the
-     * circles alone cannot tell apart) leaves one direction off by about 180 degrees. Near
-     * the beacons' circle a quantised input can land there. */
-    fx_angle_t h[3];
-    for (uint8_t i = 0; i < 3; i++)
-        h[i] = fx_atan2(b[k[i]].y - out->pose.y, b[k[i]].x - out->pose.x) - theta[k[i]];
-    int32_t d1 = (int32_t)(h[1] - h[0]), d2 = (int32_t)(h[2] - h[0]);
-    int32_t mean = fx_mul_q30(d1, 357913941l) + fx_mul_q30(d2, 357913941l); /* 2^30 / 3 */
-    if (mag(mean) > CONSISTENT || mag(d1 - mean) > CONSISTENT || mag(d2 - mean) > CONSISTENT)
+    int32_t half = sigma ? (int32_t)1 << (sigma - 1) : 0;
+    out->pose.x = B2->x + asr(c[0] + half, sigma);
+    out->pose.y = B2->y + asr(c[1] + half, sigma);
+    /* Each beacon must lie along its own sighting: the directions to B2 and B3 (2^-16 turn,
+     * optical_angle16) must differ from the direction to B1 by alpha1 and alpha3 within
+     * CONSISTENT. A solution on the other arc of a circle (which the circles alone cannot tell
+     * apart) leaves one off by about 180 degrees; near the beacons' circle a quantised input
+     * can land there, or the arithmetic can lose the point. */
+    int32_t u[6] = {v[0] - c[0], v[1] - c[1], -c[0], -c[1], v[2] - c[0], v[3] - c[1]};
+    uint16_t h1 = optical_angle16(u[0], u[1]);
+    uint16_t d2 = (uint16_t)(optical_angle16(u[2], u[3]) - h1 - a16(a1));
+    uint16_t d3 = (uint16_t)(optical_angle16(u[4], u[5]) - h1 - a16(a1 + a2));
+    if ((uint16_t)(d2 + CONSISTENT) > 2u * CONSISTENT || (uint16_t)(d3 + CONSISTENT) > 2u * CONSISTENT)
         return OPTICAL_E_INCONSISTENT;
-    out->pose.heading = h[0] + (fx_angle_t)mean;
+    /* O10: the bearing from the direction of B1 (lambda units: finer than the position's Q16)
+     * and its sighting angle. */
+    out->pose.heading = fx_atan2(u[1], u[0]) - theta[k[0]];
     return out->quality > quality_max ? OPTICAL_E_SINGULAR : OPTICAL_OK;
 }

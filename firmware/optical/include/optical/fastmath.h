@@ -39,7 +39,7 @@ extern const uint16_t optical_atan_tab[65];
 /** Identification margin of every window, 2^-16 turn (fix.c explains it). */
 #define OPTICAL_MARGIN 6
 
-/** Match codes of optical_ident_t.sm / .bm (otherwise: the matched beacon or sighting). */
+/** Match codes of optical_work_t.sm / .bm (otherwise: the matched beacon or sighting). */
 #define OPTICAL_NONE    0xFFu /**< no match */
 #define OPTICAL_MULTI   0xFEu /**< more than one match */
 #define OPTICAL_DROPPED 0xFDu /**< sighting dropped by the width threshold (O4) */
@@ -48,57 +48,82 @@ extern const uint16_t optical_atan_tab[65];
 #define OPTICAL_MAX_CAND 40
 
 /**
- * The identification's arrays and parameters (fix.c owns the memory). Per beacon k: psi[k]
- * its expected angle minus the heading (2^-16 turn), e[k] its window position part plus
- * OPTICAL_MARGIN (0: gated out), g[k] its window factor (optical_win), bm[k] the sighting it
- * matched (NONE, MULTI). Per sorted sighting j: th[j] its angle (2^-16 turn, ascending), lev[j]
- * its parallax lever (2^-8 m; the array only when lever8 > 0), sm[j] the beacon it matched
- * (NONE, MULTI, DROPPED: left alone), we[j] the position part of that match. cand holds
- * the candidate pairs (sighting, beacon: two bytes each) of the last optical_expect_scan.
+ * The work area of optical_fix() and of the identification kernels (static: the MSP430's
+ * stack is small; optical_fix is not reentrant). Per beacon k: psi[k] its expected angle
+ * minus the heading (2^-16 turn), e[k] its window position part plus OPTICAL_MARGIN (0: gated
+ * out), g[k] its window factor (optical_win), bm[k] the sighting it matched (NONE, MULTI).
+ * Per sorted sighting j: th[j] its angle (2^-16 turn, ascending), lev[j] its parallax lever
+ * (2^-8 m), sm[j] the beacon it matched (NONE, MULTI, DROPPED: left alone), we[j] the position
+ * part of that match. cand holds the candidate pairs (sighting, beacon: two bytes each) of the
+ * last optical_expect_scan, nc of them (0xFF: more than OPTICAL_MAX_CAND). The rest belongs
+ * to fix.c. The per-beacon arrays share their bytes with the solve's (u.sv): identification
+ * is over before the identified angles are gathered.
  */
 typedef struct {
-    const optical_xy_t *b;    /**< the map, nb beacons */
-    uint16_t *psi, *e, *g;    /**< per beacon */
-    uint8_t *bm;              /**< per beacon */
-    const uint16_t *th, *lev; /**< per sighting */
-    uint8_t *sm;              /**< per sighting */
-    uint16_t *we;             /**< per sighting */
-    const uint8_t *bstart;    /**< first sighting at or after each 1/16 turn (0: none) */
-    uint8_t *cand;            /**< 2 OPTICAL_MAX_CAND bytes */
-    fx_q16_t x, y;            /**< the position seen from, within OPTICAL_COORD_LIMIT */
-    uint32_t gate;            /**< beacons with |dx| or |dy| (Q16) beyond it are gated out */
-    uint16_t head;            /**< heading, 2^-16 turn */
-    uint16_t eps8;            /**< position uncertainty, 2^-8 m */
-    uint16_t lever8;          /**< largest parallax lever, 2^-8 m (0 standing) */
-    uint16_t amax8;           /**< min(eps8 + lever8, 0xFFFF) */
-    uint8_t nb, n;            /**< beacons (1..32), sightings (0..15) */
-    uint8_t nc;               /**< out: candidate pairs stored, 0xFF more than the room */
-} optical_ident_t;
+    const optical_xy_t *b;            /**< the map, nb beacons */
+    fx_q16_t x, y;                    /**< the position seen from, within OPTICAL_COORD_LIMIT */
+    uint16_t head;                    /**< heading, 2^-16 turn */
+    uint16_t eps8;                    /**< position uncertainty, 2^-8 m */
+    uint16_t lever8;                  /**< largest parallax lever, 2^-8 m (0 standing) */
+    uint16_t amax8;                   /**< min(eps8 + lever8, 0xFFFF) */
+    uint16_t gate8;                   /**< beacons with |dx| or |dy| (2^-8 m) beyond: gated */
+    uint8_t nb, n;                    /**< beacons (1..32), sightings (0..15) */
+    uint8_t nc;                       /**< candidate pairs stored */
+    uint8_t m;                        /**< fix.c: the identified */
+    uint16_t th[OPTICAL_MAX_SIGHTINGS];
+    uint16_t lev[OPTICAL_MAX_SIGHTINGS];
+    uint16_t we[OPTICAL_MAX_SIGHTINGS];
+    int32_t c[OPTICAL_MAX_SIGHTINGS]; /**< fix.c: parallax lever, Q16 m */
+    uint8_t sm[OPTICAL_MAX_SIGHTINGS];
+    uint8_t bstart[16];               /**< first sighting at or after each 1/16 turn (0: none) */
+    uint8_t ord[OPTICAL_MAX_SIGHTINGS];  /**< fix.c: input index of th[j] */
+    uint8_t wchk[OPTICAL_MAX_SIGHTINGS]; /**< fix.c: O5 verdict cache */
+    uint8_t pos[OPTICAL_MAX_SIGHTINGS];  /**< fix.c: the identified, sorted positions */
+    union {
+        struct {
+            uint16_t psi[OPTICAL_MAX_BEACONS];
+            uint16_t e[OPTICAL_MAX_BEACONS];
+            uint16_t g[OPTICAL_MAX_BEACONS];
+            uint8_t bm[OPTICAL_MAX_BEACONS];
+            uint8_t cand[2 * OPTICAL_MAX_CAND];
+        } id;
+        struct {
+            fx_angle_t ang[OPTICAL_MAX_SIGHTINGS]; /**< the identified, reference frame */
+            optical_xy_t b[3];                     /**< the triplet being solved */
+            optical_tri_t tri;                     /**< a candidate triplet's solution */
+        } sv;
+    } u;
+} optical_work_t;
+
+/** The work area (fastmath.c). */
+extern optical_work_t optical_work;
 
 /**
  * Expected angle and window of every map beacon from (x, y, head) (O2), and the candidate
  * pairs within the windows centred on heading offset @p mid (2^-16 turn) of half-width @p half
- * (optical_eval's test). Per beacon, with dx, dy its offset (Q16) and ax, ay their
- * magnitudes: |dx| or |dy| beyond the gate: e = 0; otherwise psi = optical_angle16(dx, dy) -
- * head, g = the window factor of a beacon at range >= max(ax, ay) sqrt(1 + t^2) (t = min /
- * max, from optical_angle16's reciprocal and a table of 1 / sqrt(1 + t^2) rounded up):
- * 0xFFFF when the larger of ax, ay (2^-8 m) is below 77 or within amax8, otherwise
- * 2 H k / 2^s + 1 (saturated), with u = max(ax, ay) 2^-s in [2^15, 2^16), H = (R C) / 2^16
- * (R = 2^30 / u interpolated, C = 2^15 / sqrt(1 + (i / 64)^2) rounded up, i = floor(64 t)),
- * k = 2/3 (rounded up) when the larger is at least 2 amax8, else 1; e = optical_win(eps8, g) +
- * margin. Clears bm and sm (except DROPPED) and marks every pair as optical_eval.
- * Returns 1 (stopping there) at the first beacon beyond OPTICAL_COORD_LIMIT, else 0.
+ * (optical_eval's test; the pairs in scan order, sightings from the bucket of each window's
+ * start). Per beacon, with (x8, y8) its offset floored to 2^-8 m (beyond +-128 m, or a
+ * magnitude beyond gate8: e = 0, gated out): psi = the angle of (x8, y8) - head, with the
+ * octant's arctangent of optical_angle16; the window factor g of a beacon at range >= m8
+ * sqrt(1 + t^2) (m8 the larger magnitude, t = smaller / larger): 0xFFFF when m8 < 77 or m8 <=
+ * amax8, else g = h k 2^(l - 7) + 1 (rounded down, saturated at 0xFFFE), h = r C / 2^16 (r the
+ * octant's 2^30 / u, u = m8 2^l in [2^15, 2^16), C = 2^15 / sqrt(1 + (i / 64)^2) rounded up,
+ * i = floor(64 t)), k = 2/3 (ceil(2^(9 + l) 2/3) / 2^(9 + l)) when m8 >= 2 amax8, else 1;
+ * e = optical_win(eps8, g) + margin. The offsets' flooring moves the angles by up to sqrt 2
+ * units of 2^-8 m: the caller adds 2 to eps8. Clears bm and sm (except DROPPED) and marks
+ * every pair as optical_eval. Returns 1 when a beacon lies beyond OPTICAL_COORD_LIMIT (the
+ * results are then meaningless), else 0.
  */
-uint8_t optical_expect_scan(optical_ident_t *a, int16_t mid, uint16_t half);
+uint8_t optical_expect_scan(int16_t mid, uint16_t half);
 
 /**
  * The stored candidate pairs within the windows (mid, half): pair (j, k) when
  * |th[j] - psi[k] - mid| <= half + w, w = e[k] standing (lever8 = 0 or lev[j] = 0), else
  * optical_win(min(eps8 + lev[j], 0xFFFF), g[k]) + margin; marked: sm[j], bm[k] get the partner
  * (or MULTI when they had one), we[j] = w. Clears bm and sm (except DROPPED) first. half + w
- * must stay below 2^16.
+ * must stay below 2^16; nc not 0xFF.
  */
-void optical_eval(optical_ident_t *a, int16_t mid, uint16_t half);
+void optical_eval(int16_t mid, uint16_t half);
 
 /** Window part min(ceil(l g / 256), 0x7FFF) of lever l (2^-8 m); 0x7FFF when g = 0xFFFF. */
 uint16_t optical_win(uint16_t l, uint16_t g);
@@ -123,13 +148,13 @@ typedef struct {
 } optical_qparts_t;
 
 /**
- * Quality of a triangulation in parts (triangulate.c divides them): @p v as
- * optical_tri_core, @p c the vehicle relative to beacon 2 (lambda units), @p s = (s1, s2, s3)
- * Q1.30. The chords (b1, b3, b3 - b1) and the ranges (b1 - c, c, b3 - c) are each cut to
- * 15-bit components by a common shift (sc for the chords, sr for the ranges), their squares
- * to 15 bits; the quality is num 2^(28 + sc) / den lambda per radian.
+ * Quality of a triangulation (triangulate.c divides the parts): @p v and
+ * @p sc as optical_tri_core, @p c the vehicle relative to beacon 2 (lambda units). The chords
+ * (b1, b3, b3 - b1) and the ranges (b1 - c, c, b3 - c) are each cut to 15-bit components by a
+ * common shift (sc for the chords, sr for the ranges), their squares to 15 bits; the quality
+ * is num 2^(28 + sc) / den lambda per radian.
  */
-void optical_quality_parts(const int32_t v[4], const int32_t c[2], const int32_t s[3],
+void optical_quality_parts(const int32_t v[4], const int32_t c[2], const int32_t sc[6],
                            optical_qparts_t *out);
 
 /** Arguments of optical_width_ok(). */
