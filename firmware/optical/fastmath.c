@@ -16,10 +16,12 @@ _Static_assert(offsetof(optical_work_t, x) == 2 && offsetof(optical_work_t, head
                    offsetof(optical_work_t, nb) == 20 && offsetof(optical_work_t, th) == 24 &&
                    offsetof(optical_work_t, lev) == 54 && offsetof(optical_work_t, we) == 84 &&
                    offsetof(optical_work_t, sm) == 174 && offsetof(optical_work_t, bstart) == 189 &&
-                   offsetof(optical_work_t, u) == 250 &&
-                   offsetof(optical_work_t, u.id.e) == 314 && offsetof(optical_work_t, u.id.g) == 378 &&
-                   offsetof(optical_work_t, u.id.bm) == 442 && offsetof(optical_work_t, u.id.cand) == 474,
-               "optical_work_t layout (optical_fast.S)");
+                   offsetof(optical_work_t, u) == 250 && offsetof(optical_work_t, u.id.e) == 314 &&
+                   offsetof(optical_work_t, u.id.g) == 378 &&
+                   offsetof(optical_work_t, u.id.bm) == 442 &&
+                   offsetof(optical_work_t, u.id.cand) == 474 &&
+                   offsetof(optical_work_t, u.sv.frame) == 350,
+               "optical_work_t layout (optical_fast.S, optical_tri.S)");
 #endif
 
 const uint16_t optical_recip_tab[65] = {
@@ -144,7 +146,8 @@ static uint16_t pair_w(uint8_t j, uint8_t k)
 {
     if (W.lever8 == 0 || W.lev[j] == 0)
         return W.u.id.e[k];
-    return (uint16_t)(optical_win(sat16((uint32_t)W.eps8 + W.lev[j]), W.u.id.g[k]) + OPTICAL_MARGIN);
+    return (uint16_t)(optical_win(sat16((uint32_t)W.eps8 + W.lev[j]), W.u.id.g[k]) +
+                      OPTICAL_MARGIN);
 }
 
 /* Pair (j, k) within the windows (mid, half): marked; true when it is. */
@@ -180,7 +183,8 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half)
         W.u.id.e[k] = 0;
         if ((uint32_t)dx + 0x00800000u > 0x00FFFFFFu || (uint32_t)dy + 0x00800000u > 0x00FFFFFFu)
             continue;
-        int16_t x8 = (int16_t)(uint16_t)((uint32_t)dx >> 8), y8 = (int16_t)(uint16_t)((uint32_t)dy >> 8);
+        int16_t x8 = (int16_t)(uint16_t)((uint32_t)dx >> 8),
+                y8 = (int16_t)(uint16_t)((uint32_t)dy >> 8);
         uint16_t ax = (uint16_t)(x8 < 0 ? 0u - (uint16_t)x8 : (uint16_t)x8);
         uint16_t ay = (uint16_t)(y8 < 0 ? 0u - (uint16_t)y8 : (uint16_t)y8);
         if (ax > W.gate8 || ay > W.gate8)
@@ -288,7 +292,6 @@ static int32_t half32(int32_t v)
 {
     return (int32_t)(((uint32_t)v >> 1) | ((uint32_t)v & 0x80000000u));
 }
-
 
 /* floor((v + 2^29) / 2^30) without a signed shift */
 static int32_t rnd30(int64_t v)

@@ -30,13 +30,6 @@
 #include "optical/fastmath.h"
 #include "optical/optical.h"
 
-#ifdef OPTICAL_PROFILE
-extern void optical_prof(uint8_t n);
-#define PROF(n) optical_prof(n)
-#else
-#define PROF(n)
-#endif
-
 #define NONE    OPTICAL_NONE
 #define MULTI   OPTICAL_MULTI
 #define DROPPED OPTICAL_DROPPED
@@ -246,31 +239,28 @@ enum { IDENT_SAFE = 0, IDENT_GUESS = 1, IDENT_WIDENED = 2 };
  */
 static int8_t guess(ctx_t *x, uint8_t nc)
 {
-    int16_t off[OPTICAL_MAX_CAND];
-    uint16_t e[OPTICAL_MAX_CAND];
     const uint8_t *cd = W.u.id.cand;
-    for (uint8_t c = 0; c < nc; c++) {
-        off[c] = (int16_t)(W.th[cd[2 * c]] - W.u.id.psi[cd[2 * c + 1]]);
-        e[c] = pos_part(cd[2 * c + 1], cd[2 * c]);
-    }
     int16_t best_h = 0;
     uint16_t best_e = 0;
     uint8_t best_n = 0;
     for (uint8_t c = 0; c < nc; c++) {
+        int16_t off_c = (int16_t)(W.th[cd[2 * c]] - W.u.id.psi[cd[2 * c + 1]]);
+        uint16_t e_c = pos_part(cd[2 * c + 1], cd[2 * c]);
         uint16_t seen = 0; /* sightings that agree, as a bit set */
         uint8_t cnt = 0;
         for (uint8_t d = 0; d < nc; d++) {
             uint16_t bit = (uint16_t)(1u << cd[2 * d]);
-            if (!(seen & bit) &&
-                (uint32_t)abs16((uint16_t)(off[d] - off[c])) <= (uint32_t)e[d] + e[c]) {
+            int16_t off_d = (int16_t)(W.th[cd[2 * d]] - W.u.id.psi[cd[2 * d + 1]]);
+            if (!(seen & bit) && (uint32_t)abs16((uint16_t)(off_d - off_c)) <=
+                                     (uint32_t)pos_part(cd[2 * d + 1], cd[2 * d]) + e_c) {
                 seen |= bit;
                 cnt++;
             }
         }
         if (cnt > best_n) {
             best_n = cnt;
-            best_h = off[c];
-            best_e = e[c];
+            best_h = off_c;
+            best_e = e_c;
         }
     }
     if (best_n < 3)
@@ -439,7 +429,6 @@ static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, 
 static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t *tri)
 {
     optical_select(W.u.sv.ang, W.m, t);
-    PROF(9);
     int8_t st = solve_triplet(x, t, passes, tri);
     if ((st != OPTICAL_E_SINGULAR && st != OPTICAL_E_INCONSISTENT) || W.m <= 3)
         return st;
@@ -618,17 +607,13 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     x.wd.rel16 = sat16((uint32_t)cfg->dist_rel);
     x.wd.flat = cfg->beacon_flat;
 
-    PROF(0);
     if (!prepare(&x))
         return finish(out, OPTICAL_E_ARG);
     /* O4, then O2: expected angles of the beacons within T (+ the position uncertainty),
      * and the first identification pass (O3). */
-    PROF(1);
     W.gate8 = sat15(((uint32_t)threshold(&x) + (uint32_t)cfg->window_pos) >> 8);
-    PROF(2);
     if (optical_expect_scan(0, half0(cfg)))
         return finish(out, OPTICAL_E_ARG);
-    PROF(3);
     if (n < 3)
         return finish(out, OPTICAL_E_FEW);
 
@@ -638,9 +623,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     out->widened = widened;
     if (found < 0)
         return finish(out, OPTICAL_E_INCONSISTENT);
-    PROF(4);
     gather(&x);
-    PROF(5);
     if (W.m < 3) {
         out->n_ident = W.m;
         return finish(out, OPTICAL_E_FEW);
@@ -651,7 +634,6 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     uint8_t t3[3];
     optical_tri_t tri;
     int8_t st = solve(&x, passes, t3, &tri);
-    PROF(6);
     if (st == OPTICAL_OK && mode != IDENT_SAFE) {
         /* Beyond the bounds the identification is a hypothesis: identify again from the fix
          * (5 cm, the residual tolerance) and use it only when at least five sightings agree. */
@@ -685,9 +667,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         for (uint8_t i = 0; i < 3; i++)
             out->used[i] = W.sm[W.pos[t3[i]]];
     }
-    PROF(7);
     if (st == OPTICAL_OK)
         st = check(&x, &tri.pose, t3);
-    PROF(8);
     return finish(out, st);
 }

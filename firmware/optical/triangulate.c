@@ -29,6 +29,9 @@
 /** Offsets beyond this (Q16, 2048 m) are refused: the scaling needs them below 2^27. */
 #define SPAN_LIMIT (1l << 27)
 
+/* The work memory (optical_fix's, in a part that is free while it triangulates). */
+#define T (optical_work.u.sv)
+
 static uint32_t mag(int32_t v)
 {
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
@@ -116,7 +119,11 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     const optical_xy_t *B2 = &b[k[1]];
     fx_angle_t a1 = g[(r + 1u) % 3u], a2 = g[(r + 2u) % 3u];
 
-    int32_t v[4] = {b[k[0]].x - B2->x, b[k[0]].y - B2->y, b[k[2]].x - B2->x, b[k[2]].y - B2->y};
+    int32_t *v = T.v, *sc = T.sc, *c = T.c;
+    v[0] = b[k[0]].x - B2->x;
+    v[1] = b[k[0]].y - B2->y;
+    v[2] = b[k[2]].x - B2->x;
+    v[3] = b[k[2]].y - B2->y;
     uint32_t m = mag(v[0]) | mag(v[1]) | mag(v[2]) | mag(v[3]);
     if (m >= SPAN_LIMIT)
         return OPTICAL_E_ARG;
@@ -128,16 +135,13 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     for (uint8_t i = 0; i < 4; i++)
         v[i] = (int32_t)((uint32_t)v[i] << sigma);
 
-    int32_t sc[6];
     fx_sincos(a1, &sc[0], &sc[1]);
     fx_sincos(a2, &sc[2], &sc[3]);
     fx_sincos(a1 + a2, &sc[4], &sc[5]);
-    int32_t c[2];
     if (!optical_tri_core(v, sc, c))
         return OPTICAL_E_SINGULAR;
-    optical_qparts_t qp;
-    optical_quality_parts(v, c, sc, &qp);
-    out->quality = quality(&qp, sigma);
+    optical_quality_parts(v, c, sc, &T.qp);
+    out->quality = quality(&T.qp, sigma);
     /* Relative to B2 in Q16 metres: / 2^sigma, rounded half up. */
     int32_t half = sigma ? (int32_t)1 << (sigma - 1) : 0;
     out->pose.x = B2->x + asr(c[0] + half, sigma);
@@ -151,7 +155,8 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     uint16_t h1 = optical_angle16(u[0], u[1]);
     uint16_t d2 = (uint16_t)(optical_angle16(u[2], u[3]) - h1 - a16(a1));
     uint16_t d3 = (uint16_t)(optical_angle16(u[4], u[5]) - h1 - a16(a1 + a2));
-    if ((uint16_t)(d2 + CONSISTENT) > 2u * CONSISTENT || (uint16_t)(d3 + CONSISTENT) > 2u * CONSISTENT)
+    if ((uint16_t)(d2 + CONSISTENT) > 2u * CONSISTENT ||
+        (uint16_t)(d3 + CONSISTENT) > 2u * CONSISTENT)
         return OPTICAL_E_INCONSISTENT;
     /* O10: the bearing from the direction of B1 (lambda units: finer than the position's Q16)
      * and its sighting angle. */

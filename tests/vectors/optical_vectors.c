@@ -214,7 +214,6 @@ static int32_t rnd_in(uint32_t lim)
     return (int32_t)(rnd32() % (2u * lim + 1u)) - (int32_t)lim;
 }
 
-
 static void print_marks(void)
 {
     cy_print(" sm");
@@ -497,15 +496,6 @@ static uint16_t slow_now(void)
     return TBR;
 }
 
-#ifdef OPTICAL_PROFILE
-static uint16_t prof_t[10];
-void optical_prof(uint8_t n);
-void optical_prof(uint8_t n)
-{
-    prof_t[n] = TBR;
-}
-#endif
-
 /* Cycles of optical_fix on case i (8-cycle resolution). */
 static uint32_t time_fix(uint8_t i, optical_config_t *cfg, optical_map_t *map, optical_pose_t *ap)
 {
@@ -539,18 +529,6 @@ static void bench(void)
         cy_bench_add(&st_fix_m, time_fix(vcase, &cfg, &map, &ap));
         cy_check(fix.status == OPTICAL_OK, "benchmark fix while driving accepted");
     }
-#ifdef OPTICAL_PROFILE
-    vcase = VEC_BENCH_STILL;
-    time_fix(vcase, &cfg, &map, &ap);
-    cy_print("# prof");
-    for (uint8_t i = 1; i < 10; i++) {
-        cy_print(" ");
-        cy_print_dec(i);
-        cy_print(":");
-        cy_print_dec(8 * (int32_t)(uint16_t)(prof_t[i] - prof_t[0]));
-    }
-    cy_println();
-#endif
     cy_bench_init(); /* back to Timer_B at SMCLK for the short ones */
     for (uint8_t rep = 0; rep < 3; rep++) {
         vcase = VEC_BENCH_STILL;
@@ -667,7 +645,6 @@ int main(void)
     cy_bench_init();
     cy_print("# optical vectors\n");
     helpers();
-    bench();
     kernels();
     fixes();
     reflectors();

@@ -14,7 +14,8 @@
     .set RESLO, 0x013a
     .set RESHI, 0x013c
 
-/* frame (R4 = SP after the allocation) */
+/* frame (R4 = optical_work.u.sv.frame: static, the stack stays small; not reentrant) */
+    .set W_FRAME, 350
     .set F_N,    0          ; n[12], 48 bytes
     .set F_PA,   48         ; group: the four products, 3 words each
     .set F_PB,   54
@@ -572,8 +573,7 @@ optical_tri_core:
     push    r6
     push    r5
     push    r4
-    sub     #F_SIZE, r1
-    mov     r1, r4
+    mov     #optical_work+W_FRAME, r4
     mov     r12, F_V(r4)
     mov     r13, F_SC(r4)
     mov     r14, F_OUT(r4)
@@ -697,7 +697,6 @@ optical_tri_core:
 fail:
     clr     r12
 out:
-    add     #F_SIZE, r1
     pop     r4
     pop     r5
     pop     r6
@@ -823,8 +822,7 @@ optical_quality_parts:
     push    r6
     push    r5
     push    r4
-    sub     #88, r1
-    mov     r1, r4
+    mov     #optical_work+W_FRAME, r4
     mov     r14, 84(r4)
     mov     r15, 86(r4)
     ; chords: b1, b3, b3 - b1
@@ -969,7 +967,6 @@ optical_quality_parts:
 12: mov     86(r4), r15
     mov     r12, 0(r15)
     mov     r13, 2(r15)
-    add     #88, r1
     pop     r4
     pop     r5
     pop     r6

@@ -47,6 +47,13 @@ extern const uint16_t optical_atan_tab[65];
 /** Most candidate pairs the identification keeps. */
 #define OPTICAL_MAX_CAND 40
 
+/** The parts of a triangulation's quality (optical_quality_parts). */
+typedef struct {
+    uint32_t den; /**< |r3 s1 + r1 s2 - r2 s3|, ranges 2^-sr lambda, sines Q14 */
+    uint16_t num; /**< sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2) / 2^(14 + sc + sr) */
+    uint8_t sc;   /**< the chords' scale */
+} optical_qparts_t;
+
 /**
  * The work area of optical_fix() and of the identification kernels (static: the MSP430's
  * stack is small; optical_fix is not reentrant). Per beacon k: psi[k] its expected angle
@@ -60,22 +67,22 @@ extern const uint16_t optical_atan_tab[65];
  * is over before the identified angles are gathered.
  */
 typedef struct {
-    const optical_xy_t *b;            /**< the map, nb beacons */
-    fx_q16_t x, y;                    /**< the position seen from, within OPTICAL_COORD_LIMIT */
-    uint16_t head;                    /**< heading, 2^-16 turn */
-    uint16_t eps8;                    /**< position uncertainty, 2^-8 m */
-    uint16_t lever8;                  /**< largest parallax lever, 2^-8 m (0 standing) */
-    uint16_t amax8;                   /**< min(eps8 + lever8, 0xFFFF) */
-    uint16_t gate8;                   /**< beacons with |dx| or |dy| (2^-8 m) beyond: gated */
-    uint8_t nb, n;                    /**< beacons (1..32), sightings (0..15) */
-    uint8_t nc;                       /**< candidate pairs stored */
-    uint8_t m;                        /**< fix.c: the identified */
+    const optical_xy_t *b; /**< the map, nb beacons */
+    fx_q16_t x, y;         /**< the position seen from, within OPTICAL_COORD_LIMIT */
+    uint16_t head;         /**< heading, 2^-16 turn */
+    uint16_t eps8;         /**< position uncertainty, 2^-8 m */
+    uint16_t lever8;       /**< largest parallax lever, 2^-8 m (0 standing) */
+    uint16_t amax8;        /**< min(eps8 + lever8, 0xFFFF) */
+    uint16_t gate8;        /**< beacons with |dx| or |dy| (2^-8 m) beyond: gated */
+    uint8_t nb, n;         /**< beacons (1..32), sightings (0..15) */
+    uint8_t nc;            /**< candidate pairs stored */
+    uint8_t m;             /**< fix.c: the identified */
     uint16_t th[OPTICAL_MAX_SIGHTINGS];
     uint16_t lev[OPTICAL_MAX_SIGHTINGS];
     uint16_t we[OPTICAL_MAX_SIGHTINGS];
     int32_t c[OPTICAL_MAX_SIGHTINGS]; /**< fix.c: parallax lever, Q16 m */
     uint8_t sm[OPTICAL_MAX_SIGHTINGS];
-    uint8_t bstart[16];               /**< first sighting at or after each 1/16 turn (0: none) */
+    uint8_t bstart[16];                  /**< first sighting at or after each 1/16 turn (0: none) */
     uint8_t ord[OPTICAL_MAX_SIGHTINGS];  /**< fix.c: input index of th[j] */
     uint8_t wchk[OPTICAL_MAX_SIGHTINGS]; /**< fix.c: O5 verdict cache */
     uint8_t pos[OPTICAL_MAX_SIGHTINGS];  /**< fix.c: the identified, sorted positions */
@@ -91,6 +98,11 @@ typedef struct {
             fx_angle_t ang[OPTICAL_MAX_SIGHTINGS]; /**< the identified, reference frame */
             optical_xy_t b[3];                     /**< the triplet being solved */
             optical_tri_t tri;                     /**< a candidate triplet's solution */
+            uint16_t frame[47];  /**< MSP430: the triangulation kernels' work frame */
+            int32_t v[4];        /**< optical_triangulate: the offsets (optical_tri_core) */
+            int32_t sc[6];       /**< its sines and cosines */
+            int32_t c[2];        /**< its solution */
+            optical_qparts_t qp; /**< its quality's parts */
         } sv;
     } u;
 } optical_work_t;
@@ -139,13 +151,6 @@ extern const uint16_t optical_ct_tab[64];
  * lambda units; false when a pair of circles (nearly) coincides.
  */
 bool optical_tri_core(const int32_t v[4], const int32_t sc[6], int32_t out[2]);
-
-/** The parts of a triangulation's quality (optical_quality_parts). */
-typedef struct {
-    uint32_t den; /**< |r3 s1 + r1 s2 - r2 s3|, ranges 2^-sr lambda, sines Q14 */
-    uint16_t num; /**< sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2) / 2^(14 + sc + sr) */
-    uint8_t sc;   /**< the chords' scale */
-} optical_qparts_t;
 
 /**
  * Quality of a triangulation (triangulate.c divides the parts): @p v and
