@@ -25,10 +25,8 @@ test: build
 	ctest --preset msp430
 	@python3 tools/cycles_report.py build/msp430/cycles.json
 
-demo: host msp430
-	@python3 tools/msp430sim.py --elf build/msp430/bin/irq_test.elf --verbose
-	@python3 tools/msp430sim.py --elf build/msp430/bin/mspabi_test.elf \
-	    --check tools/checks/mspabi.py --min-lines 20000
+demo: host
+	@python3 tools/demo.py
 
 format:
 	@tools/check_format.py --fix .

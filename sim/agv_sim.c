@@ -4,7 +4,7 @@
  * executes what the main board writes to its port (CONTRACT.md "agv-sim").
  *
  *   agv-sim --scenario FILE [--seed N] [--report FILE.json] [--log-dir DIR] [--lcm URL]
- *           [--quiet]
+ *           [--quiet] [--trace]
  *
  * Exit status: 0 the run met the scenario's success criteria, 1 it did not, 2 bad input.
  *
@@ -50,7 +50,7 @@
 #include "sim/scenario.h"
 
 #define DEG           (M_PI / 180.0)
-#define NS(t)         ((uint64_t)llround((t)*1e9))
+#define NS(t)         ((uint64_t)((t)*1e9 + 0.5)) /* t >= 0 */
 #define SEC(ns)       ((double)(ns)*1e-9)
 #define MAX_EDGES     256
 #define RISE_RING     256u
@@ -89,6 +89,7 @@ typedef struct {
     long gyro_count;   /* measured heading, in steps from the start */
     double t_index;    /* last index pulse */
     sim_gonio_event_t edges[MAX_EDGES];
+    sim_photo_t photo;
     size_t n_edges, next_edge;
     uint32_t rises;
     double rise_t[RISE_RING];
@@ -106,6 +107,7 @@ typedef struct {
     FILE *f_truth, *f_est, *f_fix, *f_cmd;
     lcm_t *lcm;
     int quiet;
+    int trace; /* --trace: every fix attempt and travel state on stderr */
 } sim_t;
 
 static sim_t S;
@@ -166,10 +168,10 @@ static void on_dl(void *ctx, uint64_t t_ns)
         S.ev_dl = posix_schedule(NS(t) > t_ns ? NS(t) : t_ns + 1, on_dl, 0);
 }
 
-/* Measured heading: truth plus the gyro's drift. */
+/* Measured heading: truth (linear in time on a segment) plus the gyro's drift. */
 static double gyro_heading(double t)
 {
-    return truth_at(t).th + S.sc.gyro_drift * t;
+    return S.seg.p0.th + sim_segment_omega(&S.seg) * (t - S.seg.t0) + S.sc.gyro_drift * t;
 }
 
 static void schedule_gyro(double t0)
@@ -231,6 +233,10 @@ static void on_gonio(void *ctx, uint64_t t_ns)
     if (S.next_edge < S.n_edges) {
         const sim_gonio_event_t *e = &S.edges[S.next_edge++];
         int rising = e->edge == SIM_GEV_RISE;
+        if (!sim_photo_feed(&S.photo, e)) {
+            schedule_gonio(); /* overlapping pulses: the photodetector stays lit */
+            return;
+        }
         posix_capture_raise(S.main_b, HAL_CAPTURE_BEACON, count, (uint8_t)rising);
         if (rising) {
             /* The photodetector is wired to the nav board too: it latches its pose. */
@@ -438,14 +444,25 @@ static void on_fix(void *ctx, const main_board_fix_event_t *ev)
         double fx = fx_q16_to_double(ev->fix.pose.x), fy = fx_q16_to_double(ev->fix.pose.y);
         err = hypot(fx - tp.x, fy - tp.y);
         herr = fabs(remainder(fx_angle_to_deg(ev->fix.pose.heading) - tp.th / DEG, 360.0));
-        if (getenv("AGV_SIM_DEBUG"))
+        if (S.trace) {
             fprintf(stderr,
-                    "fix ref %u: approx (%.4f %.4f %.3f) truth (%.4f %.4f %.3f) fix (%.4f %.4f) n "
-                    "%u st %d\n",
-                    ev->ref_latch, fx_q16_to_double(ev->approx.x), fx_q16_to_double(ev->approx.y),
-                    fx_angle_to_deg(ev->approx.heading), tp.x, tp.y, wrap_deg(tp.th / DEG), fx, fy,
-                    ev->n, ev->status);
-    }
+                    "t=%.3f fix ref %u status %d: dead reckoning (%.4f %.4f %.3f) truth (%.4f "
+                    "%.4f %.3f) fix (%.4f %.4f %.3f) error %.4f m\n",
+                    t, ev->ref_latch, ev->status, fx_q16_to_double(ev->approx.x),
+                    fx_q16_to_double(ev->approx.y), fx_angle_to_deg(ev->approx.heading), tp.x, tp.y,
+                    wrap_deg(tp.th / DEG), fx, fy, fx_angle_to_deg(ev->fix.pose.heading), err);
+            for (int i = 0; i < ev->n; i++)
+                fprintf(stderr, "  sighting %2d at %8.3f deg, %.3f deg wide: beacon %d%s\n", i,
+                        fx_angle_to_deg(ev->s[i].angle), ev->s[i].width * 360.0 / 65536.0,
+                        ev->fix.ident[i],
+                        ev->status == OPTICAL_OK && (ev->fix.ident[i] == ev->fix.used[0] ||
+                                                     ev->fix.ident[i] == ev->fix.used[1] ||
+                                                     ev->fix.ident[i] == ev->fix.used[2])
+                            ? " (used)"
+                            : "");
+        }
+    } else if (S.trace)
+        fprintf(stderr, "t=%.3f fix status %d: no sightings to pair with latches\n", t, ev->status);
     if (accepted) {
         S.rep.fixes_accepted++;
         if (err >= 0) {
@@ -501,7 +518,7 @@ static void on_fix(void *ctx, const main_board_fix_event_t *ev)
 static void on_state(void *ctx, drive_state_t st)
 {
     (void)ctx;
-    if (getenv("AGV_SIM_DEBUG")) {
+    if (S.trace) {
         sim_pose_t p = truth_at(now_s());
         fprintf(stderr, "t=%.3f state %s at (%.4f %.4f %.2f)\n", now_s(), drive_seq_state_name(st),
                 p.x, p.y, wrap_deg(p.th / DEG));
@@ -609,7 +626,7 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: agv-sim --scenario FILE [--seed N] [--report FILE.json] [--log-dir DIR]\n"
-            "               [--lcm URL] [--quiet]\n"
+            "               [--lcm URL] [--quiet] [--trace]\n"
             "Runs both boards' firmware against a simulated vehicle and building.\n"
             "  --scenario FILE   scenario (JSON, CONTRACT.md; examples in sim/scenarios/)\n"
             "  --seed N          override the scenario's seed\n"
@@ -618,16 +635,22 @@ static void usage(FILE *f)
             "                    path.csv, beacons.csv\n"
             "  --lcm URL         publish telemetry on LCM (e.g. udpm://239.255.76.67:7667?ttl=0)\n"
             "  --quiet           no progress on stderr\n"
+            "  --trace           every fix attempt (dead-reckoning pose, truth and fix at the\n"
+            "                    reference latch, sightings, status) and travel state on stderr\n"
             "Exit status: 0 criteria met, 1 criteria missed, 2 bad input.\n");
 }
 
 int main(int argc, char **argv)
 {
-    static const struct option opts[] = {
-        {"scenario", required_argument, 0, 's'}, {"seed", required_argument, 0, 'S'},
-        {"report", required_argument, 0, 'r'},   {"log-dir", required_argument, 0, 'l'},
-        {"lcm", required_argument, 0, 'L'},      {"quiet", no_argument, 0, 'q'},
-        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0}};
+    static const struct option opts[] = {{"scenario", required_argument, 0, 's'},
+                                         {"seed", required_argument, 0, 'S'},
+                                         {"report", required_argument, 0, 'r'},
+                                         {"log-dir", required_argument, 0, 'l'},
+                                         {"lcm", required_argument, 0, 'L'},
+                                         {"quiet", no_argument, 0, 'q'},
+                                         {"trace", no_argument, 0, 't'},
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
     const char *scenario = NULL, *report = NULL, *log_dir = NULL, *lcm_url = NULL;
     long long seed = -1;
     int c;
@@ -657,6 +680,9 @@ int main(int argc, char **argv)
             break;
         case 'q':
             S.quiet = 1;
+            break;
+        case 't':
+            S.trace = 1;
             break;
         case 'h':
             usage(stdout);
@@ -701,6 +727,7 @@ int main(int argc, char **argv)
     S.gcfg.noise_rad = S.sc.gonio_noise;
     S.gcfg.max_range = S.sc.gonio_range;
     sim_rng_seed(&S.rng_gonio, S.sc.seed, 1);
+    sim_photo_init(&S.photo);
     sim_pose_t start = {S.sc.start_x, S.sc.start_y, S.sc.start_heading};
     S.seg = sim_segment(0.0, start, 0.0, 0.0, 0.0, S.sc.wheelbase);
     S.cur = 2;
@@ -857,9 +884,8 @@ int main(int argc, char **argv)
             if (!any)
                 break;
         }
-        posix_board_select(S.main_b);
-        main_board_stats(&ms);
-        if ((ms.done || ms.fault) && done_at < 0)
+        drive_state_t st = main_board_state();
+        if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT) && done_at < 0)
             done_at = now_s();
         if (done_at >= 0 && S.v == 0 && !S.braking && now_s() > done_at + 0.5)
             break; /* finished and standing */

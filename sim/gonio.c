@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 uint16_t sim_gonio_count(const sim_gonio_cfg_t *cfg, double t)
 {
@@ -56,15 +57,19 @@ static double solve(const crossing_t *c, double t_from, double t_to)
     /* Next multiple of 2 pi above f0: F grows at about the mirror rate. */
     double target = ceil(f0 / (2.0 * M_PI)) * 2.0 * M_PI;
     double t = t_from + (target - f0) / w;
+    /* Newton with the derivative from the last step (secant): F is close to linear. */
+    double df = w;
     for (int i = 0; i < 8; i++) {
-        double h = 1e-6;
         double f = F(c, t) - target;
-        double df = (F(c, t + h) - F(c, t - h)) / (2.0 * h);
+        double dt = f / df;
+        double h = 1e-6;
+        if (i == 0)
+            df = (F(c, t + h) - F(c, t - h)) / (2.0 * h);
         if (df <= 0.0)
             df = w;
-        double dt = f / df;
+        dt = f / df;
         t -= dt;
-        if (fabs(dt) < 1e-13)
+        if (fabs(dt) < 1e-12)
             break;
     }
     if (!(t >= t_from) || !(t < t_to))
@@ -79,28 +84,42 @@ static int by_time(const void *a, const void *b)
         return -1;
     if (x->t > y->t)
         return 1;
-    return x->target - y->target;
+    if (x->target != y->target)
+        return x->target - y->target;
+    return x->edge - y->edge; /* a rising edge before its falling edge at the same instant */
 }
 
+/*
+ * Both edges of one target's pulse. Range and line of sight are judged once per pulse, at the
+ * beam's crossing of the target's centre (so a pulse is either seen whole or not at all), and
+ * the noise never puts a falling edge before its rising edge.
+ */
 static size_t add_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const sim_segment_t *seg,
                         double t_index, double t_from, double t_to, sim_rng_t *rng, double tx,
                         double ty, double half, int16_t target, sim_gonio_event_t *out, size_t n,
                         size_t max)
 {
+    double wrate = 2.0 * M_PI * cfg->rev_per_s;
+    double te[2];
     for (int e = 0; e < 2; e++) {
         crossing_t c = {cfg, seg, t_index, tx, ty, half, e == 0 ? -1.0 : 1.0};
-        double t = solve(&c, t_from, t_to);
-        if (isnan(t))
+        te[e] = solve(&c, t_from, t_to);
+        if (isnan(te[e]))
             continue;
-        sim_pose_t p = sim_segment_pose(seg, t);
-        if (hypot(tx - p.x, ty - p.y) > cfg->max_range)
-            continue;
-        if (!sim_world_visible(w, p.x, p.y, tx, ty))
-            continue;
-        double noise = cfg->noise_rad > 0.0 ? cfg->noise_rad * sim_rng_normal(rng) : 0.0;
-        double wrate = 2.0 * M_PI * cfg->rev_per_s;
-        t += noise / wrate;
-        if (t < t_from || t >= t_to || n >= max)
+        /* The centre crossing: half the apparent width after a rising edge, before a falling. */
+        sim_pose_t p = sim_segment_pose(seg, te[e]);
+        double tc = te[e] - c.side * target_half(&c, p.x, p.y) / wrate;
+        p = sim_segment_pose(seg, tc);
+        if (hypot(tx - p.x, ty - p.y) > cfg->max_range || !sim_world_visible(w, p.x, p.y, tx, ty))
+            te[e] = NAN;
+        else if (cfg->noise_rad > 0.0)
+            te[e] += cfg->noise_rad * sim_rng_normal(rng) / wrate;
+    }
+    if (!isnan(te[0]) && !isnan(te[1]) && te[1] < te[0] && te[1] > te[0] - 0.5 / cfg->rev_per_s)
+        te[1] = te[0]; /* the noise swapped the edges of a glint narrower than itself */
+    for (int e = 0; e < 2; e++) {
+        double t = te[e];
+        if (isnan(t) || t < t_from || t >= t_to || n >= max)
             continue;
         double m = fmod(mirror_at(cfg, t_index, t), 2.0 * M_PI);
         if (m < 0.0)
@@ -127,4 +146,26 @@ size_t sim_gonio_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const s
                       -0.5 * w->spurious[i].width, (int16_t)(-1 - (int)i), out, n, max);
     qsort(out, n, sizeof out[0], by_time);
     return n;
+}
+
+void sim_photo_init(sim_photo_t *p)
+{
+    memset(p, 0, sizeof *p);
+}
+
+int sim_photo_feed(sim_photo_t *p, const sim_gonio_event_t *e)
+{
+    int k = e->target >= 0 ? e->target : SIM_MAX_BEACONS - 1 - e->target;
+    if (k < 0 || k >= SIM_PHOTO_TARGETS)
+        return 0;
+    if (e->edge == SIM_GEV_RISE) {
+        if (p->lit[k])
+            return 0;
+        p->lit[k] = 1;
+        return p->n_lit++ == 0;
+    }
+    if (!p->lit[k])
+        return 0; /* its rising edge was not seen (before the simulation began) */
+    p->lit[k] = 0;
+    return --p->n_lit == 0;
 }

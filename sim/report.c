@@ -78,7 +78,7 @@ char *sim_report_json(sim_report_t *r)
     json_object_set_new(root, "seed", json_integer((json_int_t)r->seed));
     json_object_set_new(root, "mode", json_string(r->full_travel ? "full" : "simplified"));
     json_object_set_new(root, "sim_time_s", num(r->sim_time, 6));
-    json_object_set_new(root, "wall_time_s", num(r->wall_time, 3));
+    json_object_set_new(root, "wall_time_s", num(r->wall_time, 6));
 
     json_t *fixes = json_object();
     json_object_set_new(fixes, "attempted", json_integer(r->fixes_attempted));

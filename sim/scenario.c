@@ -305,6 +305,8 @@ int sim_scenario_load(const char *path, sim_scenario_t *sc, char *err, size_t er
 {
     json_error_t jerr;
     json_t *root = json_load_file(path, JSON_REJECT_DUPLICATES, &jerr);
+    if (!root && jerr.line < 0)
+        return ac_fail(err, errlen, "%s", jerr.text); /* cannot open or read the file */
     if (!root)
         return ac_fail(err, errlen, "%s: line %d, column %d: %s", path, jerr.line, jerr.column,
                        jerr.text);

@@ -14,13 +14,18 @@ def main():
         return 1
     hz = rep.get("clock_hz", 16000000)
     print(f"MSP430 cycle report ({path}, {hz / 1e6:.0f} MHz)")
-    print(f"  {'entry':<22}{'max':>9}{'mean':>9}{'max us':>9}")
+    print(f"  {'entry':<22}{'max':>9}{'mean':>9}{'max us':>9}{'stack B':>9}")
     for e in rep.get("entries", []):
+        st = str(e["stack_bytes"]) if "stack_bytes" in e else "-"
         print(f"  {e['name']:<22}{e['cycles_max']:>9}{e['cycles_mean']:>9}"
-              f"{e['cycles_max'] * 1e6 / hz:>9.1f}")
+              f"{e['cycles_max'] * 1e6 / hz:>9.1f}{st:>9}")
     print(f"  {'image':<22}{'text':>9}{'data':>9}{'bss':>9}")
     for i in rep.get("images", []):
         print(f"  {i['name']:<22}{i['text']:>9}{i['data']:>9}{i['bss']:>9}")
+    if rep.get("stack"):
+        print(f"  {'stack (high water)':<22}{'used':>9}{'room':>9}")
+        for st in rep["stack"]:
+            print(f"  {st['image']:<22}{st['used']:>9}{st['room']:>9}")
     return 0
 
 

@@ -15,7 +15,8 @@ Events are ordered by front-wheel travel; an edge and a pulse at the same travel
 The path (wheelbase 0.762 m, dl 0.01 in, 0.25 degree steps) visits every branch of the dl
 handler: straights (short and 2.6 m long intervals), gentle and tight arcs, an S-curve
 (reversals of the heading), steering past 80 degrees (too few pulses per step), reverse
-travel, and a heading that jitters across one threshold.
+travel, and a heading that jitters across one threshold; beacon sightings throughout, so
+that latches fall into every kind of interval the heading estimate distinguishes.
 
 Encoding (uint16 words): kind << 13 | count. kind 0: count pulses (1..8191); 1: gyro up;
 2: gyro down; 3: beacon sighted; 4: reverse on; 5: reverse off; 6: print the pose.
@@ -56,8 +57,8 @@ def simulate():
     heading = 0.0     # relative to the start, radians
     cell = 0
     back = False
-    beacon_every = 0.35
-    next_beacon = 0.2
+    beacon_every = 0.047  # about 21 sightings per metre: latches in every kind of interval
+    next_beacon = 0.02
 
     def emit_pulses(k):
         while k > 0:

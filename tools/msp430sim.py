@@ -8,12 +8,18 @@ The image talks to this runner through the simulator's console device (address 0
                             breakpoint stops it, the runner applies the queue and resumes.
   @cycles <name> <max> <mean> <n>
                             a cycle measurement for the cycle report (--cycles-json).
+  @stack-use <name> <bytes> the deepest stack one measured call needed (CY_STACK).
   # ...                     a comment, shown with --verbose.
   CY-TEST-END PASS | CY-TEST-END FAIL <n>
                             the sentinel: the verdict of the image itself.
   FAULT 0x....              printed by hal_fault() before the CPU stops.
   anything else             a data line, compared with the host's output (--compare-cmd)
                             and/or handed to a checker (--check).
+
+Stack: before the run, the RAM between the end of .bss/.noinit and the top of the stack is
+filled with 0xA5; after it, the lowest byte that changed gives the stack's high-water mark
+(interrupt frames included), recorded in the cycle report's "stack" list, unless the image
+measured its own calls with CY_STACK (which refills the area).
 
 The image stops in cy_halt (a breakpoint). The run fails loudly when the sentinel is
 missing, the image reports FAIL, the simulated cycle count passes --max-cycles (a hang),
@@ -192,7 +198,26 @@ def split_run_output(lines, broken):
     return console, partial, pc
 
 
-def merge_cycles(path, entries, images_dir):
+STACK_FILL = 0xA5
+MD_RE = re.compile(r"^\s*([0-9a-fA-F]{4,5}):((?:\s[0-9a-fA-F]{2})+)")
+
+
+def stack_used(md_lines, lo, top):
+    """Bytes of stack used: from the lowest byte in [lo, top) that lost the fill to top."""
+    mem = {}
+    for line in md_lines:
+        m = MD_RE.match(line)
+        if m:
+            addr = int(m.group(1), 16)
+            for i, b in enumerate(m.group(2).split()):
+                mem[addr + i] = int(b, 16)
+    if any(a not in mem for a in range(lo, top)):
+        raise SimError(f"`md` did not return the whole stack area 0x{lo:04x}-0x{top:04x}")
+    low = next((a for a in range(lo, top) if mem[a] != STACK_FILL), top)
+    return top - low
+
+
+def merge_cycles(path, entries, images_dir, stack=None):
     """Merge entries (by name) into the cycle report, under a lock (ctest runs in parallel)."""
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     with open(path + ".lock", "w") as lock:
@@ -217,6 +242,10 @@ def merge_cycles(path, entries, images_dir):
                     if img.get("kind") == "board":
                         images.append({k: img[k] for k in ("name", "text", "data", "bss")})
         report["images"] = images
+        if stack is not None:
+            stacks = {e["image"]: e for e in report.get("stack", [])}
+            stacks[stack["image"]] = stack
+            report["stack"] = [stacks[k] for k in sorted(stacks)]
         report["clock_hz"] = 16000000
         tmp = path + ".tmp"
         with open(tmp, "w") as f:
@@ -250,6 +279,9 @@ def run_image(args, log):
         if until_pc is not None:
             sim.cmd(f"setbreak 0x{until_pc:04x}")
         sim.cmd("simio config tr clear")
+        stack_lo, stack_top = syms.get("__noinit_end"), syms.get("__stack_top")
+        if stack_lo is not None and stack_top is not None and stack_top > stack_lo:
+            sim.cmd(f"fill 0x{stack_lo:04x} {stack_top - stack_lo} 0x{STACK_FILL:02x}")
 
         console_text = []
         pending_line = ""
@@ -289,6 +321,10 @@ def run_image(args, log):
                                f"(PC 0x{pc or 0:04x})")
         if pending_line:
             console_text.append(pending_line)
+        if stack_lo is not None and stack_top is not None and stack_top > stack_lo:
+            used = stack_used(sim.cmd(f"md 0x{stack_lo:04x} {stack_top - stack_lo}"), stack_lo,
+                              stack_top)
+            console_text.append(f"@stack {used} {stack_top - stack_lo}")
         return console_text, sim.cycles()
     finally:
         sim.close()
@@ -387,6 +423,16 @@ def main():
                     failures.append(f"line {i + 1} differs: host `{a}` target `{b}`")
                     break
 
+    stack = None
+    # An image that measures its calls (CY_STACK) refills the area: its own high-water mark
+    # is then not the runner's to judge.
+    per_call = any(l.startswith("@stack-use ") for l in console)
+    for l in console:
+        if l.startswith("@stack ") and not per_call:
+            used, room = (int(v) for v in l.split()[1:3])
+            stack = {"image": os.path.splitext(name)[0], "used": used, "room": room}
+            if used >= room:
+                failures.append(f"the stack used all {room} bytes above .bss: it overflowed")
     if args.cycles_json:
         entries = []
         for l in console:
@@ -394,20 +440,30 @@ def main():
                 f = l.split()
                 entries.append({"name": f[1], "cycles_max": int(f[2]),
                                 "cycles_mean": int(f[3]), "samples": int(f[4])})
-        if entries:
+        for l in console:
+            if l.startswith("@stack-use "):
+                f = l.split()
+                e = next((e for e in entries if e["name"] == f[1]), None)
+                if e is None:
+                    failures.append(f"`{l}` names no @cycles entry")
+                else:
+                    e["stack_bytes"] = int(f[2])
+        if entries or stack:
             images_dir = args.images_dir or os.path.join(
                 os.path.dirname(os.path.abspath(args.cycles_json)), "images")
-            merge_cycles(args.cycles_json, entries, images_dir)
+            merge_cycles(args.cycles_json, entries, images_dir, stack)
             for e in entries:
+                st = f", stack {e['stack_bytes']} B" if "stack_bytes" in e else ""
                 print(f"  cycles {e['name']:<20} max {e['cycles_max']:>7}  mean "
-                      f"{e['cycles_mean']:>7}  ({e['samples']} samples)")
+                      f"{e['cycles_mean']:>7}  ({e['samples']} samples{st})")
 
     if failures:
         print(f"FAIL {name} ({cycles} cycles)")
         for f in failures:
             print("  " + f)
         return 1
-    print(f"PASS {name}: {len(data)} data lines, {cycles} simulated cycles")
+    room = f", stack {stack['used']} of {stack['room']} bytes" if stack else ""
+    print(f"PASS {name}: {len(data)} data lines, {cycles} simulated cycles{room}")
     return 0
 
 

@@ -42,6 +42,7 @@ uint8_t drive_dac_speed_byte(int8_t speed)
     return (uint8_t)(128 + speed);
 }
 
+#ifndef DRIVE_ASM /* MSP430: msp430/cmd.S, the same steps */
 drive_status_t drive_speed_counts(fx_q16_t speed_mps, bool reverse, const drive_board_t *board,
                                   int8_t *out)
 {
@@ -54,21 +55,6 @@ drive_status_t drive_speed_counts(fx_q16_t speed_mps, bool reverse, const drive_
     return DRIVE_OK;
 }
 
-/* Front-wheel counts of a segment with front/rear length ratio @p sec (Q4.28, 0 for a
- * straight): round(s counts_per_m sqrt(1 + (L k)^2)). */
-static drive_status_t front_counts(const drive_segment_t *g, const drive_board_t *b, int32_t sec,
-                                   uint8_t *out)
-{
-    int32_t counts = fx_mul_q16(g->length, b->counts_per_m); /* rear-axle counts, Q16 */
-    if (sec != 0 && !fx_mul_shift(counts, sec, 28, &counts))
-        return DRIVE_ERR_RANGE;
-    counts = (counts + (1l << 15)) >> 16;
-    if (counts > 255)
-        return DRIVE_ERR_RANGE;
-    *out = (uint8_t)counts;
-    return DRIVE_OK;
-}
-
 drive_status_t drive_cmd_build(const drive_solution_t *sol, const drive_board_t *board,
                                fx_q16_t speed_mps, bool reverse, drive_cmd_t *cmd)
 {
@@ -76,29 +62,36 @@ drive_status_t drive_cmd_build(const drive_solution_t *sol, const drive_board_t 
         board->wheelbase > 4 * FX_Q16_ONE || board->counts_per_m <= 0)
         return DRIVE_ERR_PARAM;
     drive_cmd_t c;
-    int32_t sec = 0, last_k = 0;
+    int32_t k_abs = 0, sec = 0;
+    fx_angle_t alpha = 0;
     for (uint8_t i = 0; i < 2u; i++) {
         const drive_segment_t *g = &sol->seg[i];
-        /* The arcs of a double arc have opposite curvatures of one magnitude: their angles
-         * and front/rear ratios are computed once. */
-        if (i == 1 && g->curvature == -last_k && last_k != 0) {
-            c.alpha[1] = 0u - c.alpha[0];
-        } else {
-            c.alpha[i] = drive_steer_angle(g->curvature, board->wheelbase);
-            sec = 0;
-            if (g->curvature != 0) {
-                uint32_t h = fx_hypot(DRIVE_CURV_ONE, fx_mul_q16(g->curvature, board->wheelbase));
-                if (h > (uint32_t)INT32_MAX)
-                    return DRIVE_ERR_RANGE;
-                sec = (int32_t)h; /* sqrt(1 + (L k)^2), Q4.28 */
-            }
+        /* Steering alpha = atan(L k) and the front/rear length ratio sec = sqrt(1 + (L k)^2)
+         * (Q4.28) of |k|, the sign applied after (both are exactly odd or even): the two arcs
+         * of a double arc have one magnitude and need them once. */
+        uint32_t a = drive_abs32(g->curvature);
+        if (a == 0) {
+            alpha = 0;
+            sec = 0; /* a straight: the counts as they are */
+        } else if ((int32_t)a != k_abs) {
+            int32_t lk = fx_mul_q16((int32_t)a, board->wheelbase);
+            alpha = fx_atan_ratio(lk, DRIVE_CURV_ONE);
+            uint32_t h = fx_hypot(DRIVE_CURV_ONE, lk);
+            if (h > (uint32_t)INT32_MAX)
+                return DRIVE_ERR_RANGE;
+            sec = (int32_t)h;
         }
-        last_k = g->curvature;
-        drive_status_t st = drive_steer_byte(c.alpha[i], &c.steer[i]);
-        if (st == DRIVE_OK)
-            st = front_counts(g, board, g->curvature != 0 ? sec : 0, &c.arc[i]);
-        if (st != DRIVE_OK)
-            return st;
+        k_abs = (int32_t)a;
+        c.alpha[i] = g->curvature < 0 ? 0u - alpha : alpha;
+        if (drive_steer_byte(c.alpha[i], &c.steer[i]) != DRIVE_OK)
+            return DRIVE_ERR_RANGE;
+        /* Front-wheel counts: round(s counts_per_m sqrt(1 + (L k)^2)), at most 255. */
+        int32_t counts = fx_mul_q16(g->length, board->counts_per_m); /* rear axle, Q16 */
+        if (sec != 0 && !fx_mul_shift(counts, sec, 28, &counts))
+            return DRIVE_ERR_RANGE;
+        if (counts >= (255l << 16) + (1l << 15))
+            return DRIVE_ERR_RANGE;
+        c.arc[i] = (uint8_t)((uint32_t)(counts + (1l << 15)) >> 16);
     }
     drive_status_t st = drive_speed_counts(speed_mps, reverse, board, &c.speed);
     if (st != DRIVE_OK)
@@ -106,10 +99,14 @@ drive_status_t drive_cmd_build(const drive_solution_t *sol, const drive_board_t 
     /* D7: arcs too short for a clean delta-S pulse. A short first arc is dropped (skipped by
      * the board without a pulse); a short second arc is driven but its pulse, if any, is not
      * waited for. */
-    bool short0 = c.arc[0] < board->min_pulse_counts, short1 = c.arc[1] < board->min_pulse_counts;
-    if (short0)
+    c.pulses = 2;
+    if (c.arc[0] < board->min_pulse_counts) {
         c.arc[0] = 0;
-    c.pulses = (uint8_t)((short0 ? 0u : 1u) + (short1 ? 0u : 1u));
+        c.pulses--;
+    }
+    if (c.arc[1] < board->min_pulse_counts)
+        c.pulses--;
     *cmd = c;
     return DRIVE_OK;
 }
+#endif

@@ -5,17 +5,8 @@
 
 #include "drive/drive_path.h"
 
-/* The pose at @p t (metres Q16, 0 <= t <= the leg's length) along a leg's solution. */
-static drive_pose_t along(const drive_pose_t *from, const drive_solution_t *sol, fx_q16_t t,
-                          bool reverse)
-{
-    fx_q16_t s0 = sol->seg[0].length;
-    if (t <= s0)
-        return drive_pose_advance(from, sol->seg[0].curvature, t, reverse);
-    drive_pose_t mid = drive_pose_advance(from, sol->seg[0].curvature, s0, reverse);
-    return drive_pose_advance(&mid, sol->seg[1].curvature, t - s0, reverse);
-}
-
+#ifndef DRIVE_ASM /* MSP430: msp430/path.S, the same steps */
+/* The start of leg @p leg: the initial vector or the previous primary point. */
 static const drive_pose_t *leg_start(const drive_path_t *path, uint8_t leg)
 {
     return leg == 0 ? &path->start : &path->pts[leg - 1].pose;
@@ -26,44 +17,53 @@ drive_status_t drive_path_leg(drive_path_t *path, uint8_t leg, const drive_solut
     if (path == NULL || leg >= path->n)
         return DRIVE_ERR_PARAM;
     if (path->cache_leg != (int16_t)leg) {
+        path->cache_leg = -1;
         drive_status_t st =
             drive_solve(leg_start(path, leg), &path->pts[leg].pose, path->cfg.nominal_radius,
                         path->cfg.reverse, &path->cache, NULL);
-        if (st != DRIVE_OK) {
-            path->cache_leg = -1;
+        if (st != DRIVE_OK)
             return st;
-        }
         path->cache_leg = (int16_t)leg;
     }
     *sol = &path->cache;
     return DRIVE_OK;
 }
 
-/* Secondary point @p sub of leg @p leg whose nominal solution is @p sol. */
-static drive_pose_t secondary(const drive_path_t *path, uint8_t leg, uint8_t sub,
-                              const drive_solution_t *sol)
+/* Secondary point @p sub of the leg from @p from to @p pt (whose solution is cached) into
+ * *out: at sub / nsub of the nominal solution, the primary point itself for sub == nsub. */
+static void secondary(const drive_path_t *path, const drive_pose_t *from,
+                      const drive_path_point_t *pt, uint8_t sub, drive_pose_t *out)
 {
-    uint8_t nsub = path->pts[leg].nsub;
-    if (sub >= nsub)
-        return path->pts[leg].pose;
+    const drive_segment_t *g = path->cache.seg;
+    if (sub >= pt->nsub) {
+        *out = pt->pose;
+        return;
+    }
     int32_t frac = 0; /* sub / nsub, Q30 */
-    (void)fx_div_shift(sub, nsub, 30, &frac);
-    fx_q16_t t = fx_mul_q30(sol->seg[0].length + sol->seg[1].length, frac);
-    return along(leg_start(path, leg), sol, t, path->cfg.reverse);
+    (void)fx_div_shift(sub, pt->nsub, 30, &frac);
+    fx_q16_t t = fx_mul_q30(g[0].length + g[1].length, frac);
+    drive_pose_t p = *from;
+    if (t > g->length) { /* past the first segment */
+        p = drive_pose_advance(&p, g->curvature, g->length, path->cfg.reverse);
+        t -= g->length;
+        g++;
+    }
+    *out = drive_pose_advance(&p, g->curvature, t, path->cfg.reverse);
 }
 
 drive_status_t drive_path_target(drive_path_t *path, drive_path_cursor_t cur, drive_pose_t *pose,
                                  fx_q16_t *speed)
 {
+    const drive_solution_t *sol;
     if (path == NULL || !path->ready || cur.leg >= path->n || cur.sub == 0 ||
         cur.sub > path->pts[cur.leg].nsub)
         return DRIVE_ERR_PARAM;
-    const drive_solution_t *sol;
     drive_status_t st = drive_path_leg(path, cur.leg, &sol);
     if (st != DRIVE_OK)
         return st;
-    *pose = secondary(path, cur.leg, cur.sub, sol);
-    *speed = path->pts[cur.leg].speed;
+    const drive_path_point_t *pt = &path->pts[cur.leg];
+    secondary(path, leg_start(path, cur.leg), pt, cur.sub, pose);
+    *speed = pt->speed;
     return DRIVE_OK;
 }
 
@@ -120,36 +120,33 @@ drive_status_t drive_path_prepare(drive_path_t *path, const drive_pose_t *start,
         cfg->spacing < FX_Q16_ONE / 20 || cfg->spacing > 8 * FX_Q16_ONE)
         return reject(path, 0, 0, DRIVE_ERR_PARAM);
 
-    for (uint8_t leg = 0; leg < n; leg++) {
+    const drive_pose_t *from = &path->start;
+    drive_path_point_t *pt = pts;
+    for (uint8_t leg = 0; leg < n; leg++, from = &pt->pose, pt++) {
         int8_t counts;
-        drive_status_t st = drive_speed_counts(pts[leg].speed, cfg->reverse, board, &counts);
+        drive_status_t st = drive_speed_counts(pt->speed, cfg->reverse, board, &counts);
         if (st == DRIVE_OK && counts == 0)
             st = DRIVE_ERR_PARAM; /* a speed that rounds to a stop */
-        if (st != DRIVE_OK)
-            return reject(path, leg, 0, st);
-        path->cache_leg = -1;
         const drive_solution_t *sol;
-        st = drive_path_leg(path, leg, &sol);
+        if (st == DRIVE_OK)
+            st = drive_path_leg(path, leg, &sol);
         if (st != DRIVE_OK)
             return reject(path, leg, 0, st);
-        int32_t len = sol->seg[0].length + sol->seg[1].length, nsub = 0;
-        (void)fx_div_shift(len, cfg->spacing, 0, &nsub);
-        if ((int64_t)nsub * cfg->spacing < len)
-            nsub++;
-        if (nsub < 1)
-            nsub = 1;
-        if (nsub > 255)
+        /* nsub = ceil(length / spacing), at least 1 (lengths and spacing > 0, sums < 2^31) */
+        uint32_t len = (uint32_t)(sol->seg[0].length + sol->seg[1].length);
+        uint32_t nsub = (len + (uint32_t)cfg->spacing - 1u) / (uint32_t)cfg->spacing;
+        if (nsub > 255u)
             return reject(path, leg, 0, DRIVE_ERR_PATH);
-        pts[leg].nsub = (uint8_t)nsub;
+        pt->nsub = (uint8_t)(nsub ? nsub : 1u);
         /* Every piece between secondary points, as the vehicle will drive it. */
-        drive_pose_t a = *leg_start(path, leg);
-        for (uint8_t sub = 1; sub <= (uint8_t)nsub; sub++) {
-            drive_pose_t b = secondary(path, leg, sub, sol);
+        drive_pose_t a = *from, b;
+        for (uint8_t sub = 1; sub <= pt->nsub; sub++) {
+            secondary(path, from, pt, sub, &b);
             drive_solution_t piece;
             drive_cmd_t cmd;
             st = drive_solve(&a, &b, board->min_radius, cfg->reverse, &piece, NULL);
             if (st == DRIVE_OK)
-                st = drive_cmd_build(&piece, board, pts[leg].speed, cfg->reverse, &cmd);
+                st = drive_cmd_build(&piece, board, pt->speed, cfg->reverse, &cmd);
             if (st != DRIVE_OK)
                 return reject(path, leg, sub, st);
             a = b;
@@ -159,3 +156,4 @@ drive_status_t drive_path_prepare(drive_path_t *path, const drive_pose_t *start,
     path->bad_why = DRIVE_OK;
     return DRIVE_OK;
 }
+#endif

@@ -13,25 +13,39 @@ static void put(drive_wseq_t *s, hal_drive_reg_t reg, uint8_t value)
     s->n++;
 }
 
-/* Data byte (inverted on the bus), strobe code, release. */
-static void item(drive_wseq_t *s, uint8_t data, uint8_t code)
-{
-    put(s, HAL_DRIVE_PPI_A, (uint8_t)(data ^ 0xFFu));
-    put(s, HAL_DRIVE_PPI_B, code);
-    put(s, HAL_DRIVE_PPI_B, 0x00u);
-}
+/*
+ * An 8255 transfer of @p n items: C <- 0x02, CTRL <- 0x80, per item A <- data ^ 0xFF (the
+ * drive_cmd_t byte at offset pick[i]), B <- its strobe code, B <- 0x00; CTRL <- 0x90,
+ * C <- 0x82.
+ */
+static const uint8_t load_pick[5] = {0, 2, 1, 3, 4}; /* steer[0], arc[0], steer[1], arc[1], speed */
+_Static_assert(offsetof(drive_cmd_t, steer) == 0 && offsetof(drive_cmd_t, arc) == 2 &&
+                   offsetof(drive_cmd_t, speed) == 4,
+               "drive_cmd_t: the bytes of a load moved");
+static const uint8_t load_code[5] = {DRIVE_STROBE_STEER1, DRIVE_STROBE_ARC1, DRIVE_STROBE_STEER2,
+                                     DRIVE_STROBE_ARC2, DRIVE_STROBE_SPEED};
 
-static void begin(drive_wseq_t *s)
+static void transfer(drive_wseq_t *s, const drive_cmd_t *cmd, uint8_t first)
 {
-    s->n = 0;
-    put(s, HAL_DRIVE_PPI_C, DRIVE_PPI_C_BEGIN);
-    put(s, HAL_DRIVE_PPI_CTRL, DRIVE_PPI_CTRL_OUT);
-}
-
-static void end(drive_wseq_t *s)
-{
-    put(s, HAL_DRIVE_PPI_CTRL, DRIVE_PPI_CTRL_REL);
-    put(s, HAL_DRIVE_PPI_C, DRIVE_PPI_C_DONE);
+    const uint8_t *bytes = (const uint8_t *)cmd;
+    drive_write_t *w = s->w;
+    w[0].reg = HAL_DRIVE_PPI_C;
+    w[0].value = DRIVE_PPI_C_BEGIN;
+    w[1].reg = HAL_DRIVE_PPI_CTRL;
+    w[1].value = DRIVE_PPI_CTRL_OUT;
+    w += 2;
+    for (uint8_t i = first; i < 5u; i++, w += 3) {
+        w[0].reg = HAL_DRIVE_PPI_A;
+        w[0].value = (uint8_t)(bytes[load_pick[i]] ^ 0xFFu);
+        w[1].reg = w[2].reg = HAL_DRIVE_PPI_B;
+        w[1].value = load_code[i];
+        w[2].value = 0x00u;
+    }
+    w[0].reg = HAL_DRIVE_PPI_CTRL;
+    w[0].value = DRIVE_PPI_CTRL_REL;
+    w[1].reg = HAL_DRIVE_PPI_C;
+    w[1].value = DRIVE_PPI_C_DONE;
+    s->n = (uint8_t)(w + 2 - s->w);
 }
 
 void drive_ppi_init(drive_wseq_t *out)
@@ -42,20 +56,14 @@ void drive_ppi_init(drive_wseq_t *out)
 
 void drive_ppi_load(const drive_cmd_t *cmd, drive_wseq_t *out)
 {
-    begin(out);
-    item(out, cmd->steer[0], DRIVE_STROBE_STEER1);
-    item(out, cmd->arc[0], DRIVE_STROBE_ARC1);
-    item(out, cmd->steer[1], DRIVE_STROBE_STEER2);
-    item(out, cmd->arc[1], DRIVE_STROBE_ARC2);
-    item(out, (uint8_t)cmd->speed, DRIVE_STROBE_SPEED);
-    end(out);
+    transfer(out, cmd, 0);
 }
 
 void drive_ppi_speed(int8_t speed, drive_wseq_t *out)
 {
-    begin(out);
-    item(out, (uint8_t)speed, DRIVE_STROBE_SPEED);
-    end(out);
+    drive_cmd_t c;
+    c.speed = speed;
+    transfer(out, &c, 4);
 }
 
 void drive_dac_set(uint8_t angle_value, uint8_t speed_value, drive_wseq_t *out)

@@ -7,34 +7,76 @@
 #include "hal/edge.h"
 #include "hal/irq.h"
 
-/* Guards: conditions a row needs besides its state and event. */
-enum {
-    G_ANY = 0,
-    G_FULL,         /* START: full travel, path ready                         */
-    G_SIMPLIFIED,   /* START: simplified travel, path ready                   */
-    G_NOT_READY,    /* START: the path is not ready                           */
-    G_ARRIVED,      /* pose/fix: the last point is reached, nothing to drive  */
-    G_SOLVED_LAST,  /* pose/fix: a double arc to the last point is ready      */
-    G_SOLVED,       /* pose/fix: a double arc to a point before it is ready   */
-    G_FAILED,       /* pose/fix: no double arc (or command) to the target     */
-    G_PULSE_MORE,   /* delta-S: more pulses of the loaded double arc to come  */
-    G_PULSE_FINAL,  /* delta-S: the last pulse of the loaded double arc       */
-    G_FINAL_LAST,   /* delta-S: ... and it was driving to the last point      */
-    G_FINAL_PLAST,  /* delta-S: final pulse; the pending double arc is last   */
-    G_PENDING_LAST, /* timer: the pending double arc goes to the last point   */
-    G_FIX_RETRY,    /* fix failed: still within the tolerated failures        */
-    G_FIX_GIVE_UP   /* fix failed: too many in a row                          */
-};
+#include "drive_internal.h"
+#include "seq_table.h"
 
-/* Internal actions, translated by the step (above the public DRIVE_ACT_* bits). */
-#define X_TIMER_SETTLE 0x1000u /* DRIVE_ACT_TIMER with settle_ms   */
-#define X_TIMER_LOAD   0x2000u /* DRIVE_ACT_TIMER with load_ms     */
-#define X_POSE_PREDICT 0x4000u /* DRIVE_ACT_REQUEST_POSE at load_ms */
-#define X_NEXT_TARGET  0x8000u /* advance to the next path point    */
-#define X_UNDERRUN     0x0800u /* count a double arc that ran out   */
-#define PUBLIC_ACTIONS 0x07FFu
-
-#define SAME 0xFEu /* next state: unchanged */
+#ifdef DRIVE_ASM /* msp430/seq.S works with these numbers */
+#include "msp430/layout.h"
+#include "solve_frame.h"
+_Static_assert(offsetof(drive_pose_t, heading) == POSE_HEADING &&
+                   offsetof(drive_board_t, min_radius) == BOARD_MIN_R &&
+                   offsetof(drive_path_t, pts) == PATH_PTS && offsetof(drive_path_t, n) == PATH_N &&
+                   offsetof(drive_path_t, start) == PATH_START &&
+                   offsetof(drive_path_t, cfg.nominal_radius) == PATH_NOMINAL &&
+                   offsetof(drive_path_t, cfg.reverse) == PATH_REVERSE &&
+                   offsetof(drive_path_t, board) == PATH_BOARD &&
+                   offsetof(drive_path_t, ready) == PATH_READY &&
+                   offsetof(drive_path_t, bad_leg) == PATH_BAD_LEG &&
+                   offsetof(drive_path_t, bad_sub) == PATH_BAD_SUB &&
+                   offsetof(drive_path_t, bad_why) == PATH_BAD_WHY &&
+                   offsetof(drive_path_t, cache_leg) == PATH_CACHE_LEG &&
+                   offsetof(drive_path_t, cache) == PATH_CACHE &&
+                   offsetof(drive_path_t, cache.seg[0].length) == PATH_CACHE + 6 &&
+                   sizeof(drive_path_point_t) == 18 && offsetof(drive_path_point_t, speed) == 12 &&
+                   offsetof(drive_path_point_t, nsub) == 16 && sizeof(drive_path_config_t) == 10 &&
+                   offsetof(drive_path_config_t, spacing) == 4 &&
+                   offsetof(drive_path_config_t, reverse) == 8 &&
+                   offsetof(drive_cmd_t, pulses) == CMD_PULSES && sizeof(drive_cmd_t) == CMD_SIZE,
+               "layout.h: poses, paths, commands");
+_Static_assert(offsetof(drive_seq_t, cfg.mode) == SEQ_MODE &&
+                   offsetof(drive_seq_t, cfg.load_ms) == SEQ_LOAD_MS &&
+                   offsetof(drive_seq_t, cfg.settle_ms) == SEQ_SETTLE_MS &&
+                   offsetof(drive_seq_t, cfg.stop_speed) == SEQ_STOP_SPD &&
+                   offsetof(drive_seq_t, cfg.advance) == SEQ_ADVANCE &&
+                   offsetof(drive_seq_t, cfg.max_fix_failures) == SEQ_MAX_FIX &&
+                   offsetof(drive_seq_t, path) == SEQ_PATH &&
+                   offsetof(drive_seq_t, state) == SEQ_STATE &&
+                   offsetof(drive_seq_t, target) == SEQ_TARGET &&
+                   offsetof(drive_seq_t, loaded) == SEQ_LOADED &&
+                   offsetof(drive_seq_t, pending) == SEQ_PENDING &&
+                   offsetof(drive_seq_t, pending_last) == SEQ_PEND_LAST &&
+                   offsetof(drive_seq_t, loaded_last) == SEQ_LOAD_LAST &&
+                   offsetof(drive_seq_t, pulses_seen) == SEQ_SEEN &&
+                   offsetof(drive_seq_t, fix_failures) == SEQ_FIXFAIL &&
+                   offsetof(drive_seq_t, solve_status) == SEQ_STATUS &&
+                   offsetof(drive_seq_t, ignored) == SEQ_IGNORED &&
+                   offsetof(drive_seq_t, underruns) == SEQ_UNDERRUNS &&
+                   offsetof(drive_seq_t, loads) == SEQ_LOADS,
+               "layout.h: drive_seq_t");
+_Static_assert(offsetof(drive_seq_out_t, actions) == OUT_ACTIONS &&
+                   offsetof(drive_seq_out_t, cmd) == OUT_CMD &&
+                   offsetof(drive_seq_out_t, speed) == OUT_SPEED &&
+                   offsetof(drive_seq_out_t, timer_ms) == OUT_TIMER &&
+                   offsetof(drive_seq_out_t, pose_ms) == OUT_POSE_MS &&
+                   offsetof(drive_seq_out_t, fault) == OUT_FAULT &&
+                   offsetof(drive_seq_out_t, status) == OUT_STATUS &&
+                   sizeof(drive_seq_out_t) == OUT_SIZE &&
+                   offsetof(drive_seq_event_t, pose) == EV_POSE &&
+                   sizeof(drive_seq_row_t) == ROW_SIZE,
+               "layout.h: events, outputs, rows");
+_Static_assert(ST_F_START == DRIVE_ST_F_START && ST_F_PREDICT == DRIVE_ST_F_PREDICT &&
+                   ST_S_FIX == DRIVE_ST_S_FIX && ST_ANY == DRIVE_ST_ANY &&
+                   EVT_FIX_READY == DRIVE_EVT_FIX_READY && EVT_FIX_FAILED == DRIVE_EVT_FIX_FAILED &&
+                   EVT_POSE == DRIVE_EVT_POSE && EVT_DELTA_S == DRIVE_EVT_DELTA_S &&
+                   MODE_FULL == DRIVE_MODE_FULL && FAULT_NOT_READY == DRIVE_FAULT_NOT_READY &&
+                   FAULT_SOLVE == DRIVE_FAULT_SOLVE && FAULT_FIXES == DRIVE_FAULT_FIXES,
+               "layout.h: states, events, faults");
+_Static_assert(ACT_REQUEST_POSE == DRIVE_ACT_REQUEST_POSE && ACT_LOAD == DRIVE_ACT_LOAD &&
+                   ACT_SET_SPEED == DRIVE_ACT_SET_SPEED && ACT_TIMER == DRIVE_ACT_TIMER &&
+                   ACT_FAULT == DRIVE_ACT_FAULT && DRIVE_ERR_TOO_CLOSE_N == DRIVE_ERR_TOO_CLOSE &&
+                   DRIVE_ERR_BEHIND_N == DRIVE_ERR_BEHIND && DRIVE_ERR_PATH_N == DRIVE_ERR_PATH,
+               "layout.h: actions");
+#endif
 
 #define ROW(st, ev, g, nx, act)                                                                    \
     {                                                                                              \
@@ -42,7 +84,7 @@ enum {
     }
 
 /* clang-format off */
-static const drive_seq_row_t table[] = {
+const drive_seq_row_t drive_seq_rows[DRIVE_SEQ_ROWS] = {
     /* start */
     ROW(DRIVE_ST_IDLE,         DRIVE_EVT_START,      G_NOT_READY,    DRIVE_ST_FAULT,        DRIVE_ACT_FAULT),
     ROW(DRIVE_ST_IDLE,         DRIVE_EVT_START,      G_FULL,         DRIVE_ST_F_START,      DRIVE_ACT_REQUEST_POSE | DRIVE_ACT_INDEX_ON),
@@ -99,8 +141,8 @@ static const drive_seq_row_t table[] = {
 
 const drive_seq_row_t *drive_seq_table(uint16_t *n)
 {
-    *n = (uint16_t)(sizeof table / sizeof table[0]);
-    return table;
+    *n = (uint16_t)(DRIVE_SEQ_ROWS);
+    return drive_seq_rows;
 }
 
 const char *drive_seq_state_name(drive_state_t st)
@@ -126,28 +168,19 @@ const char *drive_seq_state_name(drive_state_t st)
 
 void drive_seq_init(drive_seq_t *seq, drive_path_t *path, const drive_seq_config_t *cfg)
 {
+    *seq = (drive_seq_t){0}; /* idle, nothing loaded or pending, no counts */
     seq->cfg = *cfg;
     seq->path = path;
-    seq->state = DRIVE_ST_IDLE;
     seq->target = drive_path_first(path);
-    seq->pending_last = seq->loaded_last = false;
-    seq->pulses_seen = 0;
-    seq->fix_failures = 0;
-    seq->solve_status = DRIVE_OK;
-    seq->ignored = seq->underruns = seq->loads = 0;
-    seq->loaded.pulses = 0;
-    seq->pending.pulses = 0;
 }
 
-/* Outcome of picking a target and solving toward it. */
-enum { PICK_NONE = 0, PICK_ARRIVED, PICK_SOLVED, PICK_FAILED };
-
+#ifndef DRIVE_ASM /* MSP430: msp430/seq.S, the same steps */
 /* Distance from @p pose to @p target along the target's direction of travel, Q16 m. */
 static int32_t along(const drive_pose_t *pose, const drive_pose_t *target, bool reverse)
 {
-    fx_q30_t s, c;
-    fx_sincos(target->heading + (reverse ? FX_ANGLE_HALF : 0u), &s, &c);
-    return fx_mul_q30(target->x - pose->x, c) + fx_mul_q30(target->y - pose->y, s);
+    int32_t d[2] = {target->x - pose->x, target->y - pose->y}, r[2];
+    drive_rot(r, d, target->heading + (reverse ? FX_ANGLE_HALF : 0u));
+    return r[0];
 }
 
 /*
@@ -168,111 +201,83 @@ static uint8_t pick(drive_seq_t *seq, const drive_pose_t *pose)
             return PICK_FAILED;
         }
         bool last = drive_path_is_last(path, seq->target);
-        if (!last && seq->cfg.mode == DRIVE_MODE_FULL && along(pose, &tp, rev) < seq->cfg.advance) {
-            seq->target = drive_path_next(path, seq->target);
-            continue;
+        if (last || seq->cfg.mode != DRIVE_MODE_FULL || along(pose, &tp, rev) >= seq->cfg.advance) {
+            drive_solution_t sol;
+            st = drive_solve(pose, &tp, path->board->min_radius, rev, &sol, NULL);
+            if (st == DRIVE_OK)
+                st = drive_cmd_build(&sol, path->board, speed, rev, &seq->pending);
+            seq->solve_status = st;
+            bool reached = st == DRIVE_ERR_TOO_CLOSE || st == DRIVE_ERR_BEHIND ||
+                           (st == DRIVE_OK && seq->pending.pulses == 0);
+            if (st == DRIVE_OK && !reached) {
+                seq->pending_last = last;
+                return PICK_SOLVED;
+            }
+            if (last)
+                return reached ? PICK_ARRIVED : PICK_FAILED;
         }
-        drive_solution_t sol;
-        st = drive_solve(pose, &tp, path->board->min_radius, rev, &sol, NULL);
-        if (st == DRIVE_OK)
-            st = drive_cmd_build(&sol, path->board, speed, rev, &seq->pending);
-        seq->solve_status = st;
-        bool reached = st == DRIVE_ERR_TOO_CLOSE || st == DRIVE_ERR_BEHIND ||
-                       (st == DRIVE_OK && seq->pending.pulses == 0);
-        if (st == DRIVE_OK && !reached) {
-            seq->pending_last = last;
-            return PICK_SOLVED;
-        }
-        if (reached && last)
-            return PICK_ARRIVED;
-        if (reached || !last) {
-            seq->target = drive_path_next(path, seq->target);
-            continue;
-        }
-        return PICK_FAILED;
+        seq->target = drive_path_next(path, seq->target);
     }
     return PICK_FAILED;
 }
 
-static bool guard(const drive_seq_t *seq, uint8_t g, uint8_t picked)
+/* The guards that hold (bit G_*) in the state the event left. */
+static uint16_t guards(const drive_seq_t *seq, uint8_t picked)
 {
-    bool final = seq->pulses_seen == seq->loaded.pulses;
-    switch (g) {
-    case G_ANY:
-        return true;
-    case G_FULL:
-        return seq->path->ready && seq->cfg.mode == DRIVE_MODE_FULL;
-    case G_SIMPLIFIED:
-        return seq->path->ready && seq->cfg.mode == DRIVE_MODE_SIMPLIFIED;
-    case G_NOT_READY:
-        return !seq->path->ready;
-    case G_ARRIVED:
-        return picked == PICK_ARRIVED;
-    case G_SOLVED_LAST:
-        return picked == PICK_SOLVED && seq->pending_last;
-    case G_SOLVED:
-        return picked == PICK_SOLVED && !seq->pending_last;
-    case G_FAILED:
-        return picked == PICK_FAILED;
-    case G_PULSE_MORE:
-        return seq->pulses_seen < seq->loaded.pulses;
-    case G_PULSE_FINAL:
-        return final;
-    case G_FINAL_LAST:
-        return final && seq->loaded_last;
-    case G_FINAL_PLAST:
-        return final && seq->pending_last;
-    case G_PENDING_LAST:
-        return seq->pending_last;
-    case G_FIX_RETRY:
-        return seq->fix_failures <= seq->cfg.max_fix_failures;
-    case G_FIX_GIVE_UP:
-        return seq->fix_failures > seq->cfg.max_fix_failures;
-    default:
-        return false;
+    uint16_t g = 1u << G_ANY;
+    if (!seq->path->ready)
+        g |= 1u << G_NOT_READY;
+    else
+        g |= seq->cfg.mode == DRIVE_MODE_FULL ? 1u << G_FULL : 1u << G_SIMPLIFIED;
+    if (picked == PICK_ARRIVED)
+        g |= 1u << G_ARRIVED;
+    if (picked == PICK_SOLVED)
+        g |= seq->pending_last ? 1u << G_SOLVED_LAST : 1u << G_SOLVED;
+    if (picked == PICK_FAILED)
+        g |= 1u << G_FAILED;
+    if (seq->pending_last)
+        g |= 1u << G_PENDING_LAST;
+    if (seq->pulses_seen < seq->loaded.pulses)
+        g |= 1u << G_PULSE_MORE;
+    if (seq->pulses_seen == seq->loaded.pulses) {
+        g |= 1u << G_PULSE_FINAL;
+        if (seq->loaded_last)
+            g |= 1u << G_FINAL_LAST;
+        if (seq->pending_last)
+            g |= 1u << G_FINAL_PLAST;
     }
+    g |= seq->fix_failures <= seq->cfg.max_fix_failures ? 1u << G_FIX_RETRY : 1u << G_FIX_GIVE_UP;
+    return g;
 }
 
 void drive_seq_step(drive_seq_t *seq, const drive_seq_event_t *ev, drive_seq_out_t *out)
 {
-    out->actions = 0;
-    out->timer_ms = 0;
-    out->pose_ms = 0;
-    out->speed = 0;
-    out->fault = DRIVE_FAULT_NONE;
-    out->status = DRIVE_OK;
+    *out = (drive_seq_out_t){0}; /* no actions; DRIVE_FAULT_NONE, DRIVE_OK */
 
     /* Effects of the event that guards look at. */
-    uint8_t picked = PICK_NONE;
-    bool picks = (ev->type == DRIVE_EVT_POSE &&
-                  (seq->state == DRIVE_ST_F_START || seq->state == DRIVE_ST_F_PREDICT)) ||
-                 (ev->type == DRIVE_EVT_FIX_READY && seq->state == DRIVE_ST_S_FIX);
-    if (picks)
+    uint8_t picked = PICK_NONE, e = (uint8_t)ev->type, st = (uint8_t)seq->state;
+    if ((e == DRIVE_EVT_POSE && (st == DRIVE_ST_F_START || st == DRIVE_ST_F_PREDICT)) ||
+        (e == DRIVE_EVT_FIX_READY && st == DRIVE_ST_S_FIX))
         picked = pick(seq, &ev->pose);
-    if (ev->type == DRIVE_EVT_DELTA_S && seq->pulses_seen < 255u)
+    if (e == DRIVE_EVT_DELTA_S && seq->pulses_seen < 255u)
         seq->pulses_seen++;
-    if (ev->type == DRIVE_EVT_FIX_FAILED && seq->fix_failures < 255u)
+    if (e == DRIVE_EVT_FIX_FAILED && seq->fix_failures < 255u)
         seq->fix_failures++;
-    if (ev->type == DRIVE_EVT_FIX_READY)
+    if (e == DRIVE_EVT_FIX_READY)
         seq->fix_failures = 0;
 
-    const drive_seq_row_t *row = NULL;
-    for (uint16_t i = 0; i < sizeof table / sizeof table[0]; i++) {
-        const drive_seq_row_t *r = &table[i];
-        if ((r->state == (uint8_t)seq->state || r->state == DRIVE_ST_ANY) &&
-            r->event == (uint8_t)ev->type && guard(seq, r->guard, picked)) {
-            row = r;
-            break;
+    uint16_t g = guards(seq, picked);
+    const drive_seq_row_t *row = drive_seq_rows;
+    while (!((row->state == st || row->state == DRIVE_ST_ANY) && row->event == e &&
+             ((g >> row->guard) & 1u))) {
+        if (++row == drive_seq_rows + DRIVE_SEQ_ROWS) {
+            if (seq->ignored < UINT16_MAX)
+                seq->ignored++;
+            return;
         }
-    }
-    if (row == NULL) {
-        if (seq->ignored < UINT16_MAX)
-            seq->ignored++;
-        return;
     }
 
     uint16_t act = row->actions;
-    bool rev = seq->path->cfg.reverse;
     if (act & DRIVE_ACT_LOAD) {
         seq->loaded = seq->pending;
         seq->loaded_last = seq->pending_last;
@@ -281,7 +286,8 @@ void drive_seq_step(drive_seq_t *seq, const drive_seq_event_t *ev, drive_seq_out
         out->cmd = seq->loaded;
     }
     if (act & DRIVE_ACT_SET_SPEED)
-        (void)drive_speed_counts(seq->cfg.stop_speed, rev, seq->path->board, &out->speed);
+        (void)drive_speed_counts(seq->cfg.stop_speed, seq->path->cfg.reverse, seq->path->board,
+                                 &out->speed);
     if (act & (X_TIMER_SETTLE | X_TIMER_LOAD)) {
         act |= DRIVE_ACT_TIMER;
         out->timer_ms = (act & X_TIMER_LOAD) ? seq->cfg.load_ms : seq->cfg.settle_ms;
@@ -304,6 +310,7 @@ void drive_seq_step(drive_seq_t *seq, const drive_seq_event_t *ev, drive_seq_out
     if (row->next != SAME)
         seq->state = (drive_state_t)row->next;
 }
+#endif
 
 /* ------------------------------------------------------------------ delta-S pulse (D1) */
 

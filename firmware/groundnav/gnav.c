@@ -64,19 +64,26 @@ GNAV_AT(reverse, 75);
 GNAV_AT(stop_armed, 78);
 GNAV_AT(stop, 79);
 GNAV_AT(heading, 92);
-GNAV_AT(pub_seq, 116);
-GNAV_AT(pub, 118);
-GNAV_AT(stop_fn, 158);
-GNAV_AT(stop_ctx, 160);
-GNAV_AT(m_q16, 180);
-GNAV_AT(m_q11, 184);
-GNAV_AT(n0, 186);
-GNAV_AT(tab_end, 188);
-GNAV_AT(tab_e, 194);
-GNAV_AT(tab_rho, 322);
-GNAV_AT(closings, 386);
-_Static_assert(sizeof(gnav_pub_t) == 20, "gnav_pub_t");
+GNAV_AT(pub_seq, 120);
+GNAV_AT(pub, 122);
+GNAV_AT(stop_fn, 178);
+GNAV_AT(stop_ctx, 180);
+GNAV_AT(m_q16, 200);
+GNAV_AT(m_q11, 204);
+GNAV_AT(n0, 206);
+GNAV_AT(tab_end, 208);
+GNAV_AT(tab_e, 214);
+GNAV_AT(tab_rho, 342);
+GNAV_AT(closings, 406);
+GNAV_AT(hdir, 118);
+GNAV_AT(ival, 114);
+GNAV_AT(hrate, 116);
+_Static_assert(sizeof(gnav_pub_t) == 28, "gnav_pub_t");
 _Static_assert(offsetof(gnav_pub_t, heading) == 16, "gnav_pub_t.heading");
+_Static_assert(offsetof(gnav_pub_t, k) == 20, "gnav_pub_t.k");
+_Static_assert(offsetof(gnav_pub_t, rate) == 22, "gnav_pub_t.rate");
+_Static_assert(offsetof(gnav_pub_t, ival) == 24, "gnav_pub_t.ival");
+_Static_assert(offsetof(gnav_pub_t, dir) == 26, "gnav_pub_t.dir");
 #endif
 
 /* ------------------------------------------------------------------ small arithmetic */
@@ -143,6 +150,24 @@ static int32_t mul_rho(int16_t rho, int32_t v)
     int32_t a = smul16(rho, vh);
     uint32_t b = umul16((uint16_t)rho, vl);
     return a * 2 + (int32_t)((b + (1u << 14)) >> 15);
+}
+
+/* The heading inside the cell (gyro edge, readers): a one-step interval entered at @p rate
+ * pulses per step (<= 2^15) that lasts longer than the rate plus 1/8 and 2 pulses (a steady
+ * arc's intervals differ by a pulse) has seen its turn change. */
+static uint16_t rate_limit(uint16_t rate)
+{
+    return (uint16_t)(rate + (rate >> 3) + 2u);
+}
+
+/* ... overdue: the one-step limit passed, or twice it for an excursion into the cell and back
+ * (@p twice). */
+static bool overdue(uint16_t pulses, uint16_t rate, bool twice)
+{
+    uint16_t limit = rate_limit(rate);
+    if (pulses <= limit)
+        return false;
+    return !twice || (uint16_t)(pulses - limit) > limit;
 }
 
 /* ------------------------------------------------------------------ the arc's deficit */
@@ -213,6 +238,10 @@ static void publish(gnav_t *g)
     w->y = g->y;
     HAL_PREEMPT_POINT();
     w->heading = g->heading;
+    w->k = g->pending ? GNAV_K_EDGE : g->nq;
+    w->rate = g->hrate;
+    w->ival = g->ival;
+    w->dir = g->hdir;
     HAL_PREEMPT_POINT();
     g->pub_seq = (uint16_t)(s + 1u);
 }
@@ -404,6 +433,20 @@ static void gyro_edge(gnav_t *g, int8_t up)
         h = (uint16_t)(2u * g->cell + 1u);
     }
     HAL_PREEMPT_POINT();
+    /* The interval that ends here (none of its pulses when an edge already came since the last
+     * pulse): remembered for the latches taken in it; a one-step interval gives the rate of
+     * the next unless it outlasted the rate it entered at (the turn changed in it); a short
+     * excursion back through its entry threshold leaves at the rate it went in. */
+    int16_t n = g->pending ? 0 : g->nq;
+    uint16_t a = (uint16_t)(n < 0 ? 1 - n : n + 1); /* 1 .. 32768 */
+    g->ring[g->ival & (GNAV_RING_N - 1u)] =
+        (uint16_t)((a > 0x7FFFu ? 0x7FFFu : a) | (up > 0 ? 0x8000u : 0u));
+    if (g->hdir == up)
+        g->hrate = g->hrate == 0u || !overdue(a, g->hrate, false) ? a : 0u;
+    else if (g->hdir == 0 || overdue(a, g->hrate, true))
+        g->hrate = 0u;
+    g->hdir = up;
+    g->ival++;
     if (!g->pending) {
         g->h_first = h;
         g->pending = 1;
@@ -442,7 +485,10 @@ void gnav_on_beacon_sighted(void *arg)
     l->x4 = q25_to_q4(p->x);
     l->y4 = q25_to_q4(p->y);
     l->heading = p->heading;
-    l->seq = g->latch_seq;
+    l->k = p->k;
+    l->rate = p->rate;
+    l->ival = p->ival;
+    l->dir = p->dir;
     l->gen = g->gen;
     g->latch_seq++;
 }
@@ -462,11 +508,125 @@ static fx_q16_t q4_to_m(const gnav_t *g, int32_t v)
     return v < 0 ? -(int32_t)r : (int32_t)r;
 }
 
+/* num / den in Q15 (truncated), at most 1.0 = 2^15; 0 < den <= 2^15. A restoring division
+ * of 15 bits in 16-bit registers (the coordinate request runs it). */
+__attribute__((noinline)) static uint16_t frac15(uint16_t num, uint16_t den)
+{
+    if (num >= den)
+        return 0x8000u;
+    uint16_t q = 0;
+    for (uint8_t i = 0; i < 15u; i++) {
+        num = (uint16_t)(num << 1); /* num < den <= 2^15: no overflow */
+        q = (uint16_t)(q << 1);
+        if (num >= den) {
+            num = (uint16_t)(num - den);
+            q |= 1u;
+        }
+    }
+    return q;
+}
+
+/* E[min(x, u)] for u uniform in [0, 1], Q15: x - x^2 / 2 up to 1, then 1/2. */
+__attribute__((noinline)) static uint16_t ended_somewhere(uint16_t x)
+{
+    if (x >= 0x8000u)
+        return 0x4000u;
+    return (uint16_t)(x - (uint16_t)(umul16(x, x) >> 16));
+}
+
+/* beta * f / 2^15 for a binary angle beta (the step, < 2^27) and f in Q15, [0, 1], rounded:
+ * 16 x 16 products only. */
+__attribute__((noinline)) static int32_t of_step(uint32_t beta, uint16_t f)
+{
+    if (f >= 0x8000u)
+        return (int32_t)beta;
+    return (int32_t)((umul16((uint16_t)(beta >> 16), f) << 1) +
+                     ((umul16((uint16_t)beta, f) + 0x4000u) >> 15));
+}
+
+/* Pulses since the interval's entry edge for a published k (1 .. 2^15): the edge came between
+ * the pulse before P and P, a sighting comes between pulse k and the next (half a pulse
+ * each, on average). */
+static uint16_t pulses_since_edge(int16_t k)
+{
+    if (k == GNAV_K_EDGE)
+        return 0;
+    return (uint16_t)(k < 0 ? 1 - k : k + 1);
+}
+
+/* An excursion into the cell and back over len pulses: up at r_in pulses per step from the
+ * entry threshold, down at r_out back to it (Q15 of a step), exact for two arcs; once it
+ * lasted longer than those rates allow, with a plateau at an unknown height between. */
+static uint16_t excursion(uint16_t a, uint16_t len, uint16_t r_in, uint16_t r_out)
+{
+    uint16_t up = frac15(a, r_in), down = frac15((uint16_t)(len - a), r_out);
+    if ((uint32_t)len > (uint32_t)rate_limit(r_in) + rate_limit(r_out)) {
+        up = ended_somewhere(up);
+        down = ended_somewhere(down);
+    }
+    return up < down ? up : down;
+}
+
+/*
+ * The heading inside the cell, as the offset from its centre (binary angle, within +-half a
+ * step): @p a pulses after the interval's entry edge (direction @p dir; 0 = the start at the
+ * cell centre), entered at @p rate pulses per step (0 = unknown). @p exit = the edge that
+ * closed the interval @p len pulses after its entry edge (a <= len), 0 while it is open
+ * (then @p a_now pulses have passed since the entry); @p rate_out = the rate of the interval
+ * after it when that was one step on in the exit direction (0 = unknown). In fractions f of
+ * a step from the entry threshold:
+ *  - open: at the entry rate up to the far threshold; once the turn is overdue it ended
+ *    somewhere in the interval, evenly likely: f = E[min(a / rate, u)], u uniform in [0, 1];
+ *    rate unknown: the middle of what the tightest turn (one step in M pulses: L |d heading|
+ *    <= dl) can have reached, min(a / M, 1) / 2;
+ *  - closed by an edge in the entry direction: evenly between the edges (the mean rate),
+ *    unless the interval outlasted its entry rate (then as an overdue open one);
+ *  - closed back through the entry threshold (an excursion, an S-curve's inflection): up at
+ *    the entry rate, down at the exit rate (either for both when one is unknown).
+ */
+static int32_t cell_offset(const gnav_t *g, int8_t dir, uint16_t rate, uint16_t a, uint16_t a_now,
+                           int8_t exit, uint16_t len, uint16_t rate_out)
+{
+    uint16_t f;
+    if (dir == 0) {
+        /* from the cell centre (init) towards the exit threshold, evenly */
+        if (exit == 0)
+            return 0;
+        dir = exit;
+        f = (uint16_t)(0x4000u + (frac15(a, len) >> 1));
+    } else if (exit == -dir) {
+        if (rate == 0u)
+            rate = rate_out;
+        if (rate == 0u)
+            f = frac15(a < (uint16_t)(len - a) ? a : (uint16_t)(len - a), g->n0) >> 1;
+        else
+            f = excursion(a, len, rate, rate_out != 0u ? rate_out : rate);
+    } else if (exit == dir && (rate == 0u || !overdue(len, rate, false))) {
+        f = frac15(a, len);
+    } else if (rate == 0u) {
+        f = frac15(a, g->n0) >> 1;
+    } else {
+        f = frac15(a, rate);
+        if (exit != 0 || overdue(a_now, rate, false))
+            f = ended_somewhere(f);
+    }
+    uint32_t beta = g->step_whole;
+    int32_t off = of_step(beta, f) - (int32_t)(beta >> 1);
+    return dir < 0 ? -off : off;
+}
+
+/* The published pose's offset (its interval is open: it is the current one). */
+static int32_t pub_offset(const gnav_t *g, const gnav_pub_t *p)
+{
+    uint16_t a = pulses_since_edge(p->k);
+    return cell_offset(g, p->dir, p->rate, a, a, 0, 0, 0);
+}
+
 static void pub_to_pose(const gnav_t *g, const gnav_pub_t *p, gnav_pose_t *out)
 {
     out->x = q4_to_m(g, q25_to_q4(p->x));
     out->y = q4_to_m(g, q25_to_q4(p->y));
-    out->heading = p->heading;
+    out->heading = p->heading + (fx_angle_t)pub_offset(g, p);
 }
 
 void gnav_on_coord_request(void *arg)
@@ -491,6 +651,10 @@ static void read_pub(gnav_t *g, gnav_pub_t *out)
         out->y = p->y;
         HAL_PREEMPT_POINT();
         out->heading = p->heading;
+        out->k = p->k;
+        out->rate = p->rate;
+        out->ival = p->ival;
+        out->dir = p->dir;
         HAL_PREEMPT_POINT();
         uint16_t s2 = g->pub_seq;
         if ((uint16_t)(s2 - s1) <= 1u)
@@ -645,6 +809,28 @@ static int bring_forward(const gnav_t *g, uint8_t from, int32_t *x4, int32_t *y4
     return GNAV_OK;
 }
 
+/*
+ * The latch's offset from its cell's centre: between the edges of its interval when that has
+ * closed since and is still in the ring (@p ring_end: the ring's entry for it, @p next_end
+ * the one after), else from its entry edge, with @p k_now the pulses of the current interval.
+ */
+static int32_t latch_offset(const gnav_t *g, const gnav_latch_raw_t *l, uint16_t ival,
+                            uint16_t ring_end, uint16_t next_end, int16_t k_now)
+{
+    uint16_t age = (uint16_t)(ival - l->ival);
+    uint16_t a = pulses_since_edge(l->k);
+    if (age == 0u)
+        return cell_offset(g, l->dir, l->rate, a, pulses_since_edge(k_now), 0, 0, 0);
+    if (age > GNAV_RING_N)
+        return cell_offset(g, l->dir, l->rate, a, a, 0, 0, 0);
+    uint16_t len = ring_end & 0x7FFFu;
+    int8_t exit = (ring_end & 0x8000u) ? 1 : -1;
+    uint16_t rate_out = 0;
+    if (age >= 2u && (int8_t)((next_end & 0x8000u) ? 1 : -1) == exit)
+        rate_out = next_end & 0x7FFFu;
+    return cell_offset(g, l->dir, l->rate, a < len ? a : len, a, exit, len, rate_out);
+}
+
 int gnav_latch_read(gnav_t *g, uint16_t seq, gnav_latch_t *out)
 {
     if (out == NULL)
@@ -653,9 +839,15 @@ int gnav_latch_read(gnav_t *g, uint16_t seq, gnav_latch_t *out)
     uint16_t next = g->latch_seq;
     gnav_latch_raw_t l = g->latch[seq & (GNAV_LATCH_N - 1u)];
     uint8_t gen = g->gen;
+    uint16_t ival = g->ival;
+    uint16_t ring_end = g->ring[l.ival & (GNAV_RING_N - 1u)];
+    uint16_t next_end = g->ring[(l.ival + 1u) & (GNAV_RING_N - 1u)];
+    int16_t k_now = g->pub[g->pub_seq & 1u].k;
     hal_irq_restore(st);
-    if ((uint16_t)(next - seq) == 0u || (uint16_t)(next - seq) > GNAV_LATCH_N || l.seq != seq)
+    /* the slot holds latch seq when it is one of the last GNAV_LATCH_N */
+    if ((uint16_t)(next - seq) == 0u || (uint16_t)(next - seq) > GNAV_LATCH_N)
         return GNAV_ERR_LATCH;
+    l.heading += (fx_angle_t)latch_offset(g, &l, ival, ring_end, next_end, k_now);
     int r = bring_forward(g, l.gen, &l.x4, &l.y4, &l.heading);
     if (r != GNAV_OK)
         return r;
@@ -720,6 +912,7 @@ int gnav_fix(gnav_t *g, const gnav_pose_t *fix, const gnav_latch_t *ref)
         int64_t x = g->x, y = g->y, xp = g->xp, yp = g->yp;
         uint64_t head = ((uint64_t)g->hd << 16) | g->hd_frac;
         uint16_t dcell = (uint16_t)(g->cell - g->cell_int);
+        gnav_pub_t cur = g->pub[g->pub_seq & 1u];
         hal_critical_exit();
         /* 2. the correction, its reference brought into the current frame */
         gnav_corr_t kk = k;
@@ -732,7 +925,7 @@ int gnav_fix(gnav_t *g, const gnav_pose_t *fix, const gnav_latch_t *ref)
         } else {
             kk.lx4 = q25_to_q4(x);
             kk.ly4 = q25_to_q4(y);
-            lh = g->heading;
+            lh = cur.heading + (fx_angle_t)pub_offset(g, &cur);
         }
         kk.turn = fix->heading - lh;
         fx_sincos(kk.turn, &kk.s, &kk.c);

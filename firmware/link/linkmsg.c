@@ -207,6 +207,10 @@ int linkmsg_send(const linkmsg_t *m)
     if (n == 0)
         return -1;
     hal_irq_state_t s = hal_irq_disable();
+    if (hal_link_tx_room() < n) {
+        hal_irq_restore(s);
+        return -2;
+    }
     int rc = hal_link_send(&f[0]);
     if (rc == 0 && n == 2)
         rc = hal_link_send(&f[1]);

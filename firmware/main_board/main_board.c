@@ -23,7 +23,7 @@
 #define LATCH_TIMEOUT_MS 100u
 #define ACK_TIMEOUT_MS   50u
 #define POSE_TIMEOUT_MS  50u
-#define EVENT_QUEUE      8u
+#define EVENT_QUEUE      4u
 
 enum { FIX_IDLE = 0, FIX_WAIT_LATCHES };
 enum { POSE_IDLE = 0, POSE_WAIT_ACK, POSE_WAIT_REPLY };
@@ -32,7 +32,6 @@ static struct {
     /* configuration */
     optical_map_t map;
     const optical_xy_t *beacons;
-    drive_path_point_t pts[MAIN_BOARD_MAX_PATH];
     drive_board_t board;
     drive_seq_config_t seq_cfg;
     optical_config_t optical;
@@ -61,12 +60,13 @@ static struct {
     int8_t n;                             /* sightings of the revolution */
     uint16_t latch_first;                 /* latch number of the first sighting in time */
     uint16_t latch_have;                  /* bit i: latch first + i arrived */
-    int32_t rise[OPTICAL_MAX_SIGHTINGS];  /* rising edges, counts after the index pulse */
-    uint16_t half[OPTICAL_MAX_SIGHTINGS]; /* half widths, counts */
+    const optical_rev_t *rev;             /* the revolution held while its fix runs */
     uint8_t order[OPTICAL_MAX_SIGHTINGS]; /* sorted position -> capture order */
     optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
-    optical_pose_t latched_raw[OPTICAL_MAX_SIGHTINGS]; /* capture order, at rising edges */
-    optical_pose_t latched[OPTICAL_MAX_SIGHTINGS];     /* sorted order, at pulse centres */
+    /* The nav board's latches: capture order at rising edges as they arrive, then (in place)
+     * sorted order at the pulse centres for optical_fix(). */
+    optical_pose_t latched[OPTICAL_MAX_SIGHTINGS];
+    optical_pose_t approx; /* the last sighting's latch: the reference instant */
     optical_fix_t fix;
     uint16_t fix_ref; /* reference latch of the last good fix */
     /* the pose request */
@@ -118,9 +118,9 @@ static void on_frame(void *arg, const hal_link_frame_t *f)
     case LINKMSG_LATCH: {
         uint16_t i = (uint16_t)(m.u.latch.seq - mb.latch_first);
         if (mb.fix_state == FIX_WAIT_LATCHES && i < (uint16_t)mb.n && m.u.latch.status == 0) {
-            mb.latched_raw[i].x = m.u.latch.pose.x;
-            mb.latched_raw[i].y = m.u.latch.pose.y;
-            mb.latched_raw[i].heading = m.u.latch.pose.heading;
+            mb.latched[i].x = m.u.latch.pose.x;
+            mb.latched[i].y = m.u.latch.pose.y;
+            mb.latched[i].heading = m.u.latch.pose.heading;
             mb.latch_have |= (uint16_t)(1u << i);
         }
         break;
@@ -174,7 +174,7 @@ static void fix_done(int8_t status)
     ev.n = mb.n > 0 ? (uint8_t)mb.n : 0u;
     ev.ref_latch = (uint16_t)(mb.latch_first + (mb.n > 0 ? mb.n - 1 : 0));
     ev.fix = mb.fix;
-    ev.approx = mb.n > 0 ? mb.latched_raw[mb.n - 1] : mb.fix.pose;
+    ev.approx = mb.approx;
     ev.s = mb.s;
     mb.fix_state = FIX_IDLE;
     optical_capture_release(&mb.cap);
@@ -222,11 +222,7 @@ static void fix_start(void)
     uint16_t first = mb.rise_at_rev[rev->seq & 3u];
     if (rev->s[0].start >= mb.counts_per_turn)
         first--;
-    for (int8_t i = 0; i < mb.n; i++) {
-        uint16_t st = rev->s[i].start;
-        mb.rise[i] = st >= mb.counts_per_turn ? (int32_t)st - 65536l : (int32_t)st;
-        mb.half[i] = (uint16_t)((rev->s[i].width + 1u) >> 1);
-    }
+    mb.rev = rev;
     hal_critical_enter();
     mb.latch_first = first;
     mb.latch_have = 0;
@@ -240,6 +236,53 @@ static void fix_start(void)
     linkmsg_send(&m);
 }
 
+/* Rising edge of capture-order sighting i, counts after its revolution's index pulse. */
+static int32_t rise_of(uint8_t i)
+{
+    uint16_t st = mb.rev->s[i].start;
+    return st >= mb.counts_per_turn ? (int32_t)st - 65536l : (int32_t)st;
+}
+
+/*
+ * The nav board latches at the pulse's rising edge; the sighting is the pulse's centre, half
+ * a width later (up to a few ms: millimetres at 1 m/s). Each sighting's pose is interpolated
+ * between its latch and the next one (extrapolated for the last) by the angle clock, which
+ * is time; then the poses are put in the sightings' (angle) order. In place: RAM is short.
+ */
+static void centre_and_sort(void)
+{
+    optical_pose_t *l = mb.latched;
+    uint8_t n = (uint8_t)mb.n;
+    optical_pose_t before_last = l[n - 2]; /* the last one extrapolates from it */
+    for (uint8_t i = 0; i < n; i++) {
+        uint8_t a = i + 1u < n ? i : (uint8_t)(i - 1u), b = (uint8_t)(a + 1u);
+        const optical_pose_t pa = i + 1u < n ? l[a] : before_last, pb = l[b];
+        int32_t span = rise_of(b) - rise_of(a);
+        int32_t half = (int32_t)((mb.rev->s[i].width + 1u) >> 1);
+        int32_t frac = 0; /* Q16 */
+        if (span > 0 && fx_div_shift(half, span, 16, &frac)) {
+            l[i].x += fx_mul_q16(pb.x - pa.x, frac);
+            l[i].y += fx_mul_q16(pb.y - pa.y, frac);
+            l[i].heading += (fx_angle_t)fx_mul_q16((int32_t)(pb.heading - pa.heading), frac);
+        }
+    }
+    /* Permute in place: capture-order i goes to the sorted position j with order[j] == i. */
+    uint16_t done = 0;
+    for (uint8_t j = 0; j < n; j++) {
+        if (done & (1u << j))
+            continue;
+        optical_pose_t first = l[j];
+        uint8_t k = j;
+        while (mb.order[k] != j) {
+            l[k] = l[mb.order[k]];
+            done |= (uint16_t)(1u << k);
+            k = mb.order[k];
+        }
+        l[k] = first;
+        done |= (uint16_t)(1u << k);
+    }
+}
+
 /* All latches in (or the wait is over): run the optical pipeline. */
 static void fix_finish(void)
 {
@@ -250,32 +293,12 @@ static void fix_finish(void)
         fix_done(OPTICAL_E_REV);
         return;
     }
-    /*
-     * The nav board latches at the pulse's rising edge; the sighting is the pulse's centre,
-     * half a width later (up to a few ms: millimetres at 1 m/s). Each sighting's pose is
-     * interpolated between its latch and the next one (extrapolated for the last) by the
-     * angle clock, which is time.
-     */
-    uint8_t sorted_pos[OPTICAL_MAX_SIGHTINGS];
-    for (int8_t j = 0; j < mb.n; j++)
-        sorted_pos[mb.order[j]] = (uint8_t)j;
-    for (int8_t i = 0; i < mb.n; i++) {
-        int8_t a = i + 1 < mb.n ? i : (int8_t)(i - 1), b = (int8_t)(a + 1);
-        optical_pose_t p = mb.latched_raw[i];
-        int32_t span = mb.rise[b] - mb.rise[a];
-        int32_t frac = 0; /* Q16 */
-        if (a >= 0 && span > 0 && fx_div_shift((int32_t)mb.half[i], span, 16, &frac)) {
-            const optical_pose_t *pa = &mb.latched_raw[a], *pb = &mb.latched_raw[b];
-            p.x += fx_mul_q16(pb->x - pa->x, frac);
-            p.y += fx_mul_q16(pb->y - pa->y, frac);
-            p.heading += (fx_angle_t)fx_mul_q16((int32_t)(pb->heading - pa->heading), frac);
-        }
-        mb.latched[sorted_pos[i]] = p;
-    }
     /* Reference instant: the last sighting's rising edge; its latch is the approximate pose
      * and the nav board applies the fix to that latch. */
-    const optical_pose_t *approx = &mb.latched_raw[mb.n - 1];
-    int8_t st = optical_fix(&mb.map, &mb.optical, approx, mb.s, (uint8_t)mb.n, mb.latched, &mb.fix);
+    mb.approx = mb.latched[mb.n - 1];
+    centre_and_sort();
+    int8_t st =
+        optical_fix(&mb.map, &mb.optical, &mb.approx, mb.s, (uint8_t)mb.n, mb.latched, &mb.fix);
     fix_done(st);
 }
 
@@ -433,14 +456,13 @@ static bool due(uint32_t now, uint32_t deadline)
 
 drive_status_t main_board_init(const main_board_config_t *cfg)
 {
-    if (!cfg || cfg->n_path == 0 || cfg->n_path > MAIN_BOARD_MAX_PATH || cfg->n_beacons < 3 ||
+    if (!cfg || !cfg->path || !cfg->beacons || cfg->n_path == 0 ||
+        cfg->n_path > MAIN_BOARD_MAX_PATH || cfg->n_beacons < 3 ||
         cfg->n_beacons > OPTICAL_MAX_BEACONS || cfg->counts_per_turn == 0)
         return DRIVE_ERR_PARAM;
     mb.beacons = cfg->beacons;
     mb.map.b = cfg->beacons;
     mb.map.n = cfg->n_beacons;
-    for (uint8_t i = 0; i < cfg->n_path; i++)
-        mb.pts[i] = cfg->path[i];
     mb.board = cfg->board;
     mb.seq_cfg = cfg->seq_cfg;
     mb.optical = cfg->optical;
@@ -462,7 +484,7 @@ drive_status_t main_board_init(const main_board_config_t *cfg)
     send_wseq(&w);
 
     drive_status_t st =
-        drive_path_prepare(&mb.path, &mb.start, mb.pts, cfg->n_path, &cfg->path_cfg, &mb.board);
+        drive_path_prepare(&mb.path, &mb.start, cfg->path, cfg->n_path, &cfg->path_cfg, &mb.board);
     drive_seq_init(&mb.seq, &mb.path, &mb.seq_cfg);
     return st;
 }

@@ -29,22 +29,25 @@
 extern "C" {
 #endif
 
-/** Most primary path points the board holds (18 bytes of RAM each; secondary points are
- * computed on the way, so a path needs points only where it bends). */
-#define MAIN_BOARD_MAX_PATH 16
+/** Most primary path points (drive_path_prepare()'s limit; secondary points are computed on
+ * the way, so a path needs points only where it bends). */
+#define MAIN_BOARD_MAX_PATH 254
 
 /** What the board is told before a run (the base station's download, seed 5.1 step 1). */
 typedef struct {
     const optical_xy_t *beacons; /**< the beacon map, 3..OPTICAL_MAX_BEACONS */
     uint8_t n_beacons;
-    const drive_path_point_t *path; /**< primary points with their speeds (copied) */
-    uint8_t n_path;                 /**< 1..MAIN_BOARD_MAX_PATH */
-    drive_pose_t start;             /**< the initial vector */
-    drive_board_t board;            /**< the vehicle and its drive board */
-    drive_path_config_t path_cfg;   /**< nominal radius, point spacing, direction */
-    drive_seq_config_t seq_cfg;     /**< travel mode and its times */
-    uint16_t counts_per_turn;       /**< goniometer angle clock per mirror turn */
-    optical_config_t optical;       /**< identification and checking parameters */
+    /** Primary points with their speeds, prepared in place (the board writes each point's
+     * nsub and reads the points while it drives): the storage must outlive the run, and
+     * holding it is the caller's choice (RAM is 2 KB: 18 bytes a point). */
+    drive_path_point_t *path;
+    uint8_t n_path;               /**< 1..MAIN_BOARD_MAX_PATH */
+    drive_pose_t start;           /**< the initial vector */
+    drive_board_t board;          /**< the vehicle and its drive board */
+    drive_path_config_t path_cfg; /**< nominal radius, point spacing, direction */
+    drive_seq_config_t seq_cfg;   /**< travel mode and its times */
+    uint16_t counts_per_turn;     /**< goniometer angle clock per mirror turn */
+    optical_config_t optical;     /**< identification and checking parameters */
 } main_board_config_t;
 
 /** One fix attempt, as the observer sees it. */
@@ -79,8 +82,9 @@ typedef struct {
 } main_board_stats_t;
 
 /**
- * Set the board up for @p cfg: capture handlers, delta-S line, drive port, link, clock;
- * prepares the path. Interrupts stay disabled. Returns DRIVE_OK, or why the path or the
+ * Set the board up for @p cfg (copied, except the beacon map and the path, which stay in the
+ * caller's storage): capture handlers, delta-S line, drive port, link, clock; prepares the
+ * path. Interrupts stay disabled. Returns DRIVE_OK, or why the path or the
  * configuration is not acceptable (the board then refuses to start).
  */
 drive_status_t main_board_init(const main_board_config_t *cfg);

@@ -12,12 +12,14 @@
 #include "mission_builtin.h"
 
 static const optical_xy_t beacons[MISSION_N_BEACONS] = MISSION_BEACONS;
-static const drive_path_point_t path[MISSION_N_PATH] = MISSION_PATH;
+/* RAM: the board prepares the points in place. */
+static drive_path_point_t path[MISSION_N_PATH] = MISSION_PATH;
 
-int main(void)
+/* The download, on a stack frame that is gone before the main loop runs (main_board_init
+ * copies what it keeps). */
+static __attribute__((noinline)) void setup(void)
 {
-    static main_board_config_t cfg;
-    hal_cpu_init();
+    main_board_config_t cfg = {0};
     cfg.beacons = beacons;
     cfg.n_beacons = MISSION_N_BEACONS;
     cfg.path = path;
@@ -40,6 +42,12 @@ int main(void)
     cfg.optical.beacon_diameter = MISSION_BEACON_DIAMETER;
     if (main_board_init(&cfg) != DRIVE_OK)
         hal_fault(HAL_FAULT_BAD_ARGUMENT);
+}
+
+int main(void)
+{
+    hal_cpu_init();
+    setup();
     hal_console_puts("cyclopion main board: " MISSION_NAME "\r\n");
     hal_irq_enable();
     main_board_start();

@@ -21,6 +21,8 @@ static uint8_t latch_pending;
 static uint16_t latch_first;
 static uint8_t latch_count;
 static uint8_t stop_pending;
+static uint16_t send_first; /* latches still to send */
+static uint8_t send_left;
 
 /* Coordinate request (NMI): gnav copied a consistent pose into g.coord; answer it from the
  * main loop, where sending cannot collide with another sender (an NMI is not held off). */
@@ -115,22 +117,31 @@ void nav_board_poll(void)
     hal_critical_exit();
 
     if (have_latch) {
-        /* Latches brought into the current frame, so that one revolution's latches are
-         * comparable even when a fix was applied in its middle. */
-        for (uint8_t i = 0; i < count; i++) {
-            gnav_latch_t l;
-            uint16_t seq = (uint16_t)(first + i);
-            int rc = gnav_latch_read(&g, seq, &l);
-            m.type = LINKMSG_LATCH;
-            m.u.latch.seq = seq;
-            m.u.latch.status = (int8_t)rc;
-            m.u.latch.pose.x = rc == GNAV_OK ? l.pose.x : 0;
-            m.u.latch.pose.y = rc == GNAV_OK ? l.pose.y : 0;
-            m.u.latch.pose.heading = rc == GNAV_OK ? l.pose.heading : 0;
-            linkmsg_send(&m);
-            stats.latches_sent++;
-        }
+        send_first = first; /* a new request replaces what is left of an older one */
+        send_left = count;
     }
+    /*
+     * Latches brought into the current frame, so that one revolution's latches are comparable
+     * even when a fix was applied in its middle; as many as the link takes now, the rest on
+     * the next passes (15 latches are 30 frames: more than the UART's queue holds).
+     */
+    while (send_left) {
+        gnav_latch_t l;
+        int rc = gnav_latch_read(&g, send_first, &l);
+        m.type = LINKMSG_LATCH;
+        m.u.latch.seq = send_first;
+        m.u.latch.status = (int8_t)rc;
+        m.u.latch.pose.x = rc == GNAV_OK ? l.pose.x : 0;
+        m.u.latch.pose.y = rc == GNAV_OK ? l.pose.y : 0;
+        m.u.latch.pose.heading = rc == GNAV_OK ? l.pose.heading : 0;
+        if (linkmsg_send(&m) != 0)
+            break;
+        stats.latches_sent++;
+        send_first++;
+        send_left--;
+    }
+    if (send_left)
+        hal_cpu_wake(); /* come back when the link has drained */
 
     if (have_fix) {
         gnav_pose_t pose = {fix.u.fix.pose.x, fix.u.fix.pose.y, fix.u.fix.pose.heading};

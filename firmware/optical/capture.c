@@ -79,12 +79,15 @@ void optical_capture_on_index(void *arg, uint16_t count, uint8_t rising)
     r->seq = ++c->seq;
     r->n = 0;
     r->lost = 0;
+    r->cov = 0;
 }
 
 void optical_capture_on_edge(void *arg, uint16_t count, uint8_t rising)
 {
     optical_capture_t *c = arg;
     if (rising) {
+        if (c->pulse)
+            c->cur->cov = 1; /* the pending pulse's falling edge was lost */
         c->rise = count;
         c->pulse = c->mode >> 1; /* 1 only when running */
         return;
@@ -113,7 +116,7 @@ const optical_rev_t *optical_capture_take(optical_capture_t *c)
         c->held = 1;
         optical_rev_t *w = other(c);
         uint16_t cov = hal_capture_overflows(HAL_CAPTURE_BEACON);
-        w->cov = cov != c->cov_seen;
+        w->cov |= (uint8_t)(cov != c->cov_seen);
         c->cov_seen = cov;
         r = w;
     }

@@ -71,6 +71,14 @@ int hal_link_send(const hal_link_frame_t *f)
     return 0;
 }
 
+uint8_t hal_link_tx_room(void)
+{
+    hal_irq_state_t s = hal_irq_disable();
+    uint8_t free_bytes = (uint8_t)(TX_RING - tx_count);
+    hal_irq_restore(s);
+    return (uint8_t)(free_bytes / LINK_FRAMER_MAX_BYTES);
+}
+
 uint16_t hal_link_errors(void)
 {
     return (uint16_t)(rx.errors + tx_dropped);

@@ -52,6 +52,7 @@ static event_t heap[POSIX_MAX_EVENTS];
 static size_t heap_n;
 static posix_preempt_hook_fn preempt_hook;
 static void *preempt_ctx;
+volatile int hal_preempt_armed;
 
 static void harness_die(const char *what, int value)
 {
@@ -75,6 +76,7 @@ void posix_reset(void)
     heap_n = 0;
     preempt_hook = NULL;
     preempt_ctx = NULL;
+    hal_preempt_armed = 0;
     posix_console_redirect(NULL, NULL);
     posix_link_reset();
     posix_clock_signal_reset();
@@ -258,6 +260,8 @@ static int pick(const board_t *bd)
 void posix_dispatch_board(int b)
 {
     board_t *bd = board_at(b);
+    if (!(bd->pending & bd->enabled))
+        return; /* the common case: nothing to deliver */
     for (;;) {
         int i = pick(bd);
         if (i < 0)
@@ -286,24 +290,26 @@ void posix_dispatch_board(int b)
 void posix_dispatch(void)
 {
     for (int b = 0; b < POSIX_MAX_BOARDS; b++)
-        if (boards[b].pending)
+        if (boards[b].pending & boards[b].enabled)
             posix_dispatch_board(b);
 }
 
 void hal_preempt_point(void)
 {
-    int b = posix_board_current();
-    board_t *bd = board_at(b);
+    int b = current >= 0 ? current : posix_board_current();
+    board_t *bd = &boards[b];
     bd->preempt_points++;
     if (preempt_hook)
         preempt_hook(preempt_ctx, b, bd->preempt_points);
-    posix_dispatch_board(b);
+    if (bd->pending & bd->enabled)
+        posix_dispatch_board(b);
 }
 
 void posix_set_preempt_hook(posix_preempt_hook_fn fn, void *ctx)
 {
     preempt_hook = fn;
     preempt_ctx = ctx;
+    hal_preempt_armed = fn != NULL;
 }
 
 uint64_t posix_preempt_points(int board)

@@ -122,6 +122,16 @@ int hal_link_send(const hal_link_frame_t *f)
     return 0;
 }
 
+uint8_t hal_link_tx_room(void)
+{
+    size_t free_slots = 0;
+    for (size_t i = 0; i < POSIX_LINK_IN_FLIGHT; i++)
+        free_slots += !flights[i].used;
+    /* One frame takes a slot per receiving board (at most POSIX_MAX_BOARDS - 1). */
+    free_slots /= POSIX_MAX_BOARDS - 1;
+    return (uint8_t)(free_slots > 255 ? 255 : free_slots);
+}
+
 uint16_t hal_link_errors(void)
 {
     return ports[posix_board_current()].errors;

@@ -131,3 +131,39 @@ void cy_bench_report(const cy_bench_stat_t *st)
     cy_print_dec(st->n);
     cy_println();
 }
+
+#ifdef __MSP430__
+#define STACK_FILL 0xA5A5u
+extern uint16_t __noinit_end[]; /* the lowest address the stack may reach (linker script) */
+#endif
+
+void cy_stack_fill(void)
+{
+#ifdef __MSP430__
+    uint16_t below = (uint16_t)(cy_sp() - 16u); /* clear of this function's own frame */
+    for (volatile uint16_t *p = __noinit_end; (uint16_t)p < below; p++)
+        *p = STACK_FILL;
+#endif
+}
+
+uint16_t cy_stack_used(uint16_t mark)
+{
+#ifdef __MSP430__
+    const volatile uint16_t *p = __noinit_end;
+    while ((uint16_t)p < mark && *p == STACK_FILL)
+        p++;
+    return (uint16_t)(mark - (uint16_t)p);
+#else
+    (void)mark;
+    return 0;
+#endif
+}
+
+void cy_stack_report(const cy_stack_stat_t *st)
+{
+    cy_print("@stack-use ");
+    cy_print(st->name);
+    hal_console_putc(' ');
+    cy_print_dec(st->max);
+    cy_println();
+}

@@ -66,6 +66,49 @@ extern uint16_t cy_bench_overhead;
         cy_bench_add((st), (uint16_t)(t1_ - t0_ - cy_bench_overhead));                             \
     } while (0)
 
+/**
+ * Stack depth of a call (MSP430): cy_stack_fill() fills the free RAM below the stack (from
+ * the end of .bss/.noinit to a little below its own frame) with a pattern; cy_stack_used()
+ * returns how many bytes below @p mark (the caller's stack pointer, cy_sp()) were written
+ * since, interrupt frames included. 0 on the host.
+ */
+void cy_stack_fill(void);
+uint16_t cy_stack_used(uint16_t mark);
+
+#ifdef __MSP430__
+static inline uint16_t cy_sp(void)
+{
+    uint16_t sp;
+    __asm__ volatile("mov r1, %0" : "=r"(sp));
+    return sp;
+}
+#else
+static inline uint16_t cy_sp(void)
+{
+    return 0;
+}
+#endif
+
+/** The deepest stack of one measured call. */
+typedef struct {
+    const char *name;
+    uint16_t max;
+} cy_stack_stat_t;
+
+/** Print "@stack-use name bytes" for the cycle report. */
+void cy_stack_report(const cy_stack_stat_t *st);
+
+/** Measure the stack one statement needs (on top of its caller's frame). */
+#define CY_STACK(st, stmt)                                                                         \
+    do {                                                                                           \
+        uint16_t m_ = cy_sp();                                                                     \
+        cy_stack_fill();                                                                           \
+        stmt;                                                                                      \
+        uint16_t u_ = cy_stack_used(m_);                                                           \
+        if (u_ > (st)->max)                                                                        \
+            (st)->max = u_;                                                                        \
+    } while (0)
+
 #ifdef __cplusplus
 }
 #endif

@@ -314,6 +314,24 @@ TEST_F(Capture, ImplausibleRevolutionsRejected)
     ASSERT_NE(r, nullptr);
     EXPECT_EQ(r->cov, 1);
     EXPECT_EQ(optical_rev_sightings(r, kCounts, s), -1);
+    optical_capture_release(&cap);
+    // Two rising edges in a row: a falling edge was lost (the sightings would no longer pair
+    // with the nav board's latches, one per rising edge). The next revolution is clean again.
+    posix_capture_raise(board, HAL_CAPTURE_BEACON, 40000, 1);
+    posix_dispatch();
+    pulse(40100, 40110);
+    index(18918); // 84454 mod 65536
+    r = optical_capture_take(&cap);
+    ASSERT_NE(r, nullptr);
+    EXPECT_EQ(r->cov, 1);
+    EXPECT_EQ(optical_rev_sightings(r, kCounts, s), -1);
+    optical_capture_release(&cap);
+    pulse(19000, 19010);
+    index(3382); // 134454 mod 65536
+    r = optical_capture_take(&cap);
+    ASSERT_NE(r, nullptr);
+    EXPECT_EQ(r->cov, 0);
+    EXPECT_EQ(optical_rev_sightings(r, kCounts, s), 1);
 }
 
 TEST_F(Capture, StopIgnoresEverything)

@@ -25,6 +25,8 @@
 #define DOMAIN_N 300u
 #define NEAR_N   100u
 #define WIDE_N   100u
+#define ANY_N    600u
+#define POSE_N   300u
 
 static uint32_t rng = 0x2545F491u;
 
@@ -51,6 +53,7 @@ static void out_hex(uint32_t v)
 static cy_bench_stat_t st_solve = {"doublearc", 0, 0, 0};
 static cy_bench_stat_t st_cmd = {"drive_cmd", 0, 0, 0};
 static cy_bench_stat_t st_wide = {"doublearc_wide", 0, 0, 0};
+static cy_stack_stat_t sk_solve = {"doublearc", 0}, sk_cmd = {"drive_cmd", 0};
 static const drive_board_t board = DRIVE_BOARD_SEED;
 
 /* Operands through volatiles so that the timed call cannot be hoisted. */
@@ -75,9 +78,10 @@ static drive_status_t solve_one(const drive_pose_t *f, const drive_pose_t *t, fx
     b.y = v_to.y;
     b.heading = v_to.heading;
     if (timed)
-        CY_BENCH(timed, st = drive_solve(&a, &b, v_rmin, v_rev != 0, sol, need));
+        CY_STACK(&sk_solve,
+                 CY_BENCH(timed, st = drive_solve(&a, &b, v_rmin, v_rev != 0, sol, need)));
     else
-        st = drive_solve(&a, &b, v_rmin, v_rev != 0, sol, need);
+        CY_STACK(&sk_solve, st = drive_solve(&a, &b, v_rmin, v_rev != 0, sol, need));
     return st;
 }
 
@@ -108,7 +112,8 @@ static void print_solution(const char *tag, const drive_pose_t *f, const drive_p
         drive_cmd_t cmd;
         drive_status_t cs;
         if (timed == &st_solve)
-            CY_BENCH(&st_cmd, cs = drive_cmd_build(&sol, &board, 32768, rev, &cmd));
+            CY_STACK(&sk_cmd,
+                     CY_BENCH(&st_cmd, cs = drive_cmd_build(&sol, &board, 32768, rev, &cmd)));
         else
             cs = drive_cmd_build(&sol, &board, 32768, rev, &cmd);
         cy_print(" cmd ");
@@ -223,6 +228,158 @@ static void solver_vectors(void)
     }
 }
 
+/* Anywhere (untimed): any bearing and heading change, 1.5 mm - 100 m, minimum radii 0.05 -
+ * 200 m (a few out of range), near-straight targets, poses all over the Q16 plane, and
+ * configurations that a search on the host found to take the rarer ways through the solver
+ * (the long-leg length series, the minimum radius too large to scale, a case 4/5 arc just
+ * below the minimum radius). */
+static void solver_anywhere(void)
+{
+    static const struct {
+        drive_pose_t f, t;
+        int32_t rmin;
+        uint8_t rev;
+    } rare[] = {
+        {{0x491dc8ec, (int32_t)0xb91f14f9, 0x6d6304d0},
+         {0x48ebd4ad, (int32_t)0xb936fc4c, 0x6b5e1c5e},
+         0x00002e64,
+         0},
+        {{(int32_t)0xde6995c8, (int32_t)0xf6b5b1fb, 0xba8e27ff},
+         {(int32_t)0xde616318, (int32_t)0xf678b3ce, 0xb8f7fb87},
+         0x000f587e,
+         0},
+        {{(int32_t)0xc2535b55, 0x4afa9a6d, 0x253c4a02},
+         {(int32_t)0xc26ab4cd, 0x4b18e1dd, 0x238bebbc},
+         0x002248e9,
+         0},
+        {{(int32_t)0xbdb79103, (int32_t)0xa559da1b, 0x91657167},
+         {(int32_t)0xbdb7a816, (int32_t)0xa559e49a, 0x9147d0c1},
+         0x000a6db1,
+         1},
+        {{(int32_t)0xfc75e331, 0x45a2a803, 0x2b613149},
+         {(int32_t)0xfc75e01f, 0x45a2a279, 0x2b5c9d51},
+         0x003f1b82,
+         1},
+        {{(int32_t)0xdf39df2a, 0x4f200ec6, 0x6ead3d2b},
+         {(int32_t)0xdf02dccc, 0x4f38f73a, 0x6ec0fedc},
+         0x0000a658,
+         0},
+        {{0x30370d64, 0x412360e1, 0x34767897}, {0x3045b988, 0x4155cd3a, 0x346f04b4}, 0x000c1e33, 0},
+        {{0x0081f604, 0x16865631, 0x5f98188e}, {0x00620b2f, 0x16a6e575, 0x5f9e4a89}, 0x0005e8ad, 0},
+        {{0x7ff00000, 0, 0}, {(int32_t)0x80100000, 0, 0}, 0x00010000, 0},
+    };
+    for (uint16_t i = 0; i < sizeof rare / sizeof rare[0]; i++)
+        print_solution("rare", &rare[i].f, &rare[i].t, rare[i].rmin, rare[i].rev != 0, NULL);
+    for (uint16_t i = 0; i < ANY_N; i++) {
+        uint32_t dist = rnd_span(100ul << 16) >> (rnd32() & 15u);
+        int32_t bearing = (int32_t)rnd32();
+        int32_t dth = (int32_t)rnd32() >> (rnd32() & 7u);
+        if (i % 4u == 1u) { /* near straight */
+            bearing >>= 8u + (rnd32() & 15u);
+            dth >>= 8u + (rnd32() & 15u);
+        } else if (i % 4u == 2u) { /* the seed's domain: ahead, heading change under 90 degrees */
+            bearing >>= 2;
+            dth >>= 2;
+        }
+        fx_q16_t rmin = (fx_q16_t)(rnd_span(200ul << 16) >> (rnd32() & 11u)) + 7000;
+        bool rev = (rnd32() & 1u) != 0;
+        drive_pose_t f, t;
+        make_config(dist, bearing, dth, rev, &f, &t);
+        int32_t ox = (int32_t)rnd32() >> 2, oy = (int32_t)rnd32() >> 2; /* anywhere */
+        f.x += ox;
+        t.x += ox;
+        f.y += oy;
+        t.y += oy;
+        print_solution("any", &f, &t, rmin, rev, NULL);
+    }
+}
+
+/* drive_pose_advance: curvatures of either sign up to 8 /m, distances up to 10 m (some zero
+ * or negative, some whose change saturates), forward and reverse. */
+static void pose_vectors(void)
+{
+    for (uint16_t i = 0; i < POSE_N; i++) {
+        drive_pose_t p = {(int32_t)rnd32() >> 4, (int32_t)rnd32() >> 4, rnd32()};
+        int32_t k = (int32_t)rnd32() >> (2u + (rnd32() & 31u));
+        fx_q16_t dist = (fx_q16_t)(rnd_span(10ul << 16) >> (rnd32() & 7u));
+        if (i % 16u == 3u)
+            dist = -dist;
+        else if (i % 16u == 7u)
+            dist = (fx_q16_t)rnd32() & 0x7FFFFFFF; /* up to 32768 m: the change saturates */
+        bool rev = (rnd32() & 1u) != 0;
+        drive_pose_t r = drive_pose_advance(&p, k, dist, rev);
+        cy_print("pose");
+        out_hex((uint32_t)p.x);
+        out_hex((uint32_t)p.y);
+        out_hex(p.heading);
+        out_hex((uint32_t)k);
+        out_hex((uint32_t)dist);
+        cy_print(rev ? " r" : " f");
+        out_hex((uint32_t)r.x);
+        out_hex((uint32_t)r.y);
+        out_hex(r.heading);
+        cy_println();
+    }
+}
+
+/* The command builder against boards at and beyond its limits, arcs beyond the bytes, and
+ * missing arguments. */
+static void cmd_edges(void)
+{
+    static const int32_t wheelbase[5] = {3275, 3276, 49938, 262144, 262145};
+    static const struct {
+        int32_t k0, len0, k1, len1;
+    } segs[6] = {
+        {DRIVE_CURV_ONE * 7, 6554, -DRIVE_CURV_ONE * 7, 6554},  /* 7 /m both ways, 0.1 m */
+        {0, 131072, 0, 6554},                                   /* 2 m straight: no byte */
+        {INT32_MAX, 655, INT32_MIN + 1, 655},                   /* the tightest curvature */
+        {-DRIVE_CURV_ONE, 300, DRIVE_CURV_ONE / 3, 400},        /* short arcs (D7) */
+        {DRIVE_CURV_ONE / 2, 65536, DRIVE_CURV_ONE / 2, 65536}, /* the same magnitude twice */
+        {1, 1000, -1, 1000},                                    /* almost straight */
+    };
+    for (uint8_t w = 0; w < 5u; w++) {
+        for (uint8_t i = 0; i < 6u; i++) {
+            drive_board_t b = board;
+            b.wheelbase = wheelbase[w];
+            b.min_pulse_counts = (uint8_t)(i * 3u);
+            if (i == 5u)
+                b.counts_per_m = w == 2u ? 0 : -1;
+            drive_solution_t sol = {DRIVE_CASE_1,
+                                    {{segs[i].k0, segs[i].len0, 0}, {segs[i].k1, segs[i].len1, 0}}};
+            drive_cmd_t cmd = {{0, 0}, {0, 0}, 0, 0, {0, 0}};
+            drive_status_t st = drive_cmd_build(&sol, &b, (fx_q16_t)(w * 20000), i == 3u, &cmd);
+            cy_print("cmd ");
+            cy_print_dec(w);
+            cy_print(" ");
+            cy_print_dec(i);
+            cy_print(" ");
+            cy_print_dec((int32_t)st);
+            if (st == DRIVE_OK) {
+                for (uint8_t j = 0; j < 2u; j++) {
+                    out_hex(cmd.steer[j]);
+                    out_hex(cmd.arc[j]);
+                    out_hex(cmd.alpha[j]);
+                }
+                out_hex((uint8_t)cmd.speed);
+                out_hex(cmd.pulses);
+            }
+            cy_println();
+        }
+    }
+    drive_solution_t sol = {DRIVE_CASE_STRAIGHT, {{0, 6554, 0}, {0, 6554, 0}}};
+    drive_cmd_t cmd;
+    drive_board_t slow = board;
+    slow.speed_lsb = 0;
+    cy_print("cmd-refuse ");
+    cy_print_dec((int32_t)drive_cmd_build(NULL, &board, 0, false, &cmd));
+    cy_print_dec((int32_t)drive_cmd_build(&sol, NULL, 0, false, &cmd));
+    cy_print_dec((int32_t)drive_cmd_build(&sol, &board, 0, false, NULL));
+    cy_print_dec((int32_t)drive_cmd_build(&sol, &slow, 0, false, &cmd));
+    cy_print_dec((int32_t)drive_cmd_build(&sol, &board, -1, false, &cmd));
+    cy_print_dec((int32_t)drive_cmd_build(&sol, &board, 3 * FX_Q16_ONE, true, &cmd));
+    cy_println();
+}
+
 static void print_wseq(const char *tag, const drive_wseq_t *w)
 {
     cy_print(tag);
@@ -289,10 +446,250 @@ static void proto_vectors(void)
     print_wseq("dac-stop", &w);
 }
 
+static void print_step(const drive_seq_t *seq, const drive_seq_out_t *out)
+{
+    cy_print("seq ");
+    cy_print_dec(seq->state);
+    out_hex(out->actions);
+    if (out->actions & DRIVE_ACT_LOAD) {
+        out_hex(out->cmd.steer[0]);
+        out_hex(out->cmd.arc[0]);
+        out_hex(out->cmd.steer[1]);
+        out_hex(out->cmd.arc[1]);
+        out_hex((uint8_t)out->cmd.speed);
+        out_hex(out->cmd.pulses);
+    }
+    out_hex((uint8_t)out->speed);
+    out_hex(out->timer_ms);
+    out_hex(out->pose_ms);
+    out_hex(out->fault);
+    out_hex(out->status);
+    out_hex(seq->target.leg);
+    out_hex(seq->target.sub);
+    out_hex(seq->ignored);
+    out_hex(seq->underruns);
+    out_hex(seq->loads);
+    cy_println();
+}
+
+/* Both travel modes through the state table with synthetic events: the vehicle reaches each
+ * target it is loaded for, some fixes fail, spurious events come in between, one run is
+ * stopped on request and one runs out of fixes. */
+static void seq_vectors(drive_path_t *path, const drive_pose_t *start)
+{
+    static const drive_seq_config_t modes[4] = {
+        {DRIVE_MODE_SIMPLIFIED, 35, 50, 9830, 26214, 3},
+        {DRIVE_MODE_FULL, 35, 50, 9830, 26214, 3},
+        {DRIVE_MODE_FULL, 40, 60, 0, 0, 0},        /* every fix fails: out of fixes */
+        {DRIVE_MODE_FULL, 35, 50, 6554, 13107, 2}, /* stopped on request */
+    };
+    for (uint8_t m = 0; m < 4u; m++) {
+        drive_seq_t seq;
+        drive_seq_init(&seq, path, &modes[m]);
+        drive_seq_event_t ev = {DRIVE_EVT_START, *start};
+        drive_seq_out_t out;
+        drive_pose_t here = *start;
+        uint8_t spurious = 0;
+        for (uint16_t step = 0;
+             step < 300u && seq.state != DRIVE_ST_DONE && seq.state != DRIVE_ST_FAULT; step++) {
+            drive_seq_step(&seq, &ev, &out);
+            print_step(&seq, &out);
+            if (out.actions & DRIVE_ACT_LOAD) { /* the vehicle gets where it was sent */
+                fx_q16_t sp;
+                (void)drive_path_target(path, seq.target, &here, &sp);
+            }
+            /* The next event the world would raise. */
+            ev.pose = here;
+            drive_state_t s = seq.state;
+            if (step % 7u == 3u) {
+                ev.type = (drive_evt_t)(spurious++ % DRIVE_EVT_COUNT);
+                if (ev.type == DRIVE_EVT_STOP && m != 3u)
+                    ev.type = DRIVE_EVT_START;
+            } else if (m == 3u && step == 40u) {
+                ev.type = DRIVE_EVT_STOP;
+            } else if (s == DRIVE_ST_F_FIX || s == DRIVE_ST_S_FIX) {
+                ev.type = (m == 2u || step % 5u == 0u) ? DRIVE_EVT_FIX_FAILED : DRIVE_EVT_FIX_READY;
+            } else if (s == DRIVE_ST_F_START || s == DRIVE_ST_F_PREDICT) {
+                ev.type = DRIVE_EVT_POSE;
+            } else if (s == DRIVE_ST_S_SKIP_INDEX || s == DRIVE_ST_S_WAIT_INDEX ||
+                       s == DRIVE_ST_F_WAIT_INDEX) {
+                ev.type = DRIVE_EVT_INDEX;
+            } else if (s == DRIVE_ST_F_SETTLE || (s == DRIVE_ST_F_LOAD && step % 3u != 0u)) {
+                ev.type = DRIVE_EVT_TIMER;
+            } else {
+                ev.type = DRIVE_EVT_DELTA_S;
+            }
+        }
+    }
+}
+
 /* The seed's typical run (thesis table 6-1, inches) as a path, prepared and driven through
  * the state table with the vehicle placed exactly on each pose it is asked for. */
 #define IN(v) ((int32_t)((v)*1664.6016)) /* inches to Q16 metres (0.0254 * 65536) */
 static drive_path_point_t pts[6];
+
+/* Paths that preparation refuses, each with where and why, and the cursor calls that must
+ * refuse; the seed path (pts, start, cfg) is spoilt one way at a time. */
+static void path_refusals(const drive_pose_t *start, const drive_path_config_t *good)
+{
+    drive_path_point_t p[6];
+    drive_path_t path;
+    for (uint8_t k = 0; k < 17u; k++) {
+        drive_path_config_t cfg = *good;
+        drive_board_t b = board;
+        const drive_pose_t *s = start;
+        drive_path_point_t *q = p;
+        uint8_t n = 6;
+        for (uint8_t i = 0; i < 6u; i++)
+            p[i] = pts[i];
+        switch (k) {
+        case 0:
+            s = NULL;
+            break;
+        case 1:
+            q = NULL;
+            break;
+        case 2:
+            n = 0;
+            break;
+        case 3:
+            n = 255;
+            break;
+        case 4:
+            cfg.nominal_radius = b.min_radius - 1;
+            break;
+        case 5:
+            cfg.nominal_radius = DRIVE_MIN_RADIUS_MAX + 1;
+            break;
+        case 6:
+            b.min_radius = DRIVE_MIN_RADIUS_MIN - 1;
+            cfg.nominal_radius = b.min_radius;
+            break;
+        case 7:
+            cfg.spacing = FX_Q16_ONE / 20 - 1;
+            break;
+        case 8:
+            cfg.spacing = 8 * FX_Q16_ONE + 1;
+            break;
+        case 9:
+            p[4].speed = 0;
+            break;
+        case 10:
+            p[0].speed = 5 * FX_Q16_ONE;
+            break;
+        case 11:
+            p[2].pose.heading += 1431655765u;
+            break; /* 120 degrees */
+        case 12:
+            p[3].pose = p[2].pose;
+            p[3].pose.x -= FX_Q16_ONE;
+            break; /* behind */
+        case 13:
+            cfg.nominal_radius = 3 * FX_Q16_ONE / 2;
+            break; /* too tight */
+        case 14:
+            p[5].pose.x += 5 * FX_Q16_ONE / 2;
+            cfg.spacing = 8 * FX_Q16_ONE;
+            break;
+        case 15:
+            p[5].pose.x += 14 * FX_Q16_ONE;
+            cfg.spacing = FX_Q16_ONE / 20;
+            break;
+        default:
+            b.speed_lsb = 0;
+            break;
+        }
+        drive_status_t st = drive_path_prepare(&path, s, q, n, &cfg, &b);
+        cy_print("refuse ");
+        cy_print_dec(k);
+        cy_print(" ");
+        cy_print_dec((int32_t)st);
+        cy_print(path.ready ? " ready" : " not-ready");
+        if (st != DRIVE_OK) {
+            cy_print(" ");
+            cy_print_dec(path.bad_leg);
+            cy_print(" ");
+            cy_print_dec(path.bad_sub);
+            cy_print(" ");
+            cy_print_dec((int32_t)path.bad_why);
+        }
+        cy_println();
+    }
+    /* The cursor calls on a ready path and on a refused one. */
+    cy_print("prepare-null ");
+    cy_print_dec((int32_t)drive_path_prepare(NULL, start, p, 6, good, &board));
+    cy_println();
+    for (uint8_t r = 0; r < 2u; r++) {
+        drive_path_config_t cfg = *good;
+        if (r)
+            cfg.spacing = 0;
+        (void)drive_path_prepare(&path, start, p, 6, &cfg, &board);
+        static const drive_path_cursor_t curs[6] = {{0, 0}, {0, 1}, {0, 9},
+                                                    {5, 2}, {6, 1}, {255, 1}};
+        for (uint8_t i = 0; i < 6u; i++) {
+            drive_pose_t tp = {0, 0, 0};
+            fx_q16_t sp = 0;
+            const drive_solution_t *sol = NULL;
+            cy_print("cursor ");
+            cy_print_dec(r);
+            cy_print(" ");
+            cy_print_dec(i);
+            cy_print(" ");
+            cy_print_dec((int32_t)drive_path_target(&path, curs[i], &tp, &sp));
+            out_hex((uint32_t)tp.x);
+            out_hex((uint32_t)sp);
+            cy_print(" ");
+            cy_print_dec((int32_t)drive_path_leg(&path, curs[i].leg, &sol));
+            if (sol != NULL)
+                out_hex((uint32_t)sol->seg[0].length);
+            if (curs[i].leg < 6u) {
+                drive_path_cursor_t nx = drive_path_next(&path, curs[i]);
+                cy_print(drive_path_is_last(&path, curs[i]) ? " last " : " more ");
+                cy_print_dec(nx.leg);
+                cy_print(" ");
+                cy_print_dec(nx.sub);
+            }
+            cy_println();
+        }
+    }
+    cy_print("leg-null ");
+    cy_print_dec((int32_t)drive_path_leg(NULL, 0, NULL));
+    cy_println();
+}
+
+/* The rarer rows: arriving at once, no double arc to any target, a target the path cannot
+ * give (its preparation redone and refused under way), a loaded double arc that ends while
+ * the next waits (underrun). */
+static void seq_edges(drive_path_t *path, const drive_pose_t *start, const drive_path_config_t *cfg)
+{
+    static const drive_seq_config_t full = {DRIVE_MODE_FULL, 35, 50, 9830, 26214, 3};
+    for (uint8_t k = 0; k < 4u; k++) {
+        (void)drive_path_prepare(path, start, pts, 6, cfg, &board);
+        drive_seq_t seq;
+        drive_seq_init(&seq, path, &full);
+        drive_seq_event_t ev = {DRIVE_EVT_START, *start};
+        drive_seq_out_t out;
+        drive_seq_step(&seq, &ev, &out);
+        print_step(&seq, &out);
+        ev.type = DRIVE_EVT_POSE;
+        if (k == 0) {
+            ev.pose = pts[5].pose; /* already at the last point */
+        } else if (k == 1) {
+            ev.pose.x += 2000l * FX_Q16_ONE; /* every target too far */
+        } else if (k == 2) {
+            drive_path_config_t bad = *cfg;
+            bad.spacing = 0;
+            (void)drive_path_prepare(path, start, pts, 6, &bad, &board);
+        }
+        drive_seq_step(&seq, &ev, &out);
+        print_step(&seq, &out);
+        for (uint8_t i = 0; k == 3u && i < 3u; i++) { /* the loaded arc ends while settling */
+            ev.type = DRIVE_EVT_DELTA_S;
+            drive_seq_step(&seq, &ev, &out);
+            print_step(&seq, &out);
+        }
+    }
+}
 
 static void path_vectors(void)
 {
@@ -315,6 +712,8 @@ static void path_vectors(void)
         cy_print_dec(pts[i].nsub);
     }
     cy_println();
+    path_refusals(&start, &cfg);
+    st = drive_path_prepare(&path, &start, pts, 6, &cfg, &board);
     drive_path_cursor_t c = drive_path_first(&path);
     for (;;) {
         drive_pose_t tp;
@@ -334,51 +733,39 @@ static void path_vectors(void)
             break;
         c = drive_path_next(&path, c);
     }
-    /* Simplified travel with synthetic events: the vehicle reaches each target exactly. */
-    drive_seq_config_t sc = {DRIVE_MODE_SIMPLIFIED, 35, 50, 9830, 26214, 3};
-    drive_seq_t seq;
-    drive_seq_init(&seq, &path, &sc);
-    drive_seq_event_t ev = {DRIVE_EVT_START, start};
-    drive_seq_out_t out;
-    drive_pose_t here = start;
-    for (uint16_t step = 0;
-         step < 400u && seq.state != DRIVE_ST_DONE && seq.state != DRIVE_ST_FAULT; step++) {
-        drive_seq_step(&seq, &ev, &out);
-        cy_print("seq ");
-        cy_print_dec(seq.state);
-        out_hex(out.actions);
-        if (out.actions & DRIVE_ACT_LOAD) {
-            out_hex(out.cmd.steer[0]);
-            out_hex(out.cmd.arc[0]);
-            out_hex(out.cmd.steer[1]);
-            out_hex(out.cmd.arc[1]);
-        }
-        cy_println();
-        /* The next event the world would raise. */
-        if (out.actions & DRIVE_ACT_REQUEST_FIX) {
-            ev.type = DRIVE_EVT_FIX_READY;
-            ev.pose = here;
-        } else if (seq.state == DRIVE_ST_S_SKIP_INDEX || seq.state == DRIVE_ST_S_WAIT_INDEX) {
-            ev.type = DRIVE_EVT_INDEX;
-        } else if (seq.state == DRIVE_ST_S_ARC1 || seq.state == DRIVE_ST_S_ARC2) {
-            if (out.actions & DRIVE_ACT_LOAD) {
-                fx_q16_t sp;
-                (void)drive_path_target(&path, seq.target, &here, &sp);
-            }
-            ev.type = DRIVE_EVT_DELTA_S;
-        }
-    }
+    seq_vectors(&path, &start);
+    seq_edges(&path, &start, &cfg);
+
+    /* The same path tail first, and a path that is not ready. */
+    drive_pose_t bstart = start;
+    bstart.heading += FX_ANGLE_HALF;
+    for (uint8_t i = 0; i < 6u; i++)
+        pts[i].pose.heading += FX_ANGLE_HALF;
+    cfg.reverse = true;
+    st = drive_path_prepare(&path, &bstart, pts, 6, &cfg, &board);
+    cy_print("path-reverse ");
+    cy_print_dec((int32_t)st);
+    cy_println();
+    seq_vectors(&path, &bstart);
+    cfg.spacing = 1; /* out of range */
+    (void)drive_path_prepare(&path, &bstart, pts, 6, &cfg, &board);
+    seq_vectors(&path, &bstart);
 }
 
 int main(void)
 {
     cy_bench_init();
     solver_vectors();
+    solver_anywhere();
+    pose_vectors();
+    cmd_edges();
     proto_vectors();
     path_vectors();
     cy_bench_report(&st_solve);
     cy_bench_report(&st_cmd);
     cy_bench_report(&st_wide);
+    cy_stack_report(&sk_solve);
+    cy_stack_report(&sk_cmd);
     cy_check(st_solve.max <= 10000u, "doublearc within 10,000 cycles (0 on the host)");
     cy_test_end();
     return 0;

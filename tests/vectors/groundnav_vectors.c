@@ -39,6 +39,10 @@ static cy_bench_stat_t st_sighted = {"isr_beacon_sighted", 0, 0, 0};
 static cy_bench_stat_t st_coord = {"isr_coord_request", 0, 0, 0};
 static cy_bench_stat_t st_fix = {"gnav_fix", 0, 0, 0};
 static cy_bench_stat_t st_pose = {"gnav_pose", 0, 0, 0};
+static cy_bench_stat_t st_latch = {"gnav_latch_read", 0, 0, 0};
+static cy_stack_stat_t sk_dl = {"isr_delta_l", 0}, sk_gyro = {"isr_gyro_step", 0},
+                       sk_sighted = {"isr_beacon_sighted", 0}, sk_coord = {"isr_coord_request", 0},
+                       sk_fix = {"gnav_fix", 0}, sk_latch = {"gnav_latch_read", 0};
 
 /* Raise @p line and let its handler run; on the MSP430 returns the cycles of the whole
  * interrupt (entry, HAL shim, portable handler, return), 0 on the host. */
@@ -76,7 +80,8 @@ static uint32_t closings(void)
 static void pulse(void)
 {
     uint32_t before = closings();
-    uint16_t c = raise_line(HAL_EDGE_DELTA_L);
+    uint16_t c;
+    CY_STACK(&sk_dl, c = raise_line(HAL_EDGE_DELTA_L));
     cy_bench_add(&st_dl, c);
     if (closings() != before)
         cy_bench_add(&st_close, c);
@@ -92,6 +97,14 @@ static void print_pose_raw(const char *tag)
     cy_print_hex64((uint64_t)p->y);
     cy_print(" ");
     cy_print_hex32(p->heading);
+    cy_print(" k ");
+    cy_print_dec(p->k);
+    cy_print(" rate ");
+    cy_print_dec(p->rate);
+    cy_print(" dir ");
+    cy_print_dec(p->dir);
+    cy_print(" ival ");
+    cy_print_dec(p->ival);
     cy_print(" n ");
     cy_print_dec((int32_t)(((uint32_t)(uint16_t)nav.n_hi << 16) | nav.n_lo));
     for (unsigned k = 0; k < 4u; k++) {
@@ -111,6 +124,23 @@ static void print_pose(const char *tag, const gnav_pose_t *p)
     cy_print(" ");
     cy_print_hex32(p->heading);
     cy_println();
+}
+
+/* The last (up to) 8 latches as the main loop reads them now: their headings inside the cell
+ * come from closed, open and forgotten intervals of every kind. */
+static void print_latches(void)
+{
+    uint16_t next = gnav_latch_next(&nav);
+    for (uint16_t k = 1; k <= 8u && k <= next; k++) {
+        gnav_latch_t l;
+        int r = 0;
+        volatile uint16_t seq = (uint16_t)(next - k);
+        CY_STACK(&sk_latch, CY_BENCH(&st_latch, r = gnav_latch_read(&nav, seq, &l)));
+        cy_check(r == GNAV_OK, "latch read");
+        cy_print("latch ");
+        cy_print_dec(l.seq);
+        print_pose("", &l.pose);
+    }
 }
 
 static const gnav_config_t cfg = {
@@ -135,15 +165,24 @@ static void replay(void)
             for (uint16_t j = 0; j < count; j++)
                 pulse();
             break;
-        case 1:
-            cy_bench_add(&st_gyro, raise_line(HAL_EDGE_GYRO_UP));
+        case 1: {
+            uint16_t c;
+            CY_STACK(&sk_gyro, c = raise_line(HAL_EDGE_GYRO_UP));
+            cy_bench_add(&st_gyro, c);
             break;
-        case 2:
-            cy_bench_add(&st_gyro, raise_line(HAL_EDGE_GYRO_DOWN));
+        }
+        case 2: {
+            uint16_t c;
+            CY_STACK(&sk_gyro, c = raise_line(HAL_EDGE_GYRO_DOWN));
+            cy_bench_add(&st_gyro, c);
             break;
-        case 3:
-            cy_bench_add(&st_sighted, raise_line(HAL_EDGE_BEACON_SIGHTED));
+        }
+        case 3: {
+            uint16_t c;
+            CY_STACK(&sk_sighted, c = raise_line(HAL_EDGE_BEACON_SIGHTED));
+            cy_bench_add(&st_sighted, c);
             break;
+        }
         case 4:
             gnav_set_reverse(&nav, true);
             break;
@@ -152,10 +191,15 @@ static void replay(void)
             break;
         default: {
             print_pose_raw("pose");
-            cy_bench_add(&st_coord, raise_line(HAL_EDGE_COORD_REQUEST));
+            uint16_t cc;
+            CY_STACK(&sk_coord, cc = raise_line(HAL_EDGE_COORD_REQUEST));
+            cy_bench_add(&st_coord, cc);
             gnav_pose_t c;
             gnav_coord(&nav, &c);
             print_pose("coord", &c);
+            gnav_pose(&nav, &c);
+            print_pose("pose_now", &c);
+            print_latches();
             break;
         }
         }
@@ -188,7 +232,7 @@ static void latches_and_fix(void)
     f.x += 3277;
     f.heading += 11930465u;
     int r = 0;
-    CY_BENCH(&st_fix, r = gnav_fix(&nav, &f, &l));
+    CY_STACK(&sk_fix, CY_BENCH(&st_fix, r = gnav_fix(&nav, &f, &l)));
     cy_check(r == GNAV_OK, "fix applied");
     print_pose_raw("fixed");
     for (unsigned k = 0; k < 200u; k++)
@@ -265,6 +309,10 @@ int main(void)
     cy_bench_report(&st_coord);
     cy_bench_report(&st_fix);
     cy_bench_report(&st_pose);
+    cy_bench_report(&st_latch);
+    const cy_stack_stat_t *sk[] = {&sk_dl, &sk_gyro, &sk_sighted, &sk_coord, &sk_fix, &sk_latch};
+    for (unsigned i = 0; i < sizeof sk / sizeof sk[0]; i++)
+        cy_stack_report(sk[i]);
     cy_test_end();
     return 0;
 }

@@ -14,7 +14,8 @@
  * step j of the run's |d| (j = 1 .. |d|) when the heading has turned by j - 1/2 steps, i.e.
  * just before pulse ceil((j - 1/2) |n| / |d|). A run without pulses turns in place (its steps
  * arrive at once). n_pulses < 0 drives backwards (|n_pulses| pulses). The answer is the pose
- * the nav board publishes after the last run.
+ * the nav board publishes after the last run: its heading is estimated inside the gyro's cell
+ * (docs/groundnav.md), so a run that turns in place ends on the threshold of its last step.
  */
 
 #include <math.h>

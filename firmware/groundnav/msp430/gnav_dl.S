@@ -54,18 +54,21 @@
     .set OFF_STOP_ARMED, 78
     .set OFF_STOP, 79
     .set OFF_HEADING, 92
-    .set OFF_PUB_SEQ, 116
-    .set OFF_PUB, 118
-    .set PUB_SIZE, 20
-    .set OFF_STOP_FN, 158
-    .set OFF_STOP_CTX, 160
-    .set OFF_M_Q16, 180
-    .set OFF_M_Q11, 184
-    .set OFF_N0, 186
-    .set OFF_TAB_END, 188
-    .set OFF_TAB_E, 194
-    .set OFF_TAB_RHO, 322
-    .set OFF_CLOSINGS, 386
+    .set OFF_IVAL, 114
+    .set OFF_HDIR, 118
+    .set OFF_HRATE, 116
+    .set OFF_PUB_SEQ, 120
+    .set OFF_PUB, 122
+    .set PUB_SIZE, 28
+    .set OFF_STOP_FN, 178
+    .set OFF_STOP_CTX, 180
+    .set OFF_M_Q16, 200
+    .set OFF_M_Q11, 204
+    .set OFF_N0, 206
+    .set OFF_TAB_END, 208
+    .set OFF_TAB_E, 214
+    .set OFF_TAB_RHO, 342
+    .set OFF_CLOSINGS, 406
 
     .set RECIP_LO, 33
 
@@ -634,6 +637,10 @@ gnav_on_delta_l:
     mov     OFF_Y+6(r10), 14(r13)
     mov     OFF_HEADING(r10), 16(r13)
     mov     OFF_HEADING+2(r10), 18(r13)
+    mov     OFF_NQ(r10), 20(r13)    ; k: no edge is pending after a pulse
+    mov     OFF_HRATE(r10), 22(r13) ; rate
+    mov     OFF_IVAL(r10), 24(r13)  ; the interval's number
+    mov.b   OFF_HDIR(r10), 26(r13)  ; its entry edge
     add     #1, r12
     mov     r12, OFF_PUB_SEQ(r10)   ; one store: the slot is published
     pop     r10

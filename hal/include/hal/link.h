@@ -40,6 +40,12 @@ int hal_link_init(hal_link_rx_cb_t cb, void *arg);
  */
 int hal_link_send(const hal_link_frame_t *f);
 
+/**
+ * Frames that hal_link_send() can take right now whatever their contents (worst-case size).
+ * A sender of several frames that belong together checks this first.
+ */
+uint8_t hal_link_tx_room(void);
+
 /** Frames lost so far: received with a bad CRC or length, or dropped on a full queue. */
 uint16_t hal_link_errors(void);
 

@@ -19,7 +19,15 @@ extern "C" {
 #else
 /** Host only: give the harness a chance to deliver interrupts here. */
 void hal_preempt_point(void);
-#define HAL_PREEMPT_POINT() hal_preempt_point()
+/** Host only: non-zero while the harness watches preemption points (a hook is set). */
+extern volatile int hal_preempt_armed;
+/* Interrupts become deliverable mid-code only through a hook: without one, a point costs a
+ * load and a branch (the simulator's hot path passes many of them). */
+#define HAL_PREEMPT_POINT()                                                                        \
+    do {                                                                                           \
+        if (hal_preempt_armed)                                                                     \
+            hal_preempt_point();                                                                   \
+    } while (0)
 #endif
 
 #ifdef __cplusplus

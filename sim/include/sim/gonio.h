@@ -36,13 +36,32 @@ typedef struct {
 uint16_t sim_gonio_count(const sim_gonio_cfg_t *cfg, double t);
 
 /**
- * The photodetector edges between @p t_from and @p t_to (t_to - t_from <= one turn), with the
- * mirror at angle 0 at @p t_index (any earlier index instant) and the vehicle moving along
- * @p seg, sorted by time. Edges whose line of sight is blocked, or beyond max_range, are
- * left out. Returns the number written (at most @p max).
+ * The edges of each target's pulse between @p t_from and @p t_to (t_to - t_from <= one turn), with
+ * the mirror at angle 0 at @p t_index (any earlier index instant) and the vehicle moving along
+ * @p seg, sorted by time. A pulse whose line of sight (judged at its centre) is blocked, or
+ * beyond max_range, is left out. Pulses of different targets may overlap: sim_photo_feed()
+ * turns them into the photodetector's signal. Returns the number written (at most @p max).
  */
 size_t sim_gonio_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const sim_segment_t *seg,
                        double t_index, double t_from, double t_to, sim_rng_t *rng,
                        sim_gonio_event_t *out, size_t max);
+
+/** Targets the photodetector tracks: beacons, then glints. */
+#define SIM_PHOTO_TARGETS (SIM_MAX_BEACONS + SIM_MAX_SPURIOUS)
+
+/** The photodetector: one output, lit while the beam is on any target (the OR of pulses). */
+typedef struct {
+    uint8_t lit[SIM_PHOTO_TARGETS];
+    unsigned n_lit;
+} sim_photo_t;
+
+/** Dark, no target lit. */
+void sim_photo_init(sim_photo_t *p);
+
+/**
+ * Feed one target edge (in time order). Returns 1 when the output changes: a rising edge that
+ * lights the first target, or a falling edge that leaves none lit; 0 otherwise.
+ */
+int sim_photo_feed(sim_photo_t *p, const sim_gonio_event_t *e);
 
 #endif

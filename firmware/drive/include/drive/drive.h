@@ -103,7 +103,7 @@ const char *drive_status_text(drive_status_t st);
  * Otherwise the status says why and @p out is unspecified; on DRIVE_ERR_RADIUS, @p needed (if
  * not NULL) receives the curvature the double arc would need (Q4.28; INT32_MAX when over 8 /m),
  * so that callers can report the radius. Reentrant; no state.
- * Cost on the MSP430: about 9,000 cycles at most, measured over the vector set (cycles.json
+ * Cost on the MSP430: about 9,400 cycles at most, measured over the vector set (cycles.json
  * "doublearc", and "doublearc_wide" for legs up to 64 m; docs/drive.md).
  */
 drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_q16_t min_radius,

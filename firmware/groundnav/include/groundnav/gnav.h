@@ -13,6 +13,10 @@
  * M = L * step / dl (the seed's situation 3); fewer than M pulses for a step leave the
  * position where it was (situation 1); between edges the pose is continued from the last
  * curvature for at most the last interval's length, then straight (situation 2, bounded).
+ * The headings handed out (pose, coordinate request, latches) are placed inside the gyro's
+ * cell: on the threshold at an edge, then on at the rate the intervals showed, between the
+ * edges once the next one is known (latches read later); the handlers store pulse counts
+ * only, the readers divide (docs/groundnav.md, "The heading inside the cell").
  *
  * Contexts: the five handlers below have the hal_edge_cb_t signature (arg = the gnav_t) and
  * run in interrupt context. gnav_on_coord_request() is meant for the non-maskable line: it may
@@ -36,6 +40,10 @@ extern "C" {
 #define GNAV_TABLE_N 32u
 /** Pose latches kept (a power of two, at least the 15 sightings of a revolution). */
 #define GNAV_LATCH_N 16u
+/** Closed gyro intervals remembered to interpolate latch headings (a power of two). */
+#define GNAV_RING_N  8u
+/** gnav_pub_t.k while a gyro edge has not been followed by a pulse yet. */
+#define GNAV_K_EDGE  INT16_MIN
 /** Fix corrections kept to bring latches of older frames forward. */
 #define GNAV_CORR_N  4u
 
@@ -87,12 +95,19 @@ typedef void (*gnav_stop_fn)(void *ctx);
 typedef struct {
     int64_t x, y;       /* pulses, Q25 */
     fx_angle_t heading; /* centre of the gyro cell */
+    int16_t k;          /* pulses since the interval's first pulse (GNAV_K_EDGE: none yet) */
+    uint16_t rate;      /* the rate it entered at, pulses per step (0: unknown) */
+    uint16_t ival;      /* its number: gyro edges so far */
+    int8_t dir;         /* its entry edge: +1 up, -1 down, 0 the start at the cell centre */
 } gnav_pub_t;
 
 typedef struct {
-    int32_t x4, y4; /* pulses, Q4 */
-    fx_angle_t heading;
-    uint16_t seq;
+    int32_t x4, y4;     /* pulses, Q4 */
+    fx_angle_t heading; /* centre of the gyro cell */
+    int16_t k;          /* the published k, rate, interval number and dir */
+    uint16_t rate;
+    uint16_t ival;
+    int8_t dir;
     uint8_t gen;
 } gnav_latch_raw_t;
 
@@ -127,7 +142,11 @@ typedef struct gnav {
     uint16_t cell, cell_int; /* gyro count now and of the interval (both wrap) */
     uint16_t h_p, h_first, h_last; /* half-step indices of P and of the edges since */
     uint16_t version;              /* bumped by every closing and gyro edge (fix installation) */
-    uint8_t gen;                   /* fixes applied (mod 256): the frame generation */
+    /* the heading inside the cell: the interval since the last edge (published with the pose) */
+    uint16_t ival;  /* gyro edges so far: the interval's number */
+    uint16_t hrate; /* the rate it entered at, pulses per step (0: unknown) */
+    int8_t hdir;    /* direction of the last edge (0: none since init) */
+    uint8_t gen;    /* fixes applied (mod 256): the frame generation */
     /* the published pose: the writer fills pub[(seq + 1) & 1], then bumps seq */
     volatile uint16_t pub_seq;
     gnav_pub_t pub[2];
@@ -147,7 +166,9 @@ typedef struct gnav {
     int32_t tab_e[GNAV_TABLE_N];    /* E(n), pulses Q16 */
     uint16_t tab_rho[GNAV_TABLE_N]; /* E(n) / n, Q15 */
     uint32_t closings[4];           /* situation 1, arcs, reversals, extra edges */
-    /* latches and frames */
+    /* latches and frames; the intervals closed last (by number mod GNAV_RING_N): pulses from
+     * the entry edge to the exit edge, bit 15 set when the exit edge went up */
+    uint16_t ring[GNAV_RING_N];
     uint16_t latch_seq;
     gnav_latch_raw_t latch[GNAV_LATCH_N];
     gnav_corr_t corr[GNAV_CORR_N];
@@ -177,7 +198,8 @@ void gnav_on_delta_l(void *arg);
 void gnav_on_gyro_up(void *arg);
 /** Gyro handler: the heading went down (clockwise) by one step. */
 void gnav_on_gyro_down(void *arg);
-/** Beacon Sighted handler: latch the current pose as the next latch (seq = count so far). */
+/** Beacon Sighted handler: latch the current pose as the next latch (seq = count so far),
+ * with what its heading inside the cell needs (no division: gnav_latch_read places it). */
 void gnav_on_beacon_sighted(void *arg);
 /**
  * Coordinate Request handler (NMI): copy the published pose (never torn, even when it
@@ -197,7 +219,9 @@ void gnav_set_stop_callback(gnav_t *g, gnav_stop_fn fn, void *ctx);
 /**
  * The current pose, consistent (never torn), from any context: retries while dl or gyro
  * handlers publish under it. Position error: at most 8 um of rounding on top of the dead
- * reckoning itself.
+ * reckoning itself. Heading: inside the current gyro cell (within +-half a step of its centre),
+ * extrapolated from the last edge at the rate the intervals showed (1,700 cycles on the
+ * MSP430).
  */
 void gnav_pose(gnav_t *g, gnav_pose_t *out);
 
@@ -209,8 +233,11 @@ uint16_t gnav_latch_next(const gnav_t *g);
 
 /**
  * Latch number @p seq brought into the current frame (all fixes since applied), into *out.
- * GNAV_ERR_LATCH when it is not in the buffer (more than GNAV_LATCH_N newer ones, or not yet
- * taken), GNAV_ERR_STALE when more than GNAV_CORR_N fixes came after it.
+ * Its heading is placed inside its gyro cell with what is known now: between the edges of its
+ * interval when that has closed since (one of the last GNAV_RING_N), else from the edge
+ * before it; reading later can only refine it. GNAV_ERR_LATCH when it is not in the buffer
+ * (more than GNAV_LATCH_N newer ones, or not yet taken), GNAV_ERR_STALE when more than
+ * GNAV_CORR_N fixes came after it.
  */
 int gnav_latch_read(gnav_t *g, uint16_t seq, gnav_latch_t *out);
 
@@ -219,7 +246,8 @@ int gnav_latch_read(gnav_t *g, uint16_t seq, gnav_latch_t *out);
  * gnav_latch_read(), any generation not older than GNAV_CORR_N fixes), or now when @p ref is
  * NULL. The motion since that instant is carried forward: the whole dead-reckoning state
  * (position, closing point, heading and the gyro's cell, i.e. "set the gyroscope") is moved
- * by the rigid transform that takes the reference pose onto the fix, never overwritten. Resets
+ * by the rigid transform that takes the reference pose onto the fix, never overwritten; the
+ * reference's heading is its estimate inside the cell, whose offset from the centre is kept. Resets
  * the travel counted for the stop request and clears the request. Interrupts are held off for
  * the final install only. Returns GNAV_OK, GNAV_ERR_LATCH/STALE (ref), GNAV_ERR_POSE, or
  * GNAV_ERR_BUSY when 8 attempts in a row were overtaken by gyro edges or arc closings.

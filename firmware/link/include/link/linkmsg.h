@@ -115,8 +115,11 @@ void linkmsg_rx_init(linkmsg_rx_t *rx);
  */
 bool linkmsg_rx_feed(linkmsg_rx_t *rx, const hal_link_frame_t *f, linkmsg_t *out);
 
-/** Send @p m with hal_link_send() (both frames of a pair back to back, interrupts held off).
- * Returns 0 or hal_link_send()'s error. */
+/**
+ * Send @p m with hal_link_send(): both frames of a pair back to back with interrupts held off,
+ * and only when the link has room for all of them (a lone A frame would be wasted). Returns
+ * 0, -1 for an unknown message, -2 when the link has no room now (nothing sent: try again).
+ */
 int linkmsg_send(const linkmsg_t *m);
 
 #ifdef __cplusplus

@@ -49,7 +49,9 @@ typedef struct {
     uint16_t period;      /**< counts from that index pulse to the next (the turn, mod 2^16) */
     uint8_t n;            /**< sightings stored, 0..OPTICAL_MAX_SIGHTINGS */
     uint8_t lost;         /**< sightings beyond OPTICAL_MAX_SIGHTINGS (saturates at 255) */
-    uint8_t cov;          /**< 1 when the timer lost a capture (COV) since the last take */
+    /** 1 when an edge was lost: the timer's COV since the last take, or two rising edges
+     *  in a row (the photodetector's signal alternates; the nav board latched both). */
+    uint8_t cov;
     optical_raw_sighting_t s[OPTICAL_MAX_SIGHTINGS];
 } optical_rev_t;
 

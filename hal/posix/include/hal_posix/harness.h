@@ -125,7 +125,8 @@ uint64_t posix_run_until(uint64_t t_ns);
 
 /**
  * Hook called at every HAL_PREEMPT_POINT() (with the number of points passed so far on the
- * current board) before pending interrupts are delivered there; NULL removes it.
+ * current board) before pending interrupts are delivered there; NULL removes it. Points are
+ * only counted while a hook is set.
  */
 typedef void (*posix_preempt_hook_fn)(void *ctx, int board, uint64_t point);
 void posix_set_preempt_hook(posix_preempt_hook_fn fn, void *ctx);

@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+"""Flash taken by firmware/drive in the main board image, checked against its budget.
+
+Links the main board's objects and libraries again, with the board's section layout but a
+test memory map (the whole flash, 3.75 KB of RAM), so that the figure exists even while the
+image as a whole is over the 32 KB / 2 KB budget. --gc-sections keeps only what the main
+board reaches, exactly as in the board link. From the linker map it sums, per object of
+libcy_drive.a, the input sections that land in flash (.text, .rodata and the load image of
+.data), prints the table and fails (exit 1) when their total exceeds --budget bytes.
+
+  drive_flash.py --lld ld.lld-16 --ld-dir hal/msp430/ld --budget 6656 \
+      --map out.map main_msp430.c.obj libcy_main_board.a ... libcy_drive.a ...
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+# The MSP430F249 with its whole flash and the RAM up to the flash's start: room for any
+# image, so the link does not stop at the budget this script is measuring against.
+LAYOUT = """MEMORY
+{
+    RAM (rwx)    : ORIGIN = 0x0200, LENGTH = 0x0F00
+    FLASH (rx)   : ORIGIN = 0x1100, LENGTH = 0xEEE0
+    VECTORS (r)  : ORIGIN = 0xFFE0, LENGTH = 0x0020
+}
+CY_STACK_RESERVE = 384;
+INCLUDE f249_sections.ld
+"""
+
+FLASH_OUTPUTS = (".text", ".rodata", ".data")
+# "VMA LMA Size Align Out In Symbol": an output section line has 5 fields, an input section
+# line has "file(member):(section)" as the fifth.
+LINE_RE = re.compile(r"^\s*([0-9a-f]+)\s+([0-9a-f]+)\s+([0-9a-f]+)\s+\d+\s+(\S+)\s*$")
+
+
+def flash_by_object(map_text):
+    """{object: bytes} of the input sections in the flash output sections."""
+    sizes, out = {}, None
+    for line in map_text.splitlines():
+        m = LINE_RE.match(line)
+        if not m:
+            continue
+        name = m.group(4)
+        if name.startswith("."):
+            out = name
+        elif ":(" in name and out in FLASH_OUTPUTS:
+            obj = name.split(":(", 1)[0]
+            sizes[obj] = sizes.get(obj, 0) + int(m.group(3), 16)
+    return sizes
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("inputs", nargs="+", help="the main board's objects and libraries")
+    ap.add_argument("--lld", required=True)
+    ap.add_argument("--ld-dir", required=True, help="hal/msp430/ld (f249_sections.ld)")
+    ap.add_argument("--budget", type=int, required=True, help="bytes of flash for cy_drive")
+    ap.add_argument("--library", default="libcy_drive.a", help="whose objects are summed")
+    ap.add_argument("--map", help="keep the linker map here")
+    args = ap.parse_args()
+
+    with tempfile.TemporaryDirectory() as tmp:
+        ld = os.path.join(tmp, "layout.ld")
+        with open(ld, "w") as f:
+            f.write(LAYOUT)
+        map_path = args.map or os.path.join(tmp, "image.map")
+        run = subprocess.run([args.lld, "-T", ld, "-L", args.ld_dir, "--gc-sections",
+                              "-Map=" + map_path, "-o", os.path.join(tmp, "image.elf")]
+                             + args.inputs, capture_output=True, text=True)
+        if run.returncode != 0:
+            sys.stderr.write(run.stderr)
+            print("drive_flash: the link failed", file=sys.stderr)
+            return 1
+        with open(map_path) as f:
+            sizes = flash_by_object(f.read())
+
+    mine = {o: n for o, n in sizes.items()
+            if os.path.basename(o.split("(", 1)[0]) == args.library}
+    total = sum(mine.values())
+    for obj, n in sorted(mine.items(), key=lambda kv: -kv[1]):
+        print(f"{n:>7}  {obj.split('(', 1)[1].rstrip(')') if '(' in obj else obj}")
+    print(f"{total:>7}  {args.library} in the image (budget {args.budget}); "
+          f"the whole image {sum(sizes.values())}")
+    if total > args.budget:
+        print(f"drive_flash: {args.library} takes {total} bytes of flash, the budget is "
+              f"{args.budget}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
