@@ -102,11 +102,10 @@ static uint16_t m8(uint32_t q16)
     return sat16((q16 >> 8) + ((q16 & 255u) != 0));
 }
 
-/* Octagonal norm max + min / 2 (Q16): true range <= it <= 1.118 true range. */
-static uint32_t oct_norm(int32_t dx, int32_t dy)
+/* A widening's step: ceil((hi - lo) / steps), 0 when there is none. */
+static uint32_t step_of(uint32_t lo, uint32_t hi, uint8_t steps)
 {
-    uint32_t ax = umag(dx), ay = umag(dy);
-    return ax > ay ? ax + (ay >> 1) : ay + (ax >> 1);
+    return steps && hi > lo ? (hi - lo + steps - 1u) / steps : 0u;
 }
 
 static bool coords_ok(fx_q16_t x, fx_q16_t y)
@@ -323,9 +322,7 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
             return found;
         }
     }
-    uint32_t step = 0;
-    if (cfg->widen_steps && cfg->widen_max > cfg->window)
-        step = (a16(cfg->widen_max) - a16(cfg->window) + cfg->widen_steps - 1u) / cfg->widen_steps;
+    uint32_t step = step_of(a16(cfg->window), a16(cfg->widen_max), cfg->widen_steps);
     for (uint8_t w = 1; w <= cfg->widen_steps && step; w++) {
         lo -= (int32_t)step;
         hi += (int32_t)step;
@@ -412,7 +409,7 @@ static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, 
         st = optical_triangulate(b, th, x->cfg->quality_max, tri);
         if (st != OPTICAL_OK)
             return st;
-        uint32_t moved = oct_norm(tri->pose.x - p.x, tri->pose.y - p.y);
+        uint32_t moved = fx_hypot(tri->pose.x - p.x, tri->pose.y - p.y);
         p = tri->pose;
         if (moved < 16) /* 0.25 mm */
             break;
@@ -463,25 +460,21 @@ static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t 
 static bool prepare(ctx_t *x)
 {
     const optical_pose_t *ap = x->ap, *lat = x->latched;
-    fx_q30_t sa = 0, ca = FX_Q30_ONE;
-    if (lat != NULL)
-        fx_sincos(ap->heading, &sa, &ca);
     for (uint8_t i = 0; i < W.n; i++) {
         fx_angle_t d = x->s[i].angle;
         int32_t c = 0;
         if (lat != NULL) {
             if (!coords_ok(lat[i].x, lat[i].y))
                 return false;
-            d += lat[i].heading - ap->heading;
             int32_t ex = lat[i].x - ap->x, ey = lat[i].y - ap->y;
             if (ex | ey) {
-                /* o = R(-heading) e, then c = cross(u(d), o) = oy cos d - ox sin d. */
-                int32_t ox = fx_mul_q30(ex, ca) + fx_mul_q30(ey, sa);
-                int32_t oy = fx_mul_q30(ey, ca) - fx_mul_q30(ex, sa);
+                /* c = cross(u(d), R(-heading) e) = cross(u(heading + d), e): the sighting's
+                 * world direction is its angle plus the latched heading. */
                 fx_q30_t sd, cd;
-                fx_sincos(d, &sd, &cd);
-                c = fx_mul_q30(oy, cd) - fx_mul_q30(ox, sd);
+                fx_sincos(d + lat[i].heading, &sd, &cd);
+                c = fx_mul_q30(ey, cd) - fx_mul_q30(ex, sd);
             }
+            d += lat[i].heading - ap->heading;
         }
         uint16_t t = a16(d);
         uint8_t j = i;
@@ -521,9 +514,7 @@ static fx_q16_t threshold(const ctx_t *x)
 {
     const optical_config_t *cfg = x->cfg;
     fx_q16_t t = cfg->range;
-    int32_t tstep = cfg->range_steps && cfg->range_max > cfg->range
-                        ? (cfg->range_max - cfg->range + cfg->range_steps - 1) / cfg->range_steps
-                        : 0;
+    uint32_t tstep = step_of((uint32_t)cfg->range, (uint32_t)cfg->range_max, cfg->range_steps);
     for (uint8_t step = 0;; step++) {
         uint32_t t8 = (uint32_t)t >> 8;
         uint32_t wmin = t8 ? x->wd.dk / t8 : 0xFFFFu; /* 2^-16 turn */
@@ -536,7 +527,7 @@ static fx_q16_t threshold(const ctx_t *x)
         }
         if (kept >= 3 || step >= cfg->range_steps || tstep == 0)
             return t;
-        t += tstep;
+        t += (fx_q16_t)tstep;
     }
 }
 
@@ -545,7 +536,7 @@ static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3]
 {
     const optical_config_t *cfg = x->cfg;
     int32_t jx = p->x - x->ap->x, jy = p->y - x->ap->y;
-    if (oct_norm(jx, jy) > (uint32_t)cfg->jump_max && fx_hypot(jx, jy) > (uint32_t)cfg->jump_max)
+    if (fx_hypot(jx, jy) > (uint32_t)cfg->jump_max)
         return OPTICAL_E_JUMP;
     fx_angle_t dh = p->heading - x->ap->heading;
     if ((int32_t)dh > (int32_t)cfg->turn_max || (int32_t)dh < -(int32_t)cfg->turn_max)
