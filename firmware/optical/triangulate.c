@@ -77,47 +77,37 @@ static uint32_t quality(const optical_qparts_t *q, uint8_t sigma)
     return (uint32_t)r;
 }
 
-static void order3(const fx_angle_t theta[3], uint8_t o[3])
-{
-    o[0] = 0;
-    o[1] = 1;
-    o[2] = 2;
-    if (theta[1] < theta[0]) {
-        o[0] = 1;
-        o[1] = 0;
-    }
-    if (theta[2] < theta[o[1]]) {
-        o[2] = o[1];
-        o[1] = 2;
-        if (theta[2] < theta[o[0]]) {
-            o[1] = o[0];
-            o[0] = 2;
-        }
-    }
-}
-
 int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], uint32_t quality_max,
                            optical_tri_t *out)
 {
     out->quality = UINT32_MAX;
-    /* O8: sort by angle (CCW), then start after the largest gap so that it is the third. */
-    uint8_t o[3];
-    order3(theta, o);
-    fx_angle_t g[3];
-    uint8_t r = 0;
+    /* O8: B1 is the beacon from which the other two lie within the shortest turn CCW (the
+     * largest gap then lies between B3 and B1); B2 the nearer of them. */
+    static const uint8_t ring[4] = {1, 2, 0, 1};
+    uint8_t k[3] = {0, 0, 0};
+    fx_angle_t a1 = 0, a3 = UINT32_MAX;
     for (uint8_t i = 0; i < 3; i++) {
-        g[i] = theta[o[i < 2 ? i + 1 : 0]] - theta[o[i]];
-        if (g[i] == 0)
+        uint8_t j = ring[i], l = ring[i + 1];
+        fx_angle_t dj = theta[j] - theta[i], dl = theta[l] - theta[i];
+        if (dj == 0 || dl == 0)
             return OPTICAL_E_DEGENERATE;
-        if (g[i] > g[r])
-            r = i;
+        if (dj > dl) {
+            fx_angle_t t = dj;
+            dj = dl;
+            dl = t;
+            j = l;
+            l = ring[i];
+        }
+        if (dl < a3) {
+            a3 = dl;
+            a1 = dj;
+            k[0] = i;
+            k[1] = j;
+            k[2] = l;
+        }
     }
-    /* k[i]: the input index of beacon i + 1 (B1 after the largest gap, then B2, B3) */
-    uint8_t k[3];
-    for (uint8_t i = 0; i < 3; i++)
-        k[i] = o[(r + 1u + i) % 3u];
     const optical_xy_t *B2 = &b[k[1]];
-    fx_angle_t a1 = g[(r + 1u) % 3u], a2 = g[(r + 2u) % 3u];
+    fx_angle_t a2 = a3 - a1;
 
     int32_t *v = T.v, *sc = T.sc, *c = T.c;
     v[0] = b[k[0]].x - B2->x;
@@ -137,7 +127,7 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
 
     fx_sincos(a1, &sc[0], &sc[1]);
     fx_sincos(a2, &sc[2], &sc[3]);
-    fx_sincos(a1 + a2, &sc[4], &sc[5]);
+    fx_sincos(a3, &sc[4], &sc[5]);
     if (!optical_tri_core(v, sc, c))
         return OPTICAL_E_SINGULAR;
     optical_quality_parts(v, c, sc, &T.qp);
@@ -151,15 +141,15 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
      * CONSISTENT. A solution on the other arc of a circle (which the circles alone cannot tell
      * apart) leaves one off by about 180 degrees; near the beacons' circle a quantised input
      * can land there, or the arithmetic can lose the point. */
-    int32_t u[6] = {v[0] - c[0], v[1] - c[1], -c[0], -c[1], v[2] - c[0], v[3] - c[1]};
-    uint16_t h1 = optical_angle16(u[0], u[1]);
-    uint16_t d2 = (uint16_t)(optical_angle16(u[2], u[3]) - h1 - a16(a1));
-    uint16_t d3 = (uint16_t)(optical_angle16(u[4], u[5]) - h1 - a16(a1 + a2));
+    int32_t ux = v[0] - c[0], uy = v[1] - c[1];
+    uint16_t h1 = optical_angle16(ux, uy);
+    uint16_t d2 = (uint16_t)(optical_angle16(-c[0], -c[1]) - h1 - a16(a1));
+    uint16_t d3 = (uint16_t)(optical_angle16(v[2] - c[0], v[3] - c[1]) - h1 - a16(a3));
     if ((uint16_t)(d2 + CONSISTENT) > 2u * CONSISTENT ||
         (uint16_t)(d3 + CONSISTENT) > 2u * CONSISTENT)
         return OPTICAL_E_INCONSISTENT;
     /* O10: the bearing from the direction of B1 (lambda units: finer than the position's Q16)
      * and its sighting angle. */
-    out->pose.heading = fx_atan2(u[1], u[0]) - theta[k[0]];
+    out->pose.heading = fx_atan2(uy, ux) - theta[k[0]];
     return out->quality > quality_max ? OPTICAL_E_SINGULAR : OPTICAL_OK;
 }
