@@ -293,8 +293,8 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
     /* Within the bounds: each safe match narrows the heading interval for the next pass; the
      * narrower windows hold a subset of the first pass's candidates. */
     for (uint8_t pass = 1;; pass++) {
-        int16_t mid = (int16_t)((lo + hi) / 2);
-        uint16_t half = (uint16_t)((hi - lo + 1) / 2);
+        int16_t mid = (int16_t)((uint32_t)(lo + hi) >> 1); /* floor((lo + hi) / 2) */
+        uint16_t half = (uint16_t)((uint32_t)(hi - lo + 1) >> 1);
         if (pass > 1) {
             if (nc != 0xFFu)
                 optical_eval(mid, half);
@@ -328,8 +328,8 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
         hi += (int32_t)step;
         if (hi - lo >= 0x8000)
             break;
-        int16_t mid = (int16_t)((lo + hi) / 2);
-        uint16_t half = (uint16_t)((hi - lo + 1) / 2);
+        int16_t mid = (int16_t)((uint32_t)(lo + hi) >> 1); /* floor((lo + hi) / 2) */
+        uint16_t half = (uint16_t)((uint32_t)(hi - lo + 1) >> 1);
         optical_expect_scan(mid, half);
         found = unique(x, true, half, NULL, NULL);
         *widened = w;
@@ -539,7 +539,7 @@ static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3]
     if (fx_hypot(jx, jy) > (uint32_t)cfg->jump_max)
         return OPTICAL_E_JUMP;
     fx_angle_t dh = p->heading - x->ap->heading;
-    if ((int32_t)dh > (int32_t)cfg->turn_max || (int32_t)dh < -(int32_t)cfg->turn_max)
+    if (umag((int32_t)dh) > cfg->turn_max)
         return OPTICAL_E_TURN;
     uint16_t rmax = a16(cfg->resid_max), h16 = a16(p->heading);
     uint8_t checked = 0;
