@@ -75,6 +75,52 @@ if(CY_TARGET_MSP430)
                 ${A_ARGS})
         set_tests_properties(target.${name} PROPERTIES LABELS target TIMEOUT ${A_TIMEOUT})
     endfunction()
+
+    # cy_board_flash_test(NAME LIBRARY libfoo.a BUDGET bytes)
+    # target.NAME: the flash a module library takes in the main board image, against its
+    # budget (tests/target/drive_flash.py): the board's objects and libraries linked again with
+    # a roomy memory map, the library's share (text, rodata, data of every object the board
+    # reaches) summed from the linker map. Deferred to the end of the configuration, when the
+    # main board's target exists.
+    function(cy_board_flash_test name)
+        cmake_parse_arguments(A "" "LIBRARY;BUDGET" "" ${ARGN})
+        # (a deferred call reads its arguments when it runs: EVAL fixes today's values)
+        cmake_language(EVAL CODE "cmake_language(DEFER DIRECTORY [[${PROJECT_SOURCE_DIR}]] CALL
+            cy_board_flash_test_now [[${name}]] [[${A_LIBRARY}]] [[${A_BUDGET}]])")
+    endfunction()
+    function(cy_board_flash_test_now name library budget)
+        set(libs)
+        set(todo main_board)
+        while(todo)
+            list(POP_FRONT todo t)
+            foreach(prop LINK_LIBRARIES INTERFACE_LINK_LIBRARIES)
+                get_target_property(deps ${t} ${prop})
+                if(NOT deps)
+                    continue()
+                endif()
+                foreach(d IN LISTS deps)
+                    string(REGEX REPLACE "^\\$<LINK_ONLY:(.+)>$" "\\1" d "${d}")
+                    if(TARGET ${d} AND NOT d IN_LIST libs)
+                        list(APPEND libs ${d})
+                        list(APPEND todo ${d})
+                    endif()
+                endforeach()
+            endforeach()
+        endwhile()
+        set(files $<TARGET_OBJECTS:main_board>)
+        foreach(l IN LISTS libs)
+            get_target_property(type ${l} TYPE)
+            if(type STREQUAL "STATIC_LIBRARY")
+                list(APPEND files $<TARGET_FILE:${l}>)
+            endif()
+        endforeach()
+        add_test(NAME target.${name}
+            COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/target/drive_flash.py
+                --lld ${CY_LLD} --ld-dir ${PROJECT_SOURCE_DIR}/hal/msp430/ld
+                --library ${library} --budget ${budget}
+                --map ${CMAKE_BINARY_DIR}/bin/main_board_${name}.map ${files})
+        set_tests_properties(target.${name} PROPERTIES LABELS target)
+    endfunction()
 else()
     # cy_host_test(NAME SOURCES src... [LINK lib...] [LABELS l...])
     # A GoogleTest executable in bin/, registered with ctest (default label "unit").

@@ -15,281 +15,141 @@
  * docs/optical.md derives it and the quality measure.
  *
  * Fixed point: the two beacon offsets from beacon 2 are scaled by 2^sigma so that the largest
- * component lies in [2^27, 2^28) ("lambda" units); sin/cos are Q1.30; products of two go
- * through optical_dot2 (one rounding, exact 64-bit sum).
+ * component lies in [2^27, 2^28) ("lambda" units); sin/cos are Q1.30; every product of two is
+ * exact (64 bits) and rounded once per sum. The arithmetic core (the centres, the three
+ * intersections, their mean) and the quality's parts are the kernels optical_tri_core() and
+ * optical_quality_parts() (fastmath.h: assembly on the MSP430).
  */
 #include <stdbool.h>
 #include <stddef.h>
 
 #include "optical/fastmath.h"
 #include "optical/optical.h"
-#include "scratch.h"
-
-/** Largest disagreement of the three bearings of a solution (2e-4 rad). */
-#define CONSISTENT 136707l
 
 /** Offsets beyond this (Q16, 2048 m) are refused: the scaling needs them below 2^27. */
 #define SPAN_LIMIT (1l << 27)
+
+/* The work memory (optical_fix's, in a part that is free while it triangulates). */
+#define T (optical_work.u.sv)
 
 static uint32_t mag(int32_t v)
 {
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
 }
 
-static uint32_t max4(int32_t a, int32_t b, int32_t c, int32_t d)
+/*
+ * Largest disagreement of the three directions of a solution with the sightings, 2^-16 turn:
+ * 2e-4 rad (2.1) plus the error of two optical_angle16 (0.97 each) and a gap rounded to 16 bits.
+ */
+#define CONSISTENT 5u
+
+static uint16_t a16(fx_angle_t a)
 {
-    uint32_t m = mag(a), t = mag(b);
-    if (t > m)
-        m = t;
-    t = mag(c);
-    if (t > m)
-        m = t;
-    t = mag(d);
-    return t > m ? t : m;
+    return (uint16_t)((a + 0x8000ul) >> 16);
 }
 
-/*
- * One pairwise intersection, relative to the common beacon, in lambda units:
- * cross(nY, nX) rot90(W) / |W|^2 with W = sX nY - sY nX. False when the circles (nearly)
- * coincide so that the point does not fit. |n| < 2^29.5.
- */
-__attribute__((noinline)) static bool pair_point(const int32_t nX[2], fx_q30_t sX,
-                                                 const int32_t nY[2], fx_q30_t sY, int32_t out[2])
+/* floor(v / 2^n), n < 32 */
+static int32_t asr(int32_t v, uint8_t n)
 {
-    int32_t wx = optical_dot2(nY[0], sX, nX[0], -sY); /* |W| < 2^30.5 */
-    int32_t wy = optical_dot2(nY[1], sX, nX[1], -sY);
-    int32_t x = optical_dot2(nY[0], nX[1], nY[1], -nX[0]); /* cross(nY, nX) / 2^30 */
-    /* W = W~ 2^e with the larger component of W~ in [2^28, 2^29). */
-    uint32_t m = mag(wx) | mag(wy);
-    if (m == 0)
-        return false;
-    int8_t e = 0;
-    while (m < (1ul << 28)) {
-        m <<= 1;
-        wx *= 2;
-        wy *= 2;
-        e--;
-    }
-    while (m >= (1ul << 29)) {
-        m >>= 1;
-        wx /= 2;
-        wy /= 2;
-        e++;
-    }
-    int32_t d = optical_dot2(wx, wx, wy, wy); /* |W~|^2 / 2^30, in [2^26, 2^29) */
-    /* t = x 2^28 / d < 2^29.5; P = x 2^30 rot90(W~) 2^e / (d 2^30 2^2e)
-     *   = t rot90(W~) / 2^(28 + e) = fx_mul_q30(t, rot90(W~)) 2^(2 - e). */
-    int32_t t;
-    if (!fx_div_shift(x, d, 28, &t))
-        return false;
-    int32_t px = fx_mul_q30(t, -wy), py = fx_mul_q30(t, wx); /* < 2^28.5 */
-    int8_t sh = (int8_t)(2 - e);
-    for (; sh > 0; sh--) {
-        /* Beyond 2^30 lambda (eight times the beacons' span) the circles all but coincide. */
-        if (mag(px) >= (1ul << 29) || mag(py) >= (1ul << 29))
-            return false;
-        px *= 2;
-        py *= 2;
-    }
-    for (; sh < 0; sh++) {
-        px /= 2;
-        py /= 2;
-    }
-    out[0] = px;
-    out[1] = py;
-    return true;
-}
-
-/* Work area: optical_scratch (scratch.h; static, not reentrant). */
-#define T (optical_scratch.solve.t)
-
-/*
- * Quality: the RMS position error for unit independent bearing errors,
- *     S = sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2) / |r3 sin a12 + r1 sin a23 + r2 sin a31|
- * (chords c between beacons, ranges r from the vehicle), in Q16 metres per mrad, from the
- * beacon offsets in T and the vehicle (cx, cy) relative to beacon 2, lambda units; the vectors
- * are cut to 15 bits (the estimate needs a few per cent, not more).
- */
-/* |v|^2 / 2^32 of a lambda vector below 2^30.5: below 2^29. */
-static int32_t sq(int32_t x, int32_t y)
-{
-    x /= 2;
-    y /= 2;
-    return optical_dot2(x, x, y, y);
+    uint32_t u = (uint32_t)v >> n;
+    return (int32_t)(v < 0 ? u | ~(0xFFFFFFFFu >> n) : u);
 }
 
 /*
  * Quality: the RMS position error for unit independent bearing errors,
  *     S = sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2) / |r3 sin a12 + r1 sin a23 + r2 sin a31|
- * (chords c between beacons, ranges r from the vehicle), in Q16 metres per mrad, from the
- * beacon offsets in T and the vehicle (cx, cy) relative to beacon 2, lambda units.
+ * (chords c between beacons, ranges r from the vehicle), in Q16 metres per mrad:
+ * num 2^(28 + sc) / den lambda per radian (fastmath.h), / 2^sigma, / 1000.
  */
-__attribute__((noinline)) static uint32_t quality(int32_t cx, int32_t cy, uint8_t sigma)
+static uint32_t quality(const optical_qparts_t *q, uint8_t sigma)
 {
-    const int32_t *b1 = T.b1, *b3 = T.b3;
-    int32_t c12 = sq(b1[0], b1[1]), c23 = sq(b3[0], b3[1]);
-    int32_t c31 = sq(b3[0] - b1[0], b3[1] - b1[1]);
-    int32_t q1 = sq(b1[0] - cx, b1[1] - cy), q2 = sq(cx, cy), q3 = sq(b3[0] - cx, b3[1] - cy);
-    /* The squared ranges times 4^j, the largest in [2^28, 2^30): 15-bit ranges. The factor
-     * 2^j scales numerator and denominator alike. */
-    if ((q1 | q2 | q3) == 0)
+    if (q->den == 0)
         return UINT32_MAX;
-    while ((uint32_t)(q1 | q2 | q3) < (1ul << 28)) {
-        q1 *= 4;
-        q2 *= 4;
-        q3 *= 4;
+    uint8_t sh = (uint8_t)(28u + q->sc - sigma); /* sc >= 13: b1 or b3 reaches 2^27 */
+    uint32_t den = q->den;
+    while (den >= (1ul << 21)) { /* den 1000 below 2^31 */
+        den >>= 1;
+        sh--;
     }
-    /* 2^j sqrt(sum c^2 r^2) / 2^47 (each product below 2^29) */
-    uint16_t num = fx_sqrt32((uint32_t)fx_mul_q30(c12, q3) + (uint32_t)fx_mul_q30(c23, q1) +
-                             (uint32_t)fx_mul_q30(c31, q2));
-    int32_t r1 = fx_sqrt32((uint32_t)q1), r2 = fx_sqrt32((uint32_t)q2); /* 2^j range / 2^16 */
-    int32_t r3 = fx_sqrt32((uint32_t)q3);
-    /* a31 = 360 - alpha3: sin a31 = -s3. */
-    int32_t den = fx_mul_q30(r3, T.s1) + fx_mul_q30(r1, T.s2) - fx_mul_q30(r2, T.s3);
-    if (den < 0)
-        den = -den;
-    if (den == 0)
+    int32_t r;
+    if (!fx_div_shift((int32_t)q->num, (int32_t)den * 1000, sh, &r) || r < 0)
         return UINT32_MAX;
-    /* S = num 2^47 / (den 2^16) lambda; in Q16 m: / 2^sigma; per mrad: / 1000. */
-    int32_t q;
-    if (!fx_div_shift((int32_t)num, den * 1000, (uint8_t)(31 - sigma), &q) || q < 0)
-        return UINT32_MAX;
-    return (uint32_t)q;
+    return (uint32_t)r;
 }
 
 int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], uint32_t quality_max,
                            optical_tri_t *out)
 {
     out->quality = UINT32_MAX;
-    /* O8: sort by angle (CCW), then start after the largest gap so that it is the third. */
-    uint8_t o[3] = {0, 1, 2};
-    if (theta[o[1]] < theta[o[0]]) {
-        o[0] = 1;
-        o[1] = 0;
-    }
-    if (theta[o[2]] < theta[o[1]]) {
-        uint8_t t = o[2];
-        o[2] = o[1];
-        o[1] = t;
-        if (theta[o[1]] < theta[o[0]]) {
-            t = o[1];
-            o[1] = o[0];
-            o[0] = t;
+    /* O8: B1 is the beacon from which the other two lie within the shortest turn CCW (the
+     * largest gap then lies between B3 and B1); B2 the nearer of them. */
+    static const uint8_t ring[4] = {1, 2, 0, 1};
+    uint8_t k[3] = {0, 0, 0};
+    fx_angle_t a1 = 0, a3 = UINT32_MAX;
+    for (uint8_t i = 0; i < 3; i++) {
+        uint8_t j = ring[i], l = ring[i + 1];
+        fx_angle_t dj = theta[j] - theta[i], dl = theta[l] - theta[i];
+        if (dj == 0 || dl == 0)
+            return OPTICAL_E_DEGENERATE;
+        if (dj > dl) {
+            fx_angle_t t = dj;
+            dj = dl;
+            dl = t;
+            j = l;
+            l = ring[i];
+        }
+        if (dl < a3) {
+            a3 = dl;
+            a1 = dj;
+            k[0] = i;
+            k[1] = j;
+            k[2] = l;
         }
     }
-    fx_angle_t *g = T.g;
-    g[0] = theta[o[1]] - theta[o[0]];
-    g[1] = theta[o[2]] - theta[o[1]];
-    g[2] = theta[o[0]] - theta[o[2]];
-    if (g[0] == 0 || g[1] == 0 || g[2] == 0)
-        return OPTICAL_E_DEGENERATE;
-    uint8_t r = 0;
-    if (g[1] > g[r])
-        r = 1;
-    if (g[2] > g[r])
-        r = 2;
-    static const uint8_t next[3] = {1, 2, 0};
-    uint8_t k1 = next[r], k2 = next[k1], k3 = next[k2];
-    const optical_xy_t *B1 = &b[o[k1]], *B2 = &b[o[k2]], *B3 = &b[o[k3]];
-    fx_angle_t a1 = g[k1], a2 = g[k2], a3 = a1 + a2;
+    const optical_xy_t *B2 = &b[k[1]];
+    fx_angle_t a2 = a3 - a1;
 
-    int32_t *b1 = T.b1, *b3 = T.b3;
-    b1[0] = B1->x - B2->x;
-    b1[1] = B1->y - B2->y;
-    b3[0] = B3->x - B2->x;
-    b3[1] = B3->y - B2->y;
-    uint32_t m = max4(b1[0], b1[1], b3[0], b3[1]);
+    int32_t *v = T.v, *sc = T.sc, *c = T.c;
+    v[0] = b[k[0]].x - B2->x;
+    v[1] = b[k[0]].y - B2->y;
+    v[2] = b[k[2]].x - B2->x;
+    v[3] = b[k[2]].y - B2->y;
+    uint32_t m = mag(v[0]) | mag(v[1]) | mag(v[2]) | mag(v[3]);
     if (m >= SPAN_LIMIT)
         return OPTICAL_E_ARG;
-    if ((b1[0] | b1[1]) == 0 || (b3[0] | b3[1]) == 0 || (b1[0] == b3[0] && b1[1] == b3[1]))
+    if ((v[0] | v[1]) == 0 || (v[2] | v[3]) == 0 || (v[0] == v[2] && v[1] == v[3]))
         return OPTICAL_E_DEGENERATE;
     uint8_t sigma = 0;
-    while (m < (1ul << 27)) {
-        m <<= 1;
+    for (; m < (1ul << 27); m <<= 1)
         sigma++;
-    }
-    for (uint8_t i = 0; i < sigma; i++) {
-        b1[0] *= 2;
-        b1[1] *= 2;
-        b3[0] *= 2;
-        b3[1] *= 2;
-    }
+    for (uint8_t i = 0; i < 4; i++)
+        v[i] = (int32_t)((uint32_t)v[i] << sigma);
 
-    fx_sincos(a1, &T.s1, &T.c1);
-    fx_sincos(a2, &T.s2, &T.c2);
-    fx_sincos(a3, &T.s3, &T.c3);
-
-    /* Doubled homogeneous centres n = 2 sin(alpha) (c - O) of circle A (B1, B2, alpha1),
-     * B (B2, B3, alpha2) and C (B1, B3, alpha3), at the origin of each pair's common beacon:
-     *   A at B2: s1 b1 - c1 rot90(b1)      A at B1: -s1 b1 - c1 rot90(b1)
-     *   B at B2: s2 b3 + c2 rot90(b3)      B at B3: -s2 b3 + c2 rot90(b3)
-     *   C at B1: s3 q + c3 rot90(q)        C at B3: -s3 q + c3 rot90(q),   q = b3 - b1
-     * (C at B2 would be s3 (b1 + b3) + c3 rot90(q): moving the origin by bi subtracts
-     * 2 sin(alpha) bi.) rot90(v) = (-vy, vx); every n is a rotated beacon offset. */
-    int32_t q[2] = {b3[0] - b1[0], b3[1] - b1[1]};
-    T.nA[0] = optical_dot2(b1[0], T.s1, b1[1], T.c1); /* A at B2 */
-    T.nA[1] = optical_dot2(b1[1], T.s1, b1[0], -T.c1);
-    T.nB[0] = optical_dot2(b3[0], T.s2, b3[1], -T.c2); /* B at B2 */
-    T.nB[1] = optical_dot2(b3[1], T.s2, b3[0], T.c2);
-    T.s1b1[0] = optical_dot2(b1[0], -T.s1, b1[1], T.c1); /* A at B1 */
-    T.s1b1[1] = optical_dot2(b1[1], -T.s1, b1[0], -T.c1);
-    T.s3b1[0] = optical_dot2(q[0], T.s3, q[1], -T.c3); /* C at B1 */
-    T.s3b1[1] = optical_dot2(q[1], T.s3, q[0], T.c3);
-    T.s2b3[0] = optical_dot2(b3[0], -T.s2, b3[1], -T.c2); /* B at B3 */
-    T.s2b3[1] = optical_dot2(b3[1], -T.s2, b3[0], T.c2);
-    T.s3b3[0] = optical_dot2(q[0], -T.s3, q[1], -T.c3); /* C at B3 */
-    T.s3b3[1] = optical_dot2(q[1], -T.s3, q[0], T.c3);
-
-    /* The three pairwise intersections (AB at B2, AC at B1, BC at B3), summed relative to
-     * B2. */
-    int64_t sx = 0, sy = 0; /* (three values below 2^30.3: only added, never multiplied) */
-    for (uint8_t pr = 0; pr < 3; pr++) {
-        const int32_t *org = pr == 0 ? NULL : pr == 1 ? b1 : b3;
-        const int32_t *nX = pr == 0 ? T.nA : pr == 1 ? T.s1b1 : T.s2b3;
-        const int32_t *nY = pr == 0 ? T.nB : pr == 1 ? T.s3b1 : T.s3b3;
-        fx_q30_t sX = pr == 2 ? T.s2 : T.s1, sY = pr == 0 ? T.s2 : T.s3;
-        if (!pair_point(nX, sX, nY, sY, T.p))
-            return OPTICAL_E_SINGULAR;
-        sx += T.p[0] + (org ? org[0] : 0);
-        sy += T.p[1] + (org ? org[1] : 0);
-    }
-    /* Average, relative to B2 (lambda; the sums halved to 32 bits first), then to Q16
-     * metres: / 2^sigma, rounded. */
-    int32_t hx = (int32_t)(sx / 2), hy = (int32_t)(sy / 2);
-    int32_t cx = 2 * fx_mul_q30(hx, 357913941l /* 2^30 / 3 */);
-    int32_t cy = 2 * fx_mul_q30(hy, 357913941l);
-    int32_t px = cx, py = cy;
-    if (sigma) {
-        px += 1l << (sigma - 1); /* round half up: floor((v + 2^(sigma-1)) / 2^sigma) */
-        py += 1l << (sigma - 1);
-        for (uint8_t i = 0; i < sigma; i++) {
-            px = (px - (px < 0)) / 2; /* floor halving */
-            py = (py - (py < 0)) / 2;
-        }
-    }
-    out->quality = quality(cx, cy, sigma);
-
-    out->pose.x = B2->x + px;
-    out->pose.y = B2->y + py;
-    /* O10: bearing = direction to each beacon - its sighting angle, averaged. */
-    fx_angle_t *h = T.h;
-    h[0] = fx_atan2(B1->y - out->pose.y, B1->x - out->pose.x) - theta[o[k1]];
-    h[1] = fx_atan2(B2->y - out->pose.y, B2->x - out->pose.x) - theta[o[k2]];
-    h[2] = fx_atan2(B3->y - out->pose.y, B3->x - out->pose.x) - theta[o[k3]];
-    /* Each beacon must lie along its own sighting: a solution on the other arc of a circle
-     * (which the circles alone cannot tell apart) leaves one direction off by about 180
-     * degrees. Near the beacons' circle a quantised input can land there. */
-    int32_t d1 = (int32_t)(h[1] - h[0]), d2 = (int32_t)(h[2] - h[0]);
-    int32_t mean = fx_mul_q30(d1, 357913941l) + fx_mul_q30(d2, 357913941l);
-    int32_t e0 = mean, e1 = d1 - mean, e2 = d2 - mean;
-    if (e0 < 0)
-        e0 = -e0;
-    if (e1 < 0)
-        e1 = -e1;
-    if (e2 < 0)
-        e2 = -e2;
-    if (e0 > CONSISTENT || e1 > CONSISTENT || e2 > CONSISTENT)
+    fx_sincos(a1, &sc[0], &sc[1]);
+    fx_sincos(a2, &sc[2], &sc[3]);
+    fx_sincos(a3, &sc[4], &sc[5]);
+    if (!optical_tri_core(v, sc, c))
+        return OPTICAL_E_SINGULAR;
+    optical_quality_parts(v, c, sc, &T.qp);
+    out->quality = quality(&T.qp, sigma);
+    /* Relative to B2 in Q16 metres: / 2^sigma, rounded half up. */
+    int32_t half = sigma ? (int32_t)1 << (sigma - 1) : 0;
+    out->pose.x = B2->x + asr(c[0] + half, sigma);
+    out->pose.y = B2->y + asr(c[1] + half, sigma);
+    /* Each beacon must lie along its own sighting: the directions to B2 and B3 (2^-16 turn,
+     * optical_angle16) must differ from the direction to B1 by alpha1 and alpha3 within
+     * CONSISTENT. A solution on the other arc of a circle (which the circles alone cannot tell
+     * apart) leaves one off by about 180 degrees; near the beacons' circle a quantised input
+     * can land there, or the arithmetic can lose the point. */
+    int32_t ux = v[0] - c[0], uy = v[1] - c[1];
+    uint16_t h1 = optical_angle16(ux, uy);
+    uint16_t d2 = (uint16_t)(optical_angle16(-c[0], -c[1]) - h1 - a16(a1));
+    uint16_t d3 = (uint16_t)(optical_angle16(v[2] - c[0], v[3] - c[1]) - h1 - a16(a3));
+    if ((uint16_t)(d2 + CONSISTENT) > 2u * CONSISTENT ||
+        (uint16_t)(d3 + CONSISTENT) > 2u * CONSISTENT)
         return OPTICAL_E_INCONSISTENT;
-    out->pose.heading = h[0] + (fx_angle_t)mean;
+    /* O10: the bearing from the direction of B1 (lambda units: finer than the position's Q16)
+     * and its sighting angle. */
+    out->pose.heading = fx_atan2(uy, ux) - theta[k[0]];
     return out->quality > quality_max ? OPTICAL_E_SINGULAR : OPTICAL_OK;
 }

@@ -36,8 +36,17 @@
 
 static optical_capture_t cap;
 static optical_sighting_t sight[OPTICAL_MAX_SIGHTINGS];
-static optical_pose_t lat[OPTICAL_MAX_SIGHTINGS];
 static optical_fix_t fix;
+
+/* The latched poses of the recorded revolutions, or the map of the kernel checks (2 KB of
+ * RAM: never both at once). */
+static union {
+    optical_pose_t lat[OPTICAL_MAX_SIGHTINGS];
+    optical_xy_t kmap[OPTICAL_MAX_BEACONS];
+} U;
+#define lat  (U.lat)
+#define kmap (U.kmap)
+#define KW   (optical_work)
 
 static void field(const char *label, uint32_t v)
 {
@@ -197,25 +206,211 @@ static void helpers(void)
         cy_print_hex16(optical_angle16(x, y));
         cy_println();
     }
-    for (uint16_t t = 0; t < 400u; t++) {
-        /* Operands whose dot product fits: Q30-sized factors against <= 2^30 values. */
-        int32_t a = rnd_mag(), b = rnd_mag() >> 1, c = rnd_mag(), d = rnd_mag() >> 1;
-        if (t < 8) {
-            a = t & 1 ? -0x40000000l : 0x3FFFFFFFl;
-            b = t & 2 ? -0x40000000l : 0x40000000l;
-            c = t & 4 ? 0x7FFFFFFFl : -0x7FFFFFFFl;
-            d = 1;
+}
+
+/* A random int32 in [-lim, lim]. */
+static int32_t rnd_in(uint32_t lim)
+{
+    return (int32_t)(rnd32() % (2u * lim + 1u)) - (int32_t)lim;
+}
+
+static void print_marks(void)
+{
+    cy_print(" sm");
+    for (uint8_t j = 0; j < KW.n; j++) {
+        cy_print(" ");
+        cy_print_dec(KW.sm[j]);
+        if (KW.sm[j] < OPTICAL_DROPPED) {
+            cy_print(":");
+            cy_print_hex16(KW.we[j]);
         }
-        cy_print("dot2 ");
-        cy_print_hex32((uint32_t)a);
+    }
+    cy_print(" bm");
+    for (uint8_t k = 0; k < KW.nb; k++) {
         cy_print(" ");
-        cy_print_hex32((uint32_t)b);
+        cy_print_dec(KW.u.id.bm[k]);
+    }
+}
+
+/* A random scene for the identification kernels: a map (some beacons near the vehicle, some
+ * beyond the gate or the 128 m of the kernels), sightings near some beacons' directions and
+ * elsewhere, moving or not. */
+static void scene(uint8_t t)
+{
+    KW.b = kmap;
+    uint32_t span = (t & 3) == 0 ? 0x01000000u : (t & 3) == 1 ? 0x00400000u : 0x00100000u;
+    KW.x = rnd_in(span);
+    KW.y = rnd_in(span);
+    KW.nb = (uint8_t)(1u + rnd32() % OPTICAL_MAX_BEACONS);
+    for (uint8_t k = 0; k < KW.nb; k++) {
+        uint32_t r = (rnd32() & 7u) == 0 ? 0x8000u : span; /* some close */
+        kmap[k].x = KW.x + rnd_in(r);
+        kmap[k].y = KW.y + rnd_in(r);
+    }
+    KW.gate8 = (uint16_t)((rnd32() & 3u) ? 0x7FFFu : rnd32() % 0x8000u);
+    KW.head = (uint16_t)rnd32();
+    KW.eps8 = (uint16_t)(rnd32() % 200u);
+    KW.lever8 = (t & 1) ? (uint16_t)(rnd32() % 300u) : 0u;
+    uint32_t am = (uint32_t)KW.eps8 + KW.lever8;
+    KW.amax8 = am > 0xFFFFu ? 0xFFFFu : (uint16_t)am;
+    KW.n = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
+    for (uint8_t j = 0; j < KW.n; j++) {
+        uint16_t v = (uint16_t)rnd32();
+        if (rnd32() & 1u) { /* near a beacon */
+            const optical_xy_t *b = &kmap[rnd32() % KW.nb];
+            v = (uint16_t)(optical_angle16(b->x - KW.x, b->y - KW.y) - KW.head + rnd_in(400));
+        }
+        uint8_t i = j; /* ascending */
+        while (i > 0 && KW.th[i - 1] > v) {
+            KW.th[i] = KW.th[i - 1];
+            i--;
+        }
+        KW.th[i] = v;
+    }
+    for (uint8_t j = 0; j < KW.n; j++) {
+        KW.sm[j] = (rnd32() & 7u) ? OPTICAL_NONE : OPTICAL_DROPPED;
+        KW.lev[j] = KW.lever8 ? (uint16_t)(rnd32() % (KW.lever8 + 1u)) : 0u;
+    }
+    uint8_t j = 0;
+    for (uint8_t b = 0; b < 16; b++) {
+        while (j < KW.n && (KW.th[j] >> 12) < b)
+            j++;
+        KW.bstart[b] = j < KW.n ? j : 0;
+    }
+}
+
+/* The identification kernels on random scenes, and the width check. */
+static void kernels(void)
+{
+    static cy_bench_stat_t st_exs = {"optical_expect_scan_per_beacon", 0, 0, 0};
+    static cy_bench_stat_t st_eval = {"optical_eval_per_pair", 0, 0, 0};
+    static cy_bench_stat_t st_core = {"optical_tri_core", 0, 0, 0};
+    static cy_bench_stat_t st_qual = {"optical_quality_parts", 0, 0, 0};
+    static cy_bench_stat_t st_a16 = {"optical_angle16", 0, 0, 0};
+    for (uint8_t t = 0; t < 60; t++) {
+        scene(t);
+        int16_t mid = (int16_t)rnd_in(600);
+        uint16_t half = (uint16_t)(rnd32() % ((t & 7) == 7 ? 0x7000u : 1200u));
+        uint8_t st;
+        uint16_t t0 = cy_bench_now();
+        st = optical_expect_scan(mid, half);
+        uint16_t t1 = cy_bench_now();
+        if ((t & 7) != 7 && !st)
+            cy_bench_add(&st_exs, (uint16_t)(t1 - t0) / KW.nb);
+        cy_print("exs ");
+        cy_print_dec(t);
+        cy_print(" st ");
+        cy_print_dec(st);
+        for (uint8_t k = 0; k < KW.nb && !st; k++) {
+            cy_print(" ");
+            if (KW.u.id.e[k] == 0) {
+                cy_print("-");
+                continue;
+            }
+            cy_print_hex16(KW.u.id.psi[k]);
+            cy_print(":");
+            cy_print_hex16(KW.u.id.e[k]);
+            cy_print(":");
+            cy_print_hex16(KW.u.id.g[k]);
+        }
+        print_marks();
+        cy_print(" nc ");
+        cy_print_dec(KW.nc);
+        for (uint8_t c = 0; c < KW.nc && KW.nc != 0xFFu; c++) {
+            cy_print(" ");
+            cy_print_dec(KW.u.id.cand[2 * c]);
+            cy_print("/");
+            cy_print_dec(KW.u.id.cand[2 * c + 1]);
+        }
+        cy_println();
+        if (st || KW.nc == 0xFFu)
+            continue;
+        half = (uint16_t)(half / 2u);
+        mid = (int16_t)(mid + rnd_in(100));
+        t0 = cy_bench_now();
+        optical_eval(mid, half);
+        t1 = cy_bench_now();
+        if (KW.nc)
+            cy_bench_add(&st_eval, (uint16_t)(t1 - t0) / KW.nc);
+        cy_print("eval ");
+        cy_print_dec(t);
+        print_marks();
+        cy_println();
+    }
+    cy_bench_report(&st_exs);
+    cy_bench_report(&st_eval);
+    /* The triangulation kernels: offsets scaled as optical_triangulate scales them, the
+     * inscribed angles from random sighting gaps (some near 0 and 180 degrees). */
+    for (uint8_t t = 0; t < 120; t++) {
+        int32_t v[4], sc[6], out[2] = {0, 0};
+        uint32_t m = 0;
+        for (uint8_t i = 0; i < 4; i++) {
+            v[i] = rnd_in(t & 1 ? 0x07FFFFFFu : 0x00FFFFFFu);
+            m |= v[i] < 0 ? 0u - (uint32_t)v[i] : (uint32_t)v[i];
+        }
+        if (m == 0)
+            continue;
+        while (m < (1ul << 27)) {
+            m <<= 1;
+            for (uint8_t i = 0; i < 4; i++)
+                v[i] *= 2;
+        }
+        fx_angle_t a1 = rnd32() >> 1, a2 = rnd32() >> 1;
+        if (t % 5 == 0)
+            a1 = (fx_angle_t)rnd_in(3000) + (t & 2 ? 0x80000000u : 0u);
+        fx_sincos(a1, &sc[0], &sc[1]);
+        fx_sincos(a2, &sc[2], &sc[3]);
+        fx_sincos(a1 + a2, &sc[4], &sc[5]);
+        uint16_t t0 = cy_bench_now();
+        bool ok = optical_tri_core(v, sc, out);
+        uint16_t t1 = cy_bench_now();
+        cy_bench_add(&st_core, (uint16_t)(t1 - t0));
+        cy_print("tri ");
+        cy_print_dec(t);
         cy_print(" ");
-        cy_print_hex32((uint32_t)c);
+        cy_print_dec(ok);
+        field("x", (uint32_t)out[0]);
+        field("y", (uint32_t)out[1]);
+        if (ok) {
+            optical_qparts_t q;
+            t0 = cy_bench_now();
+            optical_quality_parts(v, out, sc, &q);
+            t1 = cy_bench_now();
+            cy_bench_add(&st_qual, (uint16_t)(t1 - t0));
+            field("n", q.num);
+            field("d", q.den);
+            field("s", q.sc);
+        }
+        cy_println();
+    }
+    cy_bench_report(&st_core);
+    cy_bench_report(&st_qual);
+    for (uint8_t t = 0; t < 50; t++) {
+        volatile int32_t x = rnd_in(0x00200000u), y = rnd_in(0x00200000u);
+        uint16_t t0 = cy_bench_now();
+        (void)optical_angle16(x, y);
+        uint16_t t1 = cy_bench_now();
+        cy_bench_add(&st_a16, (uint16_t)(t1 - t0));
+    }
+    cy_bench_report(&st_a16);
+    for (uint16_t t = 0; t < 300; t++) {
+        optical_width_t w;
+        optical_xy_t b;
+        w.dk = 213000u + rnd32() % 1000000u;
+        w.x = rnd_in(0x00800000u);
+        w.y = rnd_in(0x00800000u);
+        uint32_t r = (t & 1) ? 0x00100000u : 0x02000000u;
+        b.x = w.x + rnd_in(r);
+        b.y = w.y + rnd_in(r);
+        w.eps8 = (uint16_t)(rnd32() % 300u);
+        w.tol8 = (uint16_t)(rnd32() % 300u);
+        w.rel16 = (uint16_t)rnd32();
+        w.flat = (uint8_t)(rnd32() & 1u);
+        uint16_t w16 = (uint16_t)(rnd32() % ((t & 3) ? 400u : 9000u));
+        cy_print("wok ");
+        cy_print_dec(t);
         cy_print(" ");
-        cy_print_hex32((uint32_t)d);
-        cy_print(" ");
-        cy_print_hex32((uint32_t)optical_dot2(a, b, c, d));
+        cy_print_dec(optical_width_ok(&w, &b, w16));
         cy_println();
     }
 }
@@ -450,6 +645,7 @@ int main(void)
     cy_bench_init();
     cy_print("# optical vectors\n");
     helpers();
+    kernels();
     fixes();
     reflectors();
     bench();

@@ -1,229 +1,738 @@
 /*
- * optical_fast.S - MSP430 versions of the two hot helpers of firmware/optical (fastmath.c
- * holds the portable C that defines the results; these perform the very same integer steps,
- * and tests/vectors/optical_vectors.c checks them bit for bit on both worlds).
+ * optical_fast.S - MSP430 versions of the identification kernels of firmware/optical:
+ * optical_angle16, optical_expect_scan, optical_eval (fastmath.c holds the portable C that
+ * defines the results; these perform the very same integer steps, and
+ * tests/vectors/optical_vectors.c checks them bit for bit on both worlds).
  *
- * Registers as clang emits calls (TI EABI): 32-bit arguments in R13:R12 and R15:R14 (R12 the
- * low word), further ones on the stack; results in R12 (16 bits) or R13:R12; R11..R15 may be
- * clobbered, R4..R10 are preserved. The 16 x 16 hardware multiplier (MPY 0x130, OP2 0x138,
- * RESLO 0x13A, RESHI 0x13C) is used with interrupts held off (SR saved, restored by POP SR),
- * as the compiler's and fx's multiply helpers do; the instruction after DINT never touches
- * it. Loops avoid the constant-generator immediates, which mspdebug's simulator charges like
- * memory operands (see firmware/fx/msp430/fx_trig.S).
+ * Registers as clang emits calls (TI EABI): arguments in R12..R15 (32-bit ones in pairs, R12
+ * the low word), results in R12; R11..R15 may be clobbered, R4..R10 are preserved. The
+ * 16 x 16 hardware multiplier (MPY 0x130, OP2 0x138, RESLO 0x13A, RESHI 0x13C) is used with
+ * interrupts held off (SR saved, restored by POP SR) for at most about 70 cycles, as the
+ * compiler's and fx's multiply helpers do; the instruction after DINT never touches it.
+ * Cycle counts are mspdebug's: it charges the constant-generator immediates #1, #2, #4, #8 and
+ * #-1 like memory operands (see firmware/fx/msp430/fx_trig.S).
  */
     .set MPY,   0x0130
     .set OP2,   0x0138
     .set RESLO, 0x013a
     .set RESHI, 0x013c
 
+/* optical_work_t (fastmath.h; offsets checked by static assertions in fastmath.c) */
+    .set OW,        optical_work
+    .set OW_B,      0
+    .set OW_X,      2
+    .set OW_Y,      6
+    .set OW_HEAD,   10
+    .set OW_EPS8,   12
+    .set OW_LEVER8, 14
+    .set OW_AMAX8,  16
+    .set OW_GATE8,  18
+    .set OW_NB,     20
+    .set OW_N,      21
+    .set OW_NC,     22
+    .set OW_TH,     24
+    .set OW_LEV,    54
+    .set OW_WE,     84
+    .set OW_SM,     174
+    .set OW_BSTART, 189
+    .set OW_PSI,    250
+    .set OW_E,      314
+    .set OW_G,      378
+    .set OW_BM,     442
+    .set OW_CAND,   474
+
+    .set NONE,     0xff
+    .set MULTI,    0xfe
+    .set DROPPED,  0xfd
+    .set MARGIN,   6
+    .set MAXCAND,  40
+
+/* The current window centre and half-width (optical_expect_scan, optical_eval). */
+    .section .bss.optical_scan_args,"aw",@nobits
+    .balign 2
+sc_mid:  .skip 2
+sc_half: .skip 2
+
+/* The octant's unfolding: angle = base[f] +- a, minus when neg[f] (f: 1 swapped, 2 dx < 0,
+ * 4 dy < 0). */
+    .section .rodata.optical_unfold,"a",@progbits
+    .balign 2
+oct_base:
+    .short  0, 16384, 32768, 16384, 0, 49152, 32768, 49152
+oct_neg:
+    .byte   0, 1, 1, 0, 1, 0, 0, 1
+/* The scale of the window factor: ceil(2^(9 + l) k), k = 1, 2/3, l = 0..6. */
+    .balign 2
+gscale:
+    .short  512, 1024, 2048, 4096, 8192, 16384, 32768
+    .short  342, 683, 1366, 2731, 5462, 10923, 21846
+
 /*
- * uint16_t optical_angle16(int32_t dx, int32_t dy): R13:R12 = dx, R15:R14 = dy -> R12.
- * Steps of optical_angle16() in fastmath.c: magnitudes, swapped so that ay <= ax (flag),
- * both shifted right until ax < 2^15, q = floor(2^15 ay / ax) by restoring division (15
- * steps, the quotient behind a sentinel bit whose carry-out ends the loop), q = (q + 1) >> 1,
- * a = T[q >> 8] + ((T[(q >> 8) + 1] - T[q >> 8]) (q & 255) + 128) >> 8, unfolded.
- * Flags in R10: 0x100 dx < 0, 0x200 dy < 0, 0x400 swapped.
+ * The octant's arctangent (octant() in fastmath.c): R12 = u in [2^15, 2^16), R14 = v <= u,
+ * R11 = flags (1 swapped, 2 dx < 0, 4 dy < 0) -> R12 = the angle (2^-16 turn), R13 = r
+ * (2^30 / u), R14 = 2 min(i, 63). Clobbers R15. Interrupts held off for 70 cycles.
  */
+    .section .text.optical_octant,"ax",@progbits
+octant:
+    mov     r12, r15                ; f = u << 7
+    rla     r15
+    rla     r15
+    rla     r15
+    rla     r15
+    rla     r15
+    rla     r15
+    rla     r15
+    mov     r12, r13                ; 2 (u >> 9): recip_tab - 128 based
+    swpb    r13
+    and     #0x00fe, r13
+    push    r2
+    dint
+    push    r11
+    mov     r15, &MPY
+    mov     optical_recip_tab-128(r13), r11
+    mov     r11, r15                ; RT[i] - RT[i+1]
+    sub     optical_recip_tab-126(r13), r15
+    mov     r15, &OP2
+    mov     &RESLO, r15
+    add     #0x8000, r15
+    mov     &RESHI, r15
+    adc     r15
+    sub     r15, r11                ; r
+    mov     r11, r13
+    cmp     r12, r14                ; v >= u: 45 degrees (2^-18 turn)
+    jlo     1f
+    mov     #32768, r12
+    mov     #126, r14
+    jmp     3f
+1:  mov     r14, &MPY               ; q = (v r) >> 14, saturated
+    mov     r13, &OP2
+    mov     &RESLO, r11
+    mov     &RESHI, r12
+    cmp     #0x4000, r12
+    jhs     4f
+    rla     r11
+    rlc     r12
+    rla     r11
+    rlc     r12
+2:  mov     r12, r14                ; 2 (q >> 10)
+    swpb    r14
+    mov.b   r14, r14
+    rra     r14
+    and     #0x007e, r14
+    rla     r12                     ; f = q << 6
+    rla     r12
+    rla     r12
+    rla     r12
+    rla     r12
+    rla     r12
+    mov     r12, &MPY
+    mov     optical_atan_tab(r14), r12
+    mov     optical_atan_tab+2(r14), r11
+    sub     r12, r11                ; AT[i+1] - AT[i]
+    mov     r11, &OP2
+    mov     &RESLO, r11
+    add     #0x8000, r11
+    mov     &RESHI, r11
+    adc     r11
+    add     r11, r12                ; a, 2^-18 turn
+3:  pop     r11
+    pop     r2
+    add     #2, r12                 ; (a + 2) >> 2 (a <= 32768)
+    clrc
+    rrc     r12
+    rra     r12
+    tst.b   oct_neg(r11)            ; unfold
+    jz      5f
+    inv     r12
+    inc     r12
+5:  mov     r11, r15
+    add     r15, r15
+    add     oct_base(r15), r12
+    ret
+4:  mov     #-1, r12
+    jmp     2b
+
+/* uint16_t optical_angle16(int32_t dx, int32_t dy): R13:R12 = dx, R15:R14 = dy -> R12. */
     .section .text.optical_angle16,"ax",@progbits
     .global optical_angle16
     .type optical_angle16,@function
 optical_angle16:
-    push    r10
-    clr     r10
+    clr     r11                     ; magnitudes, flags
     tst     r13
     jge     1f
     inv     r12
     inv     r13
     add     #1, r12
     adc     r13
-    bis     #0x100, r10
+    bis     #2, r11
 1:  tst     r15
     jge     2f
     inv     r14
     inv     r15
     add     #1, r14
     adc     r15
-    bis     #0x200, r10
+    bis     #4, r11
 2:  cmp     r13, r15                ; ay > ax: swap
     jlo     4f
     jne     3f
     cmp     r14, r12
     jhs     4f
-3:  mov     r12, r11
-    mov     r14, r12
-    mov     r11, r14
-    mov     r13, r11
-    mov     r15, r13
-    mov     r11, r15
-    bis     #0x400, r10
-4:  tst     r13                     ; ax >= 2^16: shift both right until the high word is 0
-    jz      6f
-    clrc                            ; (ax may be 2^31: a logical shift first)
-    rrc     r13
+3:  xor     r12, r14
+    xor     r14, r12
+    xor     r12, r14
+    xor     r13, r15
+    xor     r15, r13
+    xor     r13, r15
+    bis     #1, r11
+4:  tst     r13                     ; both to [2^15, 2^16): right by 8, 4, 2, 1, 1
+    jz      20f
+    cmp     #0x0100, r13            ; (logical: ax may be 2^31)
+    jlo     11f
+    swpb    r12
+    swpb    r13
+    mov.b   r12, r12
+    push    r13
+    and     #0xff00, r13
+    bis     r13, r12
+    pop     r13
+    mov.b   r13, r13
+    swpb    r14
+    swpb    r15
+    mov.b   r14, r14
+    push    r15
+    and     #0xff00, r15
+    bis     r15, r14
+    pop     r15
+    mov.b   r15, r15
+11: cmp     #0x0010, r13
+    jlo     12f
+    rra     r13
     rrc     r12
-    clrc
-    rrc     r15
-    rrc     r14
-5:  tst     r13
-    jz      6f
+    rra     r13
+    rrc     r12
+    rra     r13
+    rrc     r12
     rra     r13
     rrc     r12
     rra     r15
     rrc     r14
-    jmp     5b
-6:  tst     r12                     ; ax >= 2^15: once more
-    jge     7f
-    clrc
-    rrc     r12
-    clrc
+    rra     r15
     rrc     r14
-7:  tst     r12
-    jz      zero
-    cmp     r12, r14                ; ay == ax: 45 degrees
-    jlo     8f
-    mov     #8192, r12
-    jmp     unfold
-8:  mov     #2, r13                 ; quotient behind a sentinel: 15 steps
-9:  rla     r14
-    cmp     r12, r14
-    jlo     10f
-    sub     r12, r14                ; C = 1: quotient bit 1
-10: rlc     r13
-    jnc     9b
-    add     #1, r13                 ; q = (q + 1) >> 1 (no carry: C = 0 for the RRC)
-    rrc     r13
-    mov     r13, r11                ; i = q >> 8, table offset 2i
-    swpb    r11
-    mov.b   r11, r11
-    rla     r11
-    mov     optical_atan_tab(r11), r12
-    mov.b   r13, r13                ; f = q & 255
-    tst     r13
-    jz      unfold
-    mov     optical_atan_tab+2(r11), r15
-    sub     r12, r15                ; T[i+1] - T[i]
+    rra     r15
+    rrc     r14
+    rra     r15
+    rrc     r14
+12: cmp     #0x0004, r13
+    jlo     13f
+    rra     r13
+    rrc     r12
+    rra     r13
+    rrc     r12
+    rra     r15
+    rrc     r14
+    rra     r15
+    rrc     r14
+13: cmp     #0x0002, r13
+    jlo     14f
+    rra     r13
+    rrc     r12
+    rra     r15
+    rrc     r14
+14: tst     r13
+    jz      octant
+    rra     r13
+    rrc     r12
+    rra     r15
+    rrc     r14
+    jmp     octant
+20: tst     r12                     ; ax < 2^16 (ay too): left by 8, 4, 2, 1
+    jz      9f
+    call    #norm16
+    jmp     octant
+9:  ret
+
+/*
+ * Left to [2^15, 2^16): R12 = u (1..0xffff), R14 = v <= u, by 8, 4, 2, 1 bits -> R10 += the
+ * shift.
+ */
+    .section .text.optical_norm16,"ax",@progbits
+norm16:
+    cmp     #0x0100, r12
+    jhs     1f
+    swpb    r12
+    swpb    r14
+    add     #8, r10
+1:  cmp     #0x1000, r12
+    jhs     2f
+    rla     r12
+    rla     r12
+    rla     r12
+    rla     r12
+    rla     r14
+    rla     r14
+    rla     r14
+    rla     r14
+    add     #4, r10
+2:  cmp     #0x4000, r12
+    jhs     3f
+    rla     r12
+    rla     r12
+    rla     r14
+    rla     r14
+    add     #2, r10
+3:  tst     r12
+    jn      4f
+    rla     r12
+    rla     r14
+    add     #1, r10
+4:  ret
+
+/*
+ * Window part with margin: R13 = lever l (2^-8 m), R11 = g -> R15 = min(ceil(l g / 256),
+ * 0x7fff) + MARGIN (0x7fff + MARGIN for g = 0xffff). Clobbers R13.
+ */
+    .section .text.optical_win6,"ax",@progbits
+win6:
+    mov     #0x7fff+MARGIN, r15
+    cmp     #-1, r11
+    jeq     2f
     push    r2
     dint
-    mov     r12, r14
-    mov     r15, &MPY
-    mov     r13, &OP2
+    nop
+    mov     r13, &MPY
+    mov     r11, &OP2
     mov     &RESLO, r15
+    add     #255, r15
+    mov     &RESHI, r13
+    adc     r13
     pop     r2
-    add     #128, r15
+    cmp     #0x0080, r13            ; >= 2^15 after the shift: cap
+    jhs     1f
+    swpb    r13                     ; (hi:lo) >> 8
     swpb    r15
     mov.b   r15, r15
-    add     r15, r14
-    mov     r14, r12
-unfold:
-    bit     #0x400, r10
-    jz      11f
-    mov     #16384, r11
-    sub     r12, r11
-    mov     r11, r12
-11: bit     #0x100, r10
-    jz      12f
-    mov     #32768, r11
-    sub     r12, r11
-    mov     r11, r12
-12: bit     #0x200, r10
-    jz      13f
-    inv     r12
-    add     #1, r12
-13: pop     r10
+    bis     r13, r15
+    add     #MARGIN, r15
     ret
-zero:
-    clr     r12
-    pop     r10
+1:  mov     #0x7fff+MARGIN, r15
+2:  ret
+
+/*
+ * Marks (test() in fastmath.c): R12 = sighting j, R13 = 2j, R4 = 2 beacon k, R15 = w: sm[j],
+ * bm[k] get the partner or MULTI, we[j] = w. mark_keep also keeps the pair (cand, nc), keep
+ * only that. Clobbers R15 (and R9 = k).
+ */
+    .section .text.optical_mark,"ax",@progbits
+mark:
+    mov     r15, OW+OW_WE(r13)
+    mov     r4, r9
+    rra     r9
+    cmp.b   #NONE, OW+OW_SM(r12)
+    jne     1f
+    mov.b   r9, OW+OW_SM(r12)
+    jmp     2f
+1:  mov.b   #MULTI, OW+OW_SM(r12)
+2:  cmp.b   #NONE, OW+OW_BM(r9)
+    jne     3f
+    mov.b   r12, OW+OW_BM(r9)
+    ret
+3:  mov.b   #MULTI, OW+OW_BM(r9)
+    ret
+mark_keep:
+    call    #mark
+keep:
+    mov.b   &OW+OW_NC, r15
+    cmp.b   #0xff, r15
+    jeq     5f
+    cmp.b   #MAXCAND, r15
+    jlo     4f
+    mov.b   #0xff, &OW+OW_NC
+    ret
+4:  add     r15, r15
+    mov.b   r12, OW+OW_CAND(r15)
+    mov     r4, r9
+    rra     r9
+    mov.b   r9, OW+OW_CAND+1(r15)
+    inc.b   &OW+OW_NC
+5:  ret
+
+/*
+ * Pair test (test() in fastmath.c): R12 = j, R13 = 2j, R4 = 2k -> carry set when the pair
+ * lies within the windows (sc_mid, sc_half) (then marked). Clobbers R9, R11, R14, R15.
+ */
+    .section .text.optical_pair,"ax",@progbits
+pair_test:
+    mov     OW+OW_E(r4), r15        ; w = e[k], or the lever's window
+    tst     &OW+OW_LEVER8
+    jz      1f
+    mov     OW+OW_LEV(r13), r11
+    tst     r11
+    jz      1f
+    push    r13
+    mov     &OW+OW_EPS8, r13        ; min(eps8 + lev, 0xffff)
+    add     r11, r13
+    jnc     2f
+    mov     #-1, r13
+2:  mov     OW+OW_G(r4), r11
+    call    #win6
+    pop     r13
+1:  mov     OW+OW_TH(r13), r11      ; |th[j] - psi[k] - mid|
+    sub     OW+OW_PSI(r4), r11
+    sub     &sc_mid, r11
+    tst     r11
+    jge     3f
+    inv     r11
+    inc     r11
+3:  mov     &sc_half, r14           ; half + w
+    add     r15, r14
+    cmp     r11, r14
+    jlo     4f
+    call    #mark
+    setc
+    ret
+4:  clrc
+    ret
+
+/* Clear the marks: sm (except DROPPED) and bm to NONE. Clobbers R14, R15. */
+    .section .text.optical_clear,"ax",@progbits
+clear_marks:
+    mov.b   &OW+OW_N, r14
+    clr     r15
+    tst     r14
+    jz      2f
+1:  cmp.b   #DROPPED, OW+OW_SM(r15)
+    jeq     3f
+    mov.b   #NONE, OW+OW_SM(r15)
+3:  inc     r15
+    cmp     r14, r15
+    jlo     1b
+2:  mov.b   &OW+OW_NB, r14
+    clr     r15
+4:  mov     #-1, OW+OW_BM(r15)      ; two at a time (the array has room for 32)
+    incd    r15
+    cmp     r14, r15
+    jlo     4b
     ret
 
 /*
- * int32_t optical_dot2(int32_t a, int32_t b, int32_t c, int32_t d): R13:R12 = a,
- * R15:R14 = b, c and d on the stack -> R13:R12 = floor((a b + c d + 2^29) / 2^30).
- * Each product is the unsigned 64-bit product of the two's-complement words, corrected
- * modulo 2^64 (a < 0: b from the high half; b < 0: a from the high half); their sum is
- * exact modulo 2^64, so the result is exact whenever it fits 32 bits (the caller's part).
- * The sum W3:W2:W1:W0 lives in R9:R8:R7:R6. Interrupts are held off for about 100 cycles.
+ * uint8_t optical_expect_scan(int16_t mid, uint16_t half): R12 = mid, R13 = half -> R12 = 0,
+ * or 1 when a beacon lies beyond the coordinate limit.
+ * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000), R7 = mid -
+ * half, R8 = 2 half; per beacon R9 = m8, R10 = l, R11 = flags.
  */
-    .section .text.optical_dot2,"ax",@progbits
-    .global optical_dot2
-    .type optical_dot2,@function
-optical_dot2:
+    .section .text.optical_expect_scan,"ax",@progbits
+    .global optical_expect_scan
+    .type optical_expect_scan,@function
+optical_expect_scan:
+    push    r10
     push    r9
     push    r8
     push    r7
     push    r6
-    push    r2                      ; c at 12(SP), d at 16(SP) from here
-    dint
-    mov     r13, r11
-    mov     r12, &MPY               ; a_lo b_lo
-    mov     r14, &OP2
-    mov     &RESLO, r6
-    mov     &RESHI, r7
-    mov     r15, &OP2               ; a_lo b_hi
-    add     &RESLO, r7
-    mov     &RESHI, r8
-    adc     r8
-    mov     r11, &MPY               ; a_hi b_lo
-    mov     r14, &OP2
-    add     &RESLO, r7
-    addc    &RESHI, r8
-    clr     r9
-    adc     r9
-    mov     r15, &OP2               ; a_hi b_hi
-    add     &RESLO, r8
-    addc    &RESHI, r9
-    tst     r13                     ; a < 0: W3:W2 -= b
+    push    r5
+    push    r4
+    mov     r12, &sc_mid
+    mov     r13, &sc_half
+    mov     r12, r7
+    sub     r13, r7
+    mov     r13, r8
+    add     r8, r8
+    call    #clear_marks
+    clr.b   &OW+OW_NC
+    mov     &OW+OW_B, r5
+    clr     r4
+    clr     r6
+beacon:
+    mov.b   &OW+OW_NB, r12          ; 2k < 2 nb
+    add     r12, r12
+    cmp     r12, r4
+    jhs     es_done
+    mov     @r5+, r12               ; bx, by
+    mov     @r5+, r13
+    mov     @r5+, r14
+    mov     @r5+, r15
+    mov     r13, r9                 ; |bx|, |by| < 2^29: high word + 0x2000 below 0x4000
+    add     #0x2000, r9
+    bis     r9, r6
+    mov     r15, r9
+    add     #0x2000, r9
+    bis     r9, r6
+    sub     &OW+OW_X, r12           ; dx, dy
+    subc    &OW+OW_X+2, r13
+    sub     &OW+OW_Y, r14
+    subc    &OW+OW_Y+2, r15
+    clr     OW+OW_E(r4)             ; gated out until known
+    mov     r13, r9                 ; within +-2^23
+    add     #0x0080, r9
+    mov     r15, r10
+    add     #0x0080, r10
+    bis     r10, r9
+    cmp     #0x0100, r9
+    jhs     next_beacon
+    swpb    r12                     ; x8 = floor(dx / 256), y8
+    mov.b   r12, r12
+    swpb    r13
+    and     #0xff00, r13
+    bis     r13, r12
+    swpb    r14
+    mov.b   r14, r14
+    swpb    r15
+    and     #0xff00, r15
+    bis     r15, r14
+    clr     r11                     ; magnitudes, flags
+    tst     r12
     jge     1f
-    sub     r14, r8
-    subc    r15, r9
-1:  tst     r15                     ; b < 0: W3:W2 -= a
+    mov     r12, r9
+    clr     r12
+    sub     r9, r12
+    bis     #2, r11
+1:  tst     r14
     jge     2f
-    sub     r12, r8
-    subc    r13, r9
-2:  mov     12(r1), r12             ; c
-    mov     14(r1), r13
-    mov     16(r1), r14             ; d
-    mov     18(r1), r15
-    mov     r12, &MPY               ; c_lo d_lo
-    mov     r14, &OP2
-    add     &RESLO, r6
-    addc    &RESHI, r7
-    adc     r8
-    adc     r9
-    mov     r15, &OP2               ; c_lo d_hi
-    add     &RESLO, r7
-    addc    &RESHI, r8
-    adc     r9
-    mov     r13, &MPY               ; c_hi d_lo
-    mov     r14, &OP2
-    add     &RESLO, r7
-    addc    &RESHI, r8
-    adc     r9
-    mov     r15, &OP2               ; c_hi d_hi
-    add     &RESLO, r8
-    addc    &RESHI, r9
+    mov     r14, r9
+    clr     r14
+    sub     r9, r14
+    bis     #4, r11
+2:  cmp     r12, &OW+OW_GATE8       ; beyond the gate
+    jlo     next_beacon
+    cmp     r14, &OW+OW_GATE8
+    jlo     next_beacon
+    cmp     r14, r12                ; the larger in R12
+    jhs     3f
+    xor     r12, r14
+    xor     r14, r12
+    xor     r12, r14
+    bis     #1, r11
+3:  mov     r12, r9                 ; m8
+    clr     r10                     ; l
+    tst     r12
+    jz      4f                      ; (0, 0): angle 0
+    jn      5f
+    call    #norm16
+5:  call    #octant                 ; R12 angle, R13 r, R14 2 min(i, 63)
+4:  sub     &OW+OW_HEAD, r12        ; psi
+    mov     r12, OW+OW_PSI(r4)
+    mov     r12, r15                ; lo = psi + mid - half - e (e added below)
+    add     r7, r15
+    push    r15
+    ; g: no bound within amax8 or 0.3 m; e = win(eps8, g) + margin
+    mov     #-1, r11
+    cmp     #77, r9
+    jlo     20f
+    cmp     r9, &OW+OW_AMAX8
+    jhs     20f
+    push    r2
+    dint
+    mov     &OW+OW_AMAX8, r15
+    mov     r13, &MPY               ; h = (r C) >> 16
+    mov     optical_ct_tab(r14), &OP2
+    mov     &RESHI, r13
+    clr     r14                     ; k = 1, or 2/3 when m8 >= 2 amax8
+    rla     r15
+    jc      11f
+    cmp     r15, r9
+    jlo     11f
+    mov     #14, r14
+11: cmp     #7, r10
+    jhs     12f
+    add     r10, r14                ; g = (h scale[k][l]) >> 16 + 1
+    add     r10, r14
+    mov     r13, &MPY
+    mov     gscale(r14), &OP2
+    mov     &RESHI, r11
+    add     #1, r11
+    mov     &OW+OW_EPS8, &MPY       ; e = ceil(eps8 g / 256), capped, + margin
+    mov     r11, &OP2
+    mov     &RESLO, r15
+    add     #255, r15
+    mov     &RESHI, r13
+    adc     r13
     pop     r2
-    tst     r13                     ; c < 0: W3:W2 -= d
-    jge     3f
-    sub     r14, r8
-    subc    r15, r9
-3:  tst     r15                     ; d < 0: W3:W2 -= c
-    jge     4f
-    sub     r12, r8
-    subc    r13, r9
-4:  add     #0x2000, r7             ; + 2^29
-    adc     r8
-    adc     r9
-    rla     r7                      ; >> 30: W3:W2:W1 << 2, the result W3:W2
-    rlc     r8
-    rlc     r9
-    rla     r7
-    rlc     r8
-    rlc     r9
-    mov     r8, r12
-    mov     r9, r13
+    cmp     #0x0080, r13
+    jhs     17f
+    swpb    r13
+    swpb    r15
+    mov.b   r15, r15
+    bis     r13, r15
+    add     #MARGIN, r15
+    jmp     21f
+17: mov     #0x7fff+MARGIN, r15
+    jmp     21f
+12: tst     r14                     ; l >= 7: (h or (2h + 2) / 3) << (l - 7)
+    jz      13f
+    rla     r13
+    add     #2, r13
+    mov     r13, &MPY
+    mov     #0xaaab, &OP2           ; floor(x 43691 / 2^17) = floor(x / 3), x < 2^16
+    mov     &RESHI, r13
+    clrc
+    rrc     r13
+13: pop     r2
+    sub     #7, r10
+    jz      15f
+14: tst     r13
+    jn      16f
+    rla     r13
+    sub     #1, r10
+    jnz     14b
+15: cmp     #0xfffe, r13
+    jhs     16f
+    add     #1, r13
+    mov     r13, r11
+    jmp     20f
+16: mov     #0xfffe, r11
+20: mov     &OW+OW_EPS8, r13
+    call    #win6
+21: mov     r11, OW+OW_G(r4)
+    mov     r15, OW+OW_E(r4)
+    ; the scan: wmax = e (standing) or the largest lever's window, + half
+    tst     &OW+OW_LEVER8
+    jz      22f
+    mov     &OW+OW_AMAX8, r13
+    call    #win6
+22: pop     r10                     ; lo = psi + mid - half - w, span = 2 (half + w)
+    sub     r15, r10
+    mov     r15, r9
+    add     r9, r9
+    add     r8, r9
+    mov.b   &OW+OW_N, r14           ; c = n
+    tst     r14
+    jz      next_beacon
+    add     &sc_half, r15           ; wmax
+    cmp     #0x7000, r15
+    jhs     scan_all
+    mov     r10, r12                ; j = bstart[lo >> 12]
+    swpb    r12
+    mov.b   r12, r12
+    rra     r12
+    rra     r12
+    rra     r12
+    rra     r12
+    mov.b   OW+OW_BSTART(r12), r12
+    tst     &OW+OW_LEVER8
+    jnz     scan_lever
+scan:                               ; standing: rel <= span is the window test itself
+    mov     r12, r13
+    add     r13, r13
+    mov     OW+OW_TH(r13), r11
+    sub     r10, r11
+    cmp     #0xf000, r11            ; in lo's 1/16 turn, before lo
+    jhs     30f
+    cmp     r11, r9                 ; past the window
+    jlo     next_beacon
+    cmp.b   #DROPPED, OW+OW_SM(r12)
+    jeq     30f
+    mov     OW+OW_E(r4), r15
+    push    r9
+    call    #mark_keep
+    pop     r9
+30: add     #1, r12
+    cmp.b   &OW+OW_N, r12
+    jlo     31f
+    clr     r12
+31: sub     #1, r14
+    jnz     scan
+    jmp     next_beacon
+scan_lever:                         ; moving: each sighting's window
+    mov     r12, r13
+    add     r13, r13
+    mov     OW+OW_TH(r13), r11
+    sub     r10, r11
+    cmp     #0xf000, r11
+    jhs     32f
+    cmp     r11, r9
+    jlo     next_beacon
+    cmp.b   #DROPPED, OW+OW_SM(r12)
+    jeq     32f
+    push    r9
+    push    r14
+    call    #pair_test
+    pop     r14
+    jnc     33f
+    call    #keep
+33: pop     r9
+32: add     #1, r12
+    cmp.b   &OW+OW_N, r12
+    jlo     34f
+    clr     r12
+34: sub     #1, r14
+    jnz     scan_lever
+    jmp     next_beacon
+scan_all:                           ; that wide: every sighting
+    clr     r12
+35: mov     r12, r13
+    add     r13, r13
+    cmp.b   #DROPPED, OW+OW_SM(r12)
+    jeq     36f
+    push    r14
+    call    #pair_test
+    pop     r14
+    jnc     36f
+    call    #keep
+36: add     #1, r12
+    sub     #1, r14
+    jnz     35b
+next_beacon:
+    incd    r4
+    jmp     beacon
+es_done:
+    clr     r12                     ; 1 when a coordinate is beyond the limit
+    cmp     #0x4000, r6
+    jlo     1f
+    mov     #1, r12
+1:  pop     r4
+    pop     r5
     pop     r6
     pop     r7
     pop     r8
+    pop     r9
+    pop     r10
+    ret
+
+/*
+ * void optical_eval(int16_t mid, uint16_t half): R12 = mid, R13 = half. Standing: the pair
+ * (j, k) is in when |th[j] - psi[k] - mid| <= half + e[k]; moving: pair_test.
+ */
+    .section .text.optical_eval,"ax",@progbits
+    .global optical_eval
+    .type optical_eval,@function
+optical_eval:
+    push    r9
+    push    r6
+    push    r4
+    mov     r12, &sc_mid
+    mov     r13, &sc_half
+    call    #clear_marks
+    clr     r6
+1:  mov.b   &OW+OW_NC, r12          ; 2c < 2 nc
+    add     r12, r12
+    cmp     r12, r6
+    jhs     4f
+    mov.b   OW+OW_CAND(r6), r12
+    mov.b   OW+OW_CAND+1(r6), r4
+    add     r4, r4
+    mov     r12, r13
+    add     r13, r13
+    tst     &OW+OW_LEVER8
+    jnz     3f
+    mov     OW+OW_TH(r13), r11      ; standing
+    sub     OW+OW_PSI(r4), r11
+    sub     &sc_mid, r11
+    tst     r11
+    jge     2f
+    mov     r11, r15
+    clr     r11
+    sub     r15, r11
+2:  mov     OW+OW_E(r4), r15
+    mov     &sc_half, r14
+    add     r15, r14
+    cmp     r11, r14
+    jlo     5f
+    call    #mark
+    jmp     5f
+3:  call    #pair_test
+5:  incd    r6
+    jmp     1b
+4:  pop     r4
+    pop     r6
     pop     r9
     ret

@@ -1,12 +1,21 @@
 /*
- * optical/fastmath.h - the two arithmetic helpers the optical fix spends most of its time
- * in, in assembly on the MSP430 (firmware/optical/msp430/optical_fast.S) and in portable C
- * (fastmath.c) elsewhere; the two give bit-identical results (tests/vectors/optical_vectors.c).
+ * optical/fastmath.h - the kernels the optical fix spends its time in. On the MSP430 they are
+ * assembly (firmware/optical/msp430/); fastmath.c holds the portable C that defines every
+ * result, and the assembly performs the very same integer steps (tests/vectors/
+ * optical_vectors.c prints them on both worlds: bit-identical).
+ *
+ * These are the internals of optical_fix() and optical_triangulate(), public only so that the
+ * vector program can check them one by one; the work arrays they fill are described in
+ * fix.c and triangulate.c.
  */
 #ifndef OPTICAL_FASTMATH_H
 #define OPTICAL_FASTMATH_H
 
+#include <stdbool.h>
 #include <stdint.h>
+
+#include "fx/fx.h"
+#include "optical/optical.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -14,19 +23,162 @@ extern "C" {
 
 /**
  * Direction of the vector (dx, dy) in 2^-16 turn (65536 = 360 degrees, CCW from +x), cheap:
- * the identification's expected angles. Any int32 components (any common scale); max error
- * 2 units (0.011 degrees); (0, 0) gives 0.
+ * the identification's expected angles and residuals. Any int32 components (any common
+ * scale); max error 0.97 units (0.0053 degrees, measured against atan2); (0, 0) gives 0.
+ * Octant folding, both components to [2^15, 2^16) by one shift, the ratio through an
+ * interpolated reciprocal table and the 16 x 16 multiplier, the arctangent from an
+ * interpolated table in 2^-18 turn.
  */
 uint16_t optical_angle16(int32_t dx, int32_t dy);
 
-/**
- * floor((a b + c d + 2^29) / 2^30): a two-term dot product of Q1.30 factors, rounded once,
- * exact (max error 0.5 LSB). The caller keeps the result within int32 (|a b + c d| < 2^61).
- */
-int32_t optical_dot2(int32_t a, int32_t b, int32_t c, int32_t d);
-
-/** round(atan(i / 64) * 2^16 / (2 pi)), i = 0..64 (used by optical_angle16). */
+/** round(2^30 / (2^15 + 512 i)), i = 0..64 (optical_angle16's reciprocal). */
+extern const uint16_t optical_recip_tab[65];
+/** round(atan(i / 64) * 2^18 / (2 pi)), i = 0..64 (optical_angle16's arctangent). */
 extern const uint16_t optical_atan_tab[65];
+
+/** Identification margin of every window, 2^-16 turn (fix.c explains it). */
+#define OPTICAL_MARGIN 6
+
+/** Match codes of optical_work_t.sm / .bm (otherwise: the matched beacon or sighting). */
+#define OPTICAL_NONE    0xFFu /**< no match */
+#define OPTICAL_MULTI   0xFEu /**< more than one match */
+#define OPTICAL_DROPPED 0xFDu /**< sighting dropped by the width threshold (O4) */
+
+/** Most candidate pairs the identification keeps. */
+#define OPTICAL_MAX_CAND 40
+
+/** The parts of a triangulation's quality (optical_quality_parts). */
+typedef struct {
+    uint32_t den; /**< |r3 s1 + r1 s2 - r2 s3|, ranges 2^-sr lambda, sines Q14 */
+    uint16_t num; /**< sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2) / 2^(14 + sc + sr) */
+    uint8_t sc;   /**< the chords' scale */
+} optical_qparts_t;
+
+/**
+ * The work area of optical_fix() and of the identification kernels (static: the MSP430's
+ * stack is small; optical_fix is not reentrant). Per beacon k: psi[k] its expected angle
+ * minus the heading (2^-16 turn), e[k] its window position part plus OPTICAL_MARGIN (0: gated
+ * out), g[k] its window factor (optical_win), bm[k] the sighting it matched (NONE, MULTI).
+ * Per sorted sighting j: th[j] its angle (2^-16 turn, ascending), lev[j] its parallax lever
+ * (2^-8 m), sm[j] the beacon it matched (NONE, MULTI, DROPPED: left alone), we[j] the position
+ * part of that match. cand holds the candidate pairs (sighting, beacon: two bytes each) of the
+ * last optical_expect_scan, nc of them (0xFF: more than OPTICAL_MAX_CAND). The rest belongs
+ * to fix.c. The per-beacon arrays share their bytes with the solve's (u.sv): identification
+ * is over before the identified angles are gathered.
+ */
+typedef struct {
+    const optical_xy_t *b; /**< the map, nb beacons */
+    fx_q16_t x, y;         /**< the position seen from, within OPTICAL_COORD_LIMIT */
+    uint16_t head;         /**< heading, 2^-16 turn */
+    uint16_t eps8;         /**< position uncertainty, 2^-8 m */
+    uint16_t lever8;       /**< largest parallax lever, 2^-8 m (0 standing) */
+    uint16_t amax8;        /**< min(eps8 + lever8, 0xFFFF) */
+    uint16_t gate8;        /**< beacons with |dx| or |dy| (2^-8 m) beyond: gated */
+    uint8_t nb, n;         /**< beacons (1..32), sightings (0..15) */
+    uint8_t nc;            /**< candidate pairs stored */
+    uint8_t m;             /**< fix.c: the identified */
+    uint16_t th[OPTICAL_MAX_SIGHTINGS];
+    uint16_t lev[OPTICAL_MAX_SIGHTINGS];
+    uint16_t we[OPTICAL_MAX_SIGHTINGS];
+    int32_t c[OPTICAL_MAX_SIGHTINGS]; /**< fix.c: parallax lever, Q16 m */
+    uint8_t sm[OPTICAL_MAX_SIGHTINGS];
+    uint8_t bstart[16];                  /**< first sighting at or after each 1/16 turn (0: none) */
+    uint8_t ord[OPTICAL_MAX_SIGHTINGS];  /**< fix.c: input index of th[j] */
+    uint8_t wchk[OPTICAL_MAX_SIGHTINGS]; /**< fix.c: O5 verdict cache */
+    uint8_t pos[OPTICAL_MAX_SIGHTINGS];  /**< fix.c: the identified, sorted positions */
+    union {
+        struct {
+            uint16_t psi[OPTICAL_MAX_BEACONS];
+            uint16_t e[OPTICAL_MAX_BEACONS];
+            uint16_t g[OPTICAL_MAX_BEACONS];
+            uint8_t bm[OPTICAL_MAX_BEACONS];
+            uint8_t cand[2 * OPTICAL_MAX_CAND];
+        } id;
+        struct {
+            fx_angle_t ang[OPTICAL_MAX_SIGHTINGS]; /**< the identified, reference frame */
+            optical_xy_t b[3];                     /**< the triplet being solved */
+            optical_tri_t tri;                     /**< a candidate triplet's solution */
+            uint16_t frame[47];  /**< MSP430: the triangulation kernels' work frame */
+            int32_t v[4];        /**< optical_triangulate: the offsets (optical_tri_core) */
+            int32_t sc[6];       /**< its sines and cosines */
+            int32_t c[2];        /**< its solution */
+            optical_qparts_t qp; /**< its quality's parts */
+        } sv;
+    } u;
+} optical_work_t;
+
+/** The work area (fastmath.c). */
+extern optical_work_t optical_work;
+
+/**
+ * Expected angle and window of every map beacon from (x, y, head) (O2), and the candidate
+ * pairs within the windows centred on heading offset @p mid (2^-16 turn) of half-width @p half
+ * (optical_eval's test; the pairs in scan order, sightings from the bucket of each window's
+ * start). Per beacon, with (x8, y8) its offset floored to 2^-8 m (beyond +-128 m, or a
+ * magnitude beyond gate8: e = 0, gated out): psi = the angle of (x8, y8) - head, with the
+ * octant's arctangent of optical_angle16; the window factor g of a beacon at range >= m8
+ * sqrt(1 + t^2) (m8 the larger magnitude, t = smaller / larger): 0xFFFF when m8 < 77 or m8 <=
+ * amax8, else g = h k 2^(l - 7) + 1 (rounded down, saturated at 0xFFFE), h = r C / 2^16 (r the
+ * octant's 2^30 / u, u = m8 2^l in [2^15, 2^16), C = 2^15 / sqrt(1 + (i / 64)^2) rounded up,
+ * i = floor(64 t)), k = 2/3 (ceil(2^(9 + l) 2/3) / 2^(9 + l)) when m8 >= 2 amax8, else 1;
+ * e = optical_win(eps8, g) + margin. The offsets' flooring moves the angles by up to sqrt 2
+ * units of 2^-8 m: the caller adds 2 to eps8. Clears bm and sm (except DROPPED) and marks
+ * every pair as optical_eval. Returns 1 when a beacon lies beyond OPTICAL_COORD_LIMIT (the
+ * results are then meaningless), else 0.
+ */
+uint8_t optical_expect_scan(int16_t mid, uint16_t half);
+
+/**
+ * The stored candidate pairs within the windows (mid, half): pair (j, k) when
+ * |th[j] - psi[k] - mid| <= half + w, w = e[k] standing (lever8 = 0 or lev[j] = 0), else
+ * optical_win(min(eps8 + lev[j], 0xFFFF), g[k]) + margin; marked: sm[j], bm[k] get the partner
+ * (or MULTI when they had one), we[j] = w. Clears bm and sm (except DROPPED) first. half + w
+ * must stay below 2^16; nc not 0xFF.
+ */
+void optical_eval(int16_t mid, uint16_t half);
+
+/** Window part min(ceil(l g / 256), 0x7FFF) of lever l (2^-8 m); 0x7FFF when g = 0xFFFF. */
+uint16_t optical_win(uint16_t l, uint16_t g);
+
+/** ceil(2^15 / sqrt(1 + (i / 64)^2)), i = 0..63 (optical_expect_scan's range bound). */
+extern const uint16_t optical_ct_tab[64];
+
+/**
+ * One pairwise intersection of the triangulation and their average (triangulate.c):
+ * @p v = (b1x, b1y, b3x, b3y) the beacon offsets from beacon 2 in lambda units (largest
+ * component in [2^27, 2^28)), @p sc = (s1, c1, s2, c2, s3, c3) the sines and cosines of the
+ * inscribed angles (Q1.30). Writes the mean of the three intersections relative to beacon 2,
+ * lambda units; false when a pair of circles (nearly) coincides.
+ */
+bool optical_tri_core(const int32_t v[4], const int32_t sc[6], int32_t out[2]);
+
+/**
+ * Quality of a triangulation (triangulate.c divides the parts): @p v and
+ * @p sc as optical_tri_core, @p c the vehicle relative to beacon 2 (lambda units). The chords
+ * (b1, b3, b3 - b1) and the ranges (b1 - c, c, b3 - c) are each cut to 15-bit components by a
+ * common shift (sc for the chords, sr for the ranges), their squares to 15 bits; the quality
+ * is num 2^(28 + sc) / den lambda per radian.
+ */
+void optical_quality_parts(const int32_t v[4], const int32_t c[2], const int32_t sc[6],
+                           optical_qparts_t *out);
+
+/** Arguments of optical_width_ok(). */
+typedef struct {
+    uint32_t dk;    /**< D 2^8 2^16 / (2 pi), D the post diameter in m */
+    fx_q16_t x, y;  /**< the position the beacon is seen from */
+    uint16_t eps8;  /**< position uncertainty, 2^-8 m */
+    uint16_t tol8;  /**< absolute distance tolerance, 2^-8 m */
+    uint16_t rel16; /**< relative distance tolerance, 2^-16 */
+    uint8_t flat;   /**< 1: flat strips (only the upper distance bound is checked) */
+} optical_width_t;
+
+/**
+ * O5: is an apparent width of @p w16 (2^-16 turn) compatible with beacon @p b seen from (x,
+ * y) +- eps8? The range lies within [o / 1.118 - eps8, o + eps8], o the octagonal norm of the
+ * offset (2^-8 m, components capped at 256 m), widened by tol8 + rel16 times its upper end.
+ * Posts look 2 asin(D / 2r) wide, and 0.969 w <= 2 sin(w/2) <= w below 0.5 rad.
+ */
+bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16);
 
 #ifdef __cplusplus
 }
