@@ -747,8 +747,7 @@ int main(int argc, char **argv)
         pts[i].speed = q16(S.sc.path[i].speed);
         pts[i].nsub = 0;
     }
-    main_board_config_t mc;
-    memset(&mc, 0, sizeof mc);
+    static main_board_config_t mc; /* the board keeps it by reference */
     mc.beacons = beacons;
     mc.n_beacons = (uint8_t)S.sc.world.n_beacons;
     mc.path = pts;

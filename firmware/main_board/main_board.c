@@ -23,20 +23,15 @@
 #define LATCH_TIMEOUT_MS 100u
 #define ACK_TIMEOUT_MS   50u
 #define POSE_TIMEOUT_MS  50u
-#define EVENT_QUEUE      4u
+#define EVENT_QUEUE      2u /* at most one follow-up waits while an event is stepped */
 
 enum { FIX_IDLE = 0, FIX_WAIT_LATCHES };
 enum { POSE_IDLE = 0, POSE_WAIT_ACK, POSE_WAIT_REPLY };
 
 static struct {
-    /* configuration */
+    /* configuration (by reference: a constant in flash on the target) */
+    const main_board_config_t *cfg;
     optical_map_t map;
-    const optical_xy_t *beacons;
-    drive_board_t board;
-    drive_seq_config_t seq_cfg;
-    optical_config_t optical;
-    uint16_t counts_per_turn;
-    drive_pose_t start;
     /* modules */
     optical_capture_t cap;
     drive_ds_t ds;
@@ -57,12 +52,10 @@ static struct {
     /* the fix in progress */
     uint8_t fix_state;
     uint32_t fix_deadline;
-    int8_t n;                             /* sightings of the revolution */
-    uint16_t latch_first;                 /* latch number of the first sighting in time */
-    uint16_t latch_have;                  /* bit i: latch first + i arrived */
-    const optical_rev_t *rev;             /* the revolution held while its fix runs */
-    uint8_t order[OPTICAL_MAX_SIGHTINGS]; /* sorted position -> capture order */
-    optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
+    uint8_t n;                /* sightings of the revolution */
+    uint16_t latch_first;     /* latch number of the first sighting in time */
+    uint16_t latch_have;      /* bit i: latch first + i arrived */
+    const optical_rev_t *rev; /* the revolution held while its fix runs */
     /* The nav board's latches: capture order at rising edges as they arrive, then (in place)
      * sorted order at the pulse centres for optical_fix(). */
     optical_pose_t latched[OPTICAL_MAX_SIGHTINGS];
@@ -117,7 +110,7 @@ static void on_frame(void *arg, const hal_link_frame_t *f)
     switch (m.type) {
     case LINKMSG_LATCH: {
         uint16_t i = (uint16_t)(m.u.latch.seq - mb.latch_first);
-        if (mb.fix_state == FIX_WAIT_LATCHES && i < (uint16_t)mb.n && m.u.latch.status == 0) {
+        if (mb.fix_state == FIX_WAIT_LATCHES && i < mb.n && m.u.latch.status == 0) {
             mb.latched[i].x = m.u.latch.pose.x;
             mb.latched[i].y = m.u.latch.pose.y;
             mb.latched[i].heading = m.u.latch.pose.heading;
@@ -149,80 +142,119 @@ static void on_frame(void *arg, const hal_link_frame_t *f)
 static void push(drive_evt_t type, const optical_pose_t *p)
 {
     if (mb.q_n >= EVENT_QUEUE)
-        return; /* cannot happen: at most two follow-ups per action set */
+        return; /* cannot happen: an event's actions push at most one follow-up */
     drive_seq_event_t *e = &mb.queue[(mb.q_head + mb.q_n) % EVENT_QUEUE];
     e->type = type;
     if (p) {
         e->pose.x = p->x;
         e->pose.y = p->y;
         e->pose.heading = p->heading;
+    } else {
+        e->pose = mb.cfg->start; /* DRIVE_EVT_START reads it; the others carry no pose */
     }
     mb.q_n++;
 }
 
-static void send_wseq(const drive_wseq_t *w)
+/* Queue an event without a pose (drain() steps it). */
+static void post(drive_evt_t type)
 {
-    drive_port_send(w);
+    push(type, 0);
+}
+
+/*
+ * The drive board's port: its initialisation, the double arc @p cmd, or the speed @p speed. Not
+ * inlined: the write buffer stays off the stack while the sequencer solves.
+ */
+enum { PORT_INIT, PORT_LOAD, PORT_SPEED };
+static __attribute__((noinline)) void port(uint8_t what, const drive_cmd_t *cmd, int8_t speed)
+{
+    drive_wseq_t w;
+    if (what == PORT_INIT)
+        drive_ppi_init(&w);
+    else if (what == PORT_LOAD)
+        drive_ppi_load(cmd, &w);
+    else
+        drive_ppi_speed(speed, &w);
+    drive_port_send(&w);
+}
+
+/* Tell the observer (the host's telemetry) about a fix attempt; not inlined: the event
+ * stays off the stack of the paths that do not report. */
+static __attribute__((noinline)) void notify_fix(int8_t status, const optical_sighting_t *s,
+                                                 uint8_t n, uint16_t ref_latch)
+{
+    if (!mb.obs.on_fix)
+        return;
+    main_board_fix_event_t ev;
+    ev.status = status;
+    ev.n = n;
+    ev.ref_latch = ref_latch;
+    ev.fix = mb.fix;
+    ev.approx = mb.approx;
+    ev.s = s;
+    mb.obs.on_fix(mb.obs.ctx, &ev);
 }
 
 static void correct_nav(void);
 
-static void fix_done(int8_t status)
+/* The attempt on the held revolution ended with @p status; @p s: its @p n sightings. */
+static void fix_done(int8_t status, const optical_sighting_t *s, uint8_t n)
 {
-    main_board_fix_event_t ev;
-    ev.status = status;
-    ev.n = mb.n > 0 ? (uint8_t)mb.n : 0u;
-    ev.ref_latch = (uint16_t)(mb.latch_first + (mb.n > 0 ? mb.n - 1 : 0));
-    ev.fix = mb.fix;
-    ev.approx = mb.approx;
-    ev.s = mb.s;
+    uint16_t ref_latch = (uint16_t)(mb.latch_first + (n > 0 ? n - 1u : 0u));
     mb.fix_state = FIX_IDLE;
     optical_capture_release(&mb.cap);
     if (status == OPTICAL_OK) {
         mb.stats.fixes_ok++;
-        mb.fix_ref = ev.ref_latch;
+        mb.fix_ref = ref_latch;
         /* Simplified travel drives from the fix alone (seed 5.2, written when the ground
          * navigator did not work yet); the nav board is corrected all the same, so that its
          * stop request (G6) watches real dead reckoning. */
-        if (mb.seq_cfg.mode == DRIVE_MODE_SIMPLIFIED)
+        if (mb.cfg->seq_cfg.mode == DRIVE_MODE_SIMPLIFIED)
             correct_nav();
         push(DRIVE_EVT_FIX_READY, &mb.fix.pose);
     } else {
         mb.stats.fixes_failed++;
         push(DRIVE_EVT_FIX_FAILED, 0);
     }
-    if (mb.obs.on_fix)
-        mb.obs.on_fix(mb.obs.ctx, &ev);
+    notify_fix(status, s, n, ref_latch);
 }
 
-/* Start the fix of the revolution that just ended: ask for its latches. */
+/* A revolution with too few sightings (or an implausible one) fails at once. */
+static __attribute__((noinline)) void fix_too_few(void)
+{
+    optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
+    int8_t n = optical_rev_sightings(mb.rev, mb.cfg->counts_per_turn, s);
+    mb.fix.status = n < 0 ? OPTICAL_E_REV : OPTICAL_E_FEW;
+    fix_done((int8_t)mb.fix.status, s, n < 0 ? 0u : (uint8_t)n);
+}
+
+/*
+ * Start the fix of the revolution that just ended: ask for its latches. Its sightings are
+ * converted and sorted when the latches are in (fix_finish), on that call's stack: RAM is
+ * short, and the main loop's deepest path (the double arc) never runs at the same time.
+ */
 static void fix_start(void)
 {
     const optical_rev_t *rev = optical_capture_take(&mb.cap);
     mb.fix.status = OPTICAL_E_REV;
     if (!rev) {
         mb.n = 0;
-        main_board_fix_event_t ev = {OPTICAL_E_REV, 0, 0, mb.fix, {0, 0, 0}, mb.s};
+        mb.approx = (optical_pose_t){0, 0, 0};
         mb.stats.fixes_failed++;
         push(DRIVE_EVT_FIX_FAILED, 0);
-        if (mb.obs.on_fix)
-            mb.obs.on_fix(mb.obs.ctx, &ev);
+        notify_fix(OPTICAL_E_REV, 0, 0, 0);
         return;
     }
-    mb.n = optical_rev_order(rev, mb.counts_per_turn, mb.s, mb.order);
+    mb.rev = rev;
+    mb.n = rev->n;
     if (mb.n < 3) {
-        mb.fix.status = mb.n < 0 ? OPTICAL_E_REV : OPTICAL_E_FEW;
-        int8_t st = (int8_t)mb.fix.status;
-        if (mb.n < 0)
-            mb.n = 0;
-        fix_done(st);
+        fix_too_few();
         return;
     }
     /* A pulse that began before the index pulse rose in the previous revolution. */
     uint16_t first = mb.rise_at_rev[rev->seq & 3u];
-    if (rev->s[0].start >= mb.counts_per_turn)
+    if (rev->s[0].start >= mb.cfg->counts_per_turn)
         first--;
-    mb.rev = rev;
     hal_critical_enter();
     mb.latch_first = first;
     mb.latch_have = 0;
@@ -240,7 +272,7 @@ static void fix_start(void)
 static int32_t rise_of(uint8_t i)
 {
     uint16_t st = mb.rev->s[i].start;
-    return st >= mb.counts_per_turn ? (int32_t)st - 65536l : (int32_t)st;
+    return st >= mb.cfg->counts_per_turn ? (int32_t)st - 65536l : (int32_t)st;
 }
 
 /*
@@ -249,10 +281,10 @@ static int32_t rise_of(uint8_t i)
  * between its latch and the next one (extrapolated for the last) by the angle clock, which
  * is time; then the poses are put in the sightings' (angle) order. In place: RAM is short.
  */
-static void centre_and_sort(void)
+static __attribute__((noinline)) void centre_and_sort(const uint8_t *order)
 {
     optical_pose_t *l = mb.latched;
-    uint8_t n = (uint8_t)mb.n;
+    uint8_t n = mb.n;
     optical_pose_t before_last = l[n - 2]; /* the last one extrapolates from it */
     for (uint8_t i = 0; i < n; i++) {
         uint8_t a = i + 1u < n ? i : (uint8_t)(i - 1u), b = (uint8_t)(a + 1u);
@@ -273,10 +305,10 @@ static void centre_and_sort(void)
             continue;
         optical_pose_t first = l[j];
         uint8_t k = j;
-        while (mb.order[k] != j) {
-            l[k] = l[mb.order[k]];
+        while (order[k] != j) {
+            l[k] = l[order[k]];
             done |= (uint16_t)(1u << k);
-            k = mb.order[k];
+            k = order[k];
         }
         l[k] = first;
         done |= (uint16_t)(1u << k);
@@ -284,22 +316,28 @@ static void centre_and_sort(void)
 }
 
 /* All latches in (or the wait is over): run the optical pipeline. */
-static void fix_finish(void)
+static __attribute__((noinline)) void fix_finish(void)
 {
+    optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
+    uint8_t order[OPTICAL_MAX_SIGHTINGS]; /* sorted position -> capture order */
+    int8_t n = optical_rev_order(mb.rev, mb.cfg->counts_per_turn, s, order);
     uint16_t all = (uint16_t)((1u << mb.n) - 1u);
+    mb.fix.status = OPTICAL_E_REV;
+    if (n != (int8_t)mb.n) { /* implausible: the period or a lost capture */
+        fix_done(OPTICAL_E_REV, s, 0);
+        return;
+    }
     if (mb.latch_have != all) {
         mb.stats.latch_timeouts++;
-        mb.fix.status = OPTICAL_E_REV;
-        fix_done(OPTICAL_E_REV);
+        fix_done(OPTICAL_E_REV, s, mb.n);
         return;
     }
     /* Reference instant: the last sighting's rising edge; its latch is the approximate pose
      * and the nav board applies the fix to that latch. */
     mb.approx = mb.latched[mb.n - 1];
-    centre_and_sort();
-    int8_t st =
-        optical_fix(&mb.map, &mb.optical, &mb.approx, mb.s, (uint8_t)mb.n, mb.latched, &mb.fix);
-    fix_done(st);
+    centre_and_sort(order);
+    int8_t st = optical_fix(&mb.map, &mb.cfg->optical, &mb.approx, s, mb.n, mb.latched, &mb.fix);
+    fix_done(st, s, mb.n);
 }
 
 /* Send the fix to the nav board (Buffer Full) for its reference latch. */
@@ -333,7 +371,7 @@ static void request_pose(void)
  * (the delta-S pulses seen tell which), at the loaded speed. Errors of this guess are what
  * the next revolution's fix corrects.
  */
-static optical_pose_t predict(const optical_pose_t *now, uint16_t ms)
+static __attribute__((noinline)) optical_pose_t predict(const optical_pose_t *now, uint16_t ms)
 {
     optical_pose_t p = *now;
     if (ms == 0 || mb.loaded.speed == 0)
@@ -342,11 +380,11 @@ static optical_pose_t predict(const optical_pose_t *now, uint16_t ms)
     int32_t k = 0;
     if (mb.loaded.alpha[seg] != 0) {
         fx_q16_t t = fx_tan(mb.loaded.alpha[seg]);
-        if (!fx_div_shift(t, mb.board.wheelbase, 28, &k))
+        if (!fx_div_shift(t, mb.cfg->board.wheelbase, 28, &k))
             k = 0;
     }
     int32_t v = mb.loaded.speed < 0 ? -mb.loaded.speed : mb.loaded.speed;
-    fx_q16_t rate = v * mb.board.speed_lsb;                   /* m/s, Q16 */
+    fx_q16_t rate = v * mb.cfg->board.speed_lsb;              /* m/s, Q16 */
     fx_q16_t secs = (fx_q16_t)(((uint32_t)ms << 16) / 1000u); /* s, Q16 */
     fx_q16_t dist = fx_mul_q16(rate, secs);
     drive_pose_t d = {p.x, p.y, p.heading};
@@ -357,13 +395,12 @@ static optical_pose_t predict(const optical_pose_t *now, uint16_t ms)
     return p;
 }
 
-static void execute(const drive_seq_out_t *out)
+/* Not inlined: its port-write buffer stays off the stack while the sequencer solves. */
+static __attribute__((noinline)) void execute(const drive_seq_out_t *out)
 {
-    drive_wseq_t w;
     uint16_t a = out->actions;
     if (a & DRIVE_ACT_STOP) {
-        drive_ppi_speed(0, &w);
-        send_wseq(&w);
+        port(PORT_SPEED, 0, 0);
         mb.loaded.speed = 0;
     }
     if (a & DRIVE_ACT_REQUEST_FIX)
@@ -389,16 +426,14 @@ static void execute(const drive_seq_out_t *out)
             linkmsg_send(&m);
             mb.reverse = reverse;
         }
-        drive_ppi_load(&out->cmd, &w);
-        send_wseq(&w);
+        port(PORT_LOAD, &out->cmd, 0);
         mb.loaded = out->cmd;
         mb.stats.loads++;
         if (mb.obs.on_load)
             mb.obs.on_load(mb.obs.ctx, &out->cmd);
     }
     if (a & DRIVE_ACT_SET_SPEED) {
-        drive_ppi_speed(out->speed, &w);
-        send_wseq(&w);
+        port(PORT_SPEED, 0, out->speed);
         mb.loaded.speed = out->speed;
     }
     if (a & DRIVE_ACT_TIMER) {
@@ -417,33 +452,19 @@ static void execute(const drive_seq_out_t *out)
     }
 }
 
-static void step(const drive_seq_event_t *ev)
-{
-    drive_seq_out_t out;
-    drive_state_t before = mb.seq.state;
-    drive_seq_step(&mb.seq, ev, &out);
-    if (out.actions)
-        execute(&out);
-    if (mb.seq.state != before && mb.obs.on_state)
-        mb.obs.on_state(mb.obs.ctx, mb.seq.state);
-}
-
-static void step_type(drive_evt_t type)
-{
-    drive_seq_event_t ev;
-    ev.type = type;
-    ev.pose = mb.start;
-    step(&ev);
-}
-
-/* Feed the events the actions produced, in order. */
+/* Step the queued events in order; an event's actions may queue one follow-up. */
 static void drain(void)
 {
     while (mb.q_n) {
-        drive_seq_event_t ev = mb.queue[mb.q_head];
+        drive_seq_out_t out;
+        drive_state_t before = mb.seq.state;
+        drive_seq_step(&mb.seq, &mb.queue[mb.q_head], &out); /* read in place, then freed */
         mb.q_head = (uint8_t)((mb.q_head + 1u) % EVENT_QUEUE);
         mb.q_n--;
-        step(&ev);
+        if (out.actions)
+            execute(&out);
+        if (mb.seq.state != before && mb.obs.on_state)
+            mb.obs.on_state(mb.obs.ctx, mb.seq.state);
     }
 }
 
@@ -460,14 +481,9 @@ drive_status_t main_board_init(const main_board_config_t *cfg)
         cfg->n_path > MAIN_BOARD_MAX_PATH || cfg->n_beacons < 3 ||
         cfg->n_beacons > OPTICAL_MAX_BEACONS || cfg->counts_per_turn == 0)
         return DRIVE_ERR_PARAM;
-    mb.beacons = cfg->beacons;
+    mb.cfg = cfg;
     mb.map.b = cfg->beacons;
     mb.map.n = cfg->n_beacons;
-    mb.board = cfg->board;
-    mb.seq_cfg = cfg->seq_cfg;
-    mb.optical = cfg->optical;
-    mb.counts_per_turn = cfg->counts_per_turn;
-    mb.start = cfg->start;
 
     optical_capture_init(&mb.cap);
     hal_capture_init(HAL_CAPTURE_INDEX, on_index, &mb.cap);
@@ -479,13 +495,11 @@ drive_status_t main_board_init(const main_board_config_t *cfg)
     hal_signal_init(HAL_SIGNAL_COORD_REQUEST);
     hal_clock_init();
     hal_drive_port_init();
-    drive_wseq_t w;
-    drive_ppi_init(&w);
-    send_wseq(&w);
+    port(PORT_INIT, 0, 0);
 
-    drive_status_t st =
-        drive_path_prepare(&mb.path, &mb.start, cfg->path, cfg->n_path, &cfg->path_cfg, &mb.board);
-    drive_seq_init(&mb.seq, &mb.path, &mb.seq_cfg);
+    drive_status_t st = drive_path_prepare(&mb.path, &cfg->start, cfg->path, cfg->n_path,
+                                           &cfg->path_cfg, &cfg->board);
+    drive_seq_init(&mb.seq, &mb.path, &cfg->seq_cfg);
     return st;
 }
 
@@ -496,7 +510,7 @@ const drive_path_t *main_board_path(void)
 
 void main_board_start(void)
 {
-    step_type(DRIVE_EVT_START);
+    post(DRIVE_EVT_START);
     drain();
 }
 
@@ -506,7 +520,7 @@ void main_board_poll(void)
 
     /* delta-S first: a double arc that ends loads the next at once (D1). */
     for (uint16_t n = drive_ds_take(&mb.ds); n; n--) {
-        step_type(DRIVE_EVT_DELTA_S);
+        post(DRIVE_EVT_DELTA_S);
         drain();
     }
 
@@ -518,12 +532,12 @@ void main_board_poll(void)
     hal_critical_exit();
     mb.stats.revolutions += indexes;
     for (; indexes; indexes--) {
-        step_type(DRIVE_EVT_INDEX);
+        post(DRIVE_EVT_INDEX);
         drain();
     }
     if (stop) {
         mb.stats.stop_requested = 1;
-        step_type(DRIVE_EVT_STOP);
+        post(DRIVE_EVT_STOP);
         drain();
     }
 
@@ -556,7 +570,7 @@ void main_board_poll(void)
 
     if (mb.timer_on && due(now, mb.timer_deadline)) {
         mb.timer_on = 0;
-        step_type(DRIVE_EVT_TIMER);
+        post(DRIVE_EVT_TIMER);
         drain();
     }
 }

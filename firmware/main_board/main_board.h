@@ -82,8 +82,9 @@ typedef struct {
 } main_board_stats_t;
 
 /**
- * Set the board up for @p cfg (copied, except the beacon map and the path, which stay in the
- * caller's storage): capture handlers, delta-S line, drive port, link, clock; prepares the
+ * Set the board up for @p cfg, kept by reference (RAM is 2 KB: on the target it is a
+ * constant in flash): @p cfg and what it points to must outlive the run. Sets up capture
+ * handlers, delta-S line, drive port, link, clock; prepares the
  * path. Interrupts stay disabled. Returns DRIVE_OK, or why the path or the
  * configuration is not acceptable (the board then refuses to start).
  */

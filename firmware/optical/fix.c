@@ -44,25 +44,7 @@
 /* The work area (fastmath.h: the kernels share it). */
 #define W (optical_work)
 
-static const optical_config_t defaults = {
-    5243,       /* beacon_diameter 0.08 m */
-    0,          /* beacon_flat */
-    59652324ul, /* window 5 degrees */
-    19661,      /* window_pos 0.3 m */
-    119304647,  /* widen_max 10 degrees */
-    2,          /* widen_steps */
-    0,          /* reject_overlap */
-    30l << 16,  /* range 30 m */
-    60l << 16,  /* range_max 60 m */
-    2,          /* range_steps */
-    32768,      /* dist_tol 0.5 m */
-    19661,      /* dist_rel 0.3 */
-    32768,      /* jump_max 0.5 m */
-    83513454ul, /* turn_max 7 degrees */
-    2386093ul,  /* resid_max 0.2 degrees */
-    16384,      /* quality_max 0.25 m per mrad: 3.1 cm per count */
-    3,          /* motion_passes */
-};
+static const optical_config_t defaults = OPTICAL_CONFIG_DEFAULT(5243 /* 0.08 m */);
 
 void optical_config_default(optical_config_t *cfg)
 {

@@ -44,13 +44,16 @@ typedef struct {
     uint8_t dac_center;       /**< seed 002's steering DAC value for straight ahead */
 } drive_board_t;
 
-/** The seed's vehicle: L = 30 in, minimum radius 10 in, 4.4 counts per inch, speed unit
- * 1.755 cm/s (seed 002), clean pulses from 3 counts (17 mm), DAC centre 132 (seed 002). */
-#define DRIVE_BOARD_SEED                                                                           \
+/** The seed's drive board (4.4 counts per inch, speed unit 1.755 cm/s (seed 002), clean
+ * pulses from 3 counts (17 mm), DAC centre 132 (seed 002)) on a vehicle of wheelbase @p l and
+ * minimum radius @p r (metres, Q16): a constant initializer of drive_board_t. */
+#define DRIVE_BOARD_SEED_WITH(l, r)                                                                \
     {                                                                                              \
-        49938l /* 0.762 m */, 16646l /* 0.254 m */, 11352693l /* 173.2283 /m */,                   \
-            1150l /* 0.01755 m/s */, 3u, 132u                                                      \
+        (l), (r), 11352693l /* 173.2283 /m */, 1150l /* 0.01755 m/s */, 3u, 132u                   \
     }
+
+/** The seed's vehicle: L = 30 in, minimum radius 10 in, on the seed's drive board. */
+#define DRIVE_BOARD_SEED DRIVE_BOARD_SEED_WITH(49938l /* 0.762 m */, 16646l /* 0.254 m */)
 
 /** Steering byte of a straight segment. */
 #define DRIVE_STEER_STRAIGHT 128u

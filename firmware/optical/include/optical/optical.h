@@ -118,6 +118,18 @@ typedef struct {
     uint8_t motion_passes;    /**< O11: triangulations with refined parallax (1..4) */
 } optical_config_t;
 
+/** The defaults (optical_config_default()) for posts of diameter @p d (metres, Q16), as a
+ * constant initializer of optical_config_t (a configuration kept in flash). */
+#define OPTICAL_CONFIG_DEFAULT(d)                                                                  \
+    {                                                                                              \
+        (d), 0 /* cylindrical */, 59652324ul /* window 5 degrees */, 19661 /* window_pos 0.3 m */, \
+            119304647 /* widen_max 10 degrees */, 2 /* widen_steps */, 0 /* reject_overlap */,     \
+            30l << 16 /* range 30 m */, 60l << 16 /* range_max 60 m */, 2 /* range_steps */,       \
+            32768 /* dist_tol 0.5 m */, 19661 /* dist_rel 0.3 */, 32768 /* jump_max 0.5 m */,      \
+            83513454ul /* turn_max 7 degrees */, 2386093ul /* resid_max 0.2 degrees */,            \
+            16384 /* quality_max 0.25 m per mrad: 3.1 cm per count */, 3 /* motion_passes */       \
+    }
+
 /** The result of one triangulation (optical_triangulate). */
 typedef struct {
     optical_pose_t pose; /**< position and bearing of the vehicle */
