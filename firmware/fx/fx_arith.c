@@ -105,6 +105,7 @@ fx_angle_t fx_angle_from_counts(uint32_t counts, uint16_t counts_per_turn)
     return a;
 }
 
+#ifndef FX_ASM /* MSP430: msp430/fx_arith.S */
 static uint32_t magnitude(int32_t v)
 {
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
@@ -129,7 +130,6 @@ bool fx_mul_shift(int32_t a, int32_t b, uint8_t shift, int32_t *out)
     return store_signed(p, (a < 0) != (b < 0), out);
 }
 
-#ifndef FX_ASM /* MSP430: msp430/fx_arith.S */
 /* a * b / 2^shift rounded, saturated; shift is a constant in each caller (inlined). */
 static inline int32_t mul_saturated(int32_t a, int32_t b, uint8_t shift)
 {
@@ -150,7 +150,6 @@ int32_t fx_mul_q16(int32_t a, int32_t b)
 {
     return mul_saturated(a, b, 16);
 }
-#endif
 
 bool fx_div_shift(int32_t num, int32_t den, uint8_t shift, int32_t *out)
 {
@@ -175,16 +174,12 @@ bool fx_div_shift(int32_t num, int32_t den, uint8_t shift, int32_t *out)
     return store_signed(q, (num < 0) != (den < 0), out);
 }
 
+/* n / d is n 2^0 / d: the MSP430 assembly has one body for both. */
 bool fx_div32(int32_t num, int32_t den, int32_t *out)
 {
-    if (den == 0)
-        return false;
-    uint32_t n = magnitude(num), d = magnitude(den), rem;
-    uint32_t q = fx_udiv64_32(0, n, d, &rem);
-    if (rem >= d - rem)
-        q++; /* <= 2^31 + 1: no wrap */
-    return store_signed(q, (num < 0) != (den < 0), out);
+    return fx_div_shift(num, den, 0, out);
 }
+#endif
 
 bool fx_recip(int32_t den, uint8_t shift, int32_t *out)
 {

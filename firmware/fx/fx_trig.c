@@ -153,7 +153,6 @@ fx_angle_t fx_atan2(int32_t y, int32_t x)
         t = 0u - t;
     return t;
 }
-#endif
 
 fx_angle_t fx_atan_ratio(int32_t num, int32_t den)
 {
@@ -163,6 +162,7 @@ fx_angle_t fx_atan_ratio(int32_t num, int32_t den)
     fx_angle_t t = fx_atan_q1(an, ad);
     return (num < 0) != (den < 0) ? 0u - t : t;
 }
+#endif
 
 fx_angle_t fx_atan_q16(fx_q16_t t)
 {

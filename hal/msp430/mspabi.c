@@ -8,8 +8,9 @@
  *  - 32-bit: operands in R12:R13 and R14:R15 (low word first); result in R12:R13.
  *    Shifts: value in R12:R13, count in R14.
  *  - 64-bit multiply: first operand in R12..R15, second on the stack (plain C convention).
- *  - Unsigned 16- and 32-bit divide and remainder are in mspabi_div.S (assembly: the
- *    shift-subtract loop costs a third of what clang makes of it in C).
+ *  - Unsigned 16- and 32-bit divide and remainder and the signed 32-bit divide
+ *    (__mspabi_divli, the most used one) are in mspabi_div.S (assembly: the shift-subtract
+ *    loop costs a third of what clang makes of it in C, the sign handling half the flash).
  *  - 64-bit divide and remainder (__mspabi_divlli/divull/remlli/remull): the EABI's special
  *    convention, dividend in R8..R11 and divisor in R12..R15, result in R12..R15; the shims
  *    in mspabi_div64.S move the registers and call the C functions here.
@@ -176,16 +177,6 @@ int16_t __mspabi_remi(int16_t a, int16_t b)
     uint16_t ub = b < 0 ? (uint16_t)(0u - (uint16_t)b) : (uint16_t)b;
     uint16_t r = __mspabi_remu(ua, ub);
     return (int16_t)(a < 0 ? (uint16_t)(0u - r) : r);
-}
-
-int32_t __mspabi_divli(int32_t a, int32_t b)
-{
-    if (!b)
-        return a < 0 ? INT32_MIN : INT32_MAX;
-    uint32_t ua = a < 0 ? 0u - (uint32_t)a : (uint32_t)a;
-    uint32_t ub = b < 0 ? 0u - (uint32_t)b : (uint32_t)b;
-    uint32_t q = __mspabi_divul(ua, ub);
-    return (int32_t)(((a < 0) != (b < 0)) ? 0u - q : q);
 }
 
 int32_t __mspabi_remli(int32_t a, int32_t b)

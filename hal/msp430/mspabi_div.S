@@ -121,3 +121,48 @@ __mspabi_remul:
     mov     r14, r12
     mov     r15, r13
 2:  ret
+
+/*
+ * __mspabi_divli: R13:R12 = a, R15:R14 = b (signed) -> R13:R12 = a / b truncated, as the C
+ * of mspabi.c defines it: the quotient of the magnitudes, negated when the signs differ;
+ * b = 0 gives INT32_MAX for a >= 0 and INT32_MIN for a < 0; INT32_MIN / -1 gives INT32_MIN.
+ */
+    .section .text.__mspabi_divli,"ax",@progbits
+    .global __mspabi_divli
+    .type __mspabi_divli,@function
+__mspabi_divli:
+    tst     r14
+    jnz     1f
+    tst     r15
+    jnz     1f
+    tst     r13                     ; b = 0: INT32_MAX, or INT32_MIN for a < 0
+    mov     #-1, r12                ; (MOV leaves the flags alone)
+    mov     #0x7fff, r13
+    jge     4f
+    clr     r12
+    mov     #0x8000, r13
+4:  ret
+1:  mov     r13, r11                ; the sign of the quotient, across the division
+    xor     r15, r11
+    push    r11
+    tst     r13
+    jge     2f
+    inv     r12
+    inv     r13
+    add     #1, r12
+    adc     r13
+2:  tst     r15
+    jge     3f
+    inv     r14
+    inv     r15
+    add     #1, r14
+    adc     r15
+3:  call    #cy_udivmod32
+    pop     r11
+    tst     r11
+    jge     4b
+    inv     r12
+    inv     r13
+    add     #1, r12
+    adc     r13
+    ret

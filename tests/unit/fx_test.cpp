@@ -428,17 +428,17 @@ TEST(FxRoots, Sqrt32ExactEverywhere)
         check_sqrt32(x);
     for (int i = 0; i < 3000000; i++)
         check_sqrt32(rmag32());
-    // Every x in [2^30, 2^32): the table method's estimate only changes every 512 x (aligned),
-    // so exactness at both ends of every aligned block of 512 means exactness for all x there
-    // (fx_root.c), and x below 2^30 is that times 4^-k.
+    // Both ends of every aligned block of 512 in [2^30, 2^32) (12.6M inputs). The digit-by-digit
+    // method is exact by construction (fx_root.c); these, the root boundaries above and the
+    // target's own boundary sweep (tests/vectors/fx_vectors.c) check the code.
     for (uint64_t x = 1u << 30; x < (1ull << 32); x += 512) {
         check_sqrt32((uint32_t)x);
         check_sqrt32((uint32_t)(x + 511));
     }
     check_sqrt32(0xFFFFFFFFu);
     EXPECT_EQ(fx_sqrt32(0xFFFFFFFFu), 0xFFFFu);
-    std::printf("fx_sqrt32: floor(sqrt(x)) exact (0 LSB) for every x (root boundaries, 2^22 "
-                "small, 3M random, both ends of all 6.3M blocks of [2^30, 2^32))\n");
+    std::printf("fx_sqrt32: floor(sqrt(x)) exact (0 LSB): every root boundary, every x < 2^22, "
+                "3M random, both ends of all 6.3M blocks of 512 in [2^30, 2^32)\n");
 }
 
 void check_sqrt64(uint64_t x)

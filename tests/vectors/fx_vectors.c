@@ -309,9 +309,30 @@ static void sqrt32_boundaries(void)
     cy_check(bad == 0, "fx_sqrt32 at every root boundary");
 }
 
+/*
+ * The same for fx_sqrt64 at 4096 roots of every magnitude (r^2 - 1, r^2, (r + 1)^2 - 1):
+ * the root's every bit, in particular bit 31, through each of the four word phases.
+ */
+static void sqrt64_boundaries(void)
+{
+    uint16_t bad = 0;
+    for (uint16_t i = 0; i < 4096u; i++) {
+        uint32_t r = i < 64u ? 0xFFFFFFFFu - i : rnd_mag();
+        uint64_t sq = (uint64_t)r * r;
+        if (fx_sqrt64(sq) != r || fx_sqrt64(sq + 2u * (uint64_t)r) != r ||
+            (r != 0 && fx_sqrt64(sq - 1u) != r - 1u))
+            bad++;
+    }
+    cy_print("sqrt64-boundaries ");
+    cy_print_dec(bad);
+    cy_println();
+    cy_check(bad == 0, "fx_sqrt64 at 4096 root boundaries");
+}
+
 static void roots(void)
 {
     sqrt32_boundaries();
+    sqrt64_boundaries();
     static const uint32_t edge[] = {0u,          1u,          2u,          3u,
                                     4u,          5u,          8u,          9u,
                                     0xFFFFu,     0x10000u,    0xFFFFFFFFu, 0xFFFE0001u,

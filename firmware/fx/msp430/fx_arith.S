@@ -46,70 +46,239 @@ fx_umul64:
     ret
 
 /*
- * uint32_t fx_udiv64_32(uint32_t hi, uint32_t lo, uint32_t d, uint32_t *rem):
- * R13:R12 = hi, R15:R14 = lo, d and rem on the stack (2(SP) d low word, 4(SP) d high word,
- * 6(SP) rem) -> R13:R12 = floor((hi 2^32 + lo) / d), *rem the remainder; hi < d <= 2^31.
- * Restoring division, 32 steps: the remainder R13:R12 (< d <= 2^31, so doubled it still
- * fits) doubles with the next dividend bit (from R15, then from R14), d is subtracted and
+ * The 64/32 division core (fx_udiv64_32() of fx_arith.c), local convention:
+ * R15:R14 = hi, R13:R12 = lo, R11:R10 = d (hi < d <= 2^31) -> R13:R12 = the quotient
+ * floor((hi 2^32 + lo) / d), R15:R14 = the remainder; R9 is clobbered.
+ * Restoring division, 32 steps: the remainder R15:R14 (< d <= 2^31, so doubled it still
+ * fits) doubles with the next dividend bit (from R13, then from R12), d is subtracted and
  * added back on a borrow. The quotient collects in R9 behind a sentinel bit whose carry-out
  * ends each 16-step half. When hi = 0 and lo >> 16 < d the first half is skipped.
  */
-    .section .text.fx_udiv64_32,"ax",@progbits
-    .global fx_udiv64_32
-    .type fx_udiv64_32,@function
-fx_udiv64_32:
-    push    r10
-    push    r9
-    mov     6(r1), r10              ; d
-    mov     8(r1), r11
-    mov     r12, r9                 ; hi = 0 and lo >> 16 < d: the first half gives 0
-    bis     r13, r9
-    tst     r9
+    .section .text.udiv64_core,"ax",@progbits
+    .type udiv64_core,@function
+udiv64_core:
+    tst     r15                     ; hi = 0 and lo >> 16 < d: the first half gives 0
+    jnz     9f
+    tst     r14
     jnz     9f
     tst     r11
     jnz     10f
-    cmp     r10, r15
+    cmp     r10, r13
     jhs     9f
-10: mov     r15, r12                ; remainder lo >> 16, quotient high word 0
+10: mov     r13, r14                ; remainder lo >> 16, quotient high word 0
     clr     r9
     jmp     4f
-9:  mov     #1, r9                  ; quotient bits 31..16 from the dividend bits of R15
-1:  rla     r15
-    rlc     r12
-    rlc     r13
-    sub     r10, r12
-    subc    r11, r13
+9:  mov     #1, r9                  ; quotient bits 31..16 from the dividend bits of R13
+1:  rla     r13
+    rlc     r14
+    rlc     r15
+    sub     r10, r14
+    subc    r11, r15
     jc      2f                      ; no borrow: quotient bit 1
-    add     r10, r12                ; restore, quotient bit 0
-    addc    r11, r13
+    add     r10, r14                ; restore, quotient bit 0
+    addc    r11, r15
     rla     r9
     jnc     1b
     jmp     4f
 2:  rlc     r9
     jnc     1b
-4:  mov     r9, r15                 ; quotient high word (R15 is used up)
-    mov     #1, r9                  ; quotient bits 15..0 from the dividend bits of R14
-5:  rla     r14
-    rlc     r12
-    rlc     r13
-    sub     r10, r12
-    subc    r11, r13
+4:  mov     r9, r13                 ; quotient high word (R13 is used up)
+    mov     #1, r9                  ; quotient bits 15..0 from the dividend bits of R12
+5:  rla     r12
+    rlc     r14
+    rlc     r15
+    sub     r10, r14
+    subc    r11, r15
     jc      6f
-    add     r10, r12
-    addc    r11, r13
+    add     r10, r14
+    addc    r11, r15
     rla     r9
     jnc     5b
     jmp     8f
 6:  rlc     r9
     jnc     5b
-8:  mov     10(r1), r14             ; *rem
-    mov     r12, 0(r14)
-    mov     r13, 2(r14)
-    mov     r9, r12
-    mov     r15, r13
+8:  mov     r9, r12
+    ret
+
+/*
+ * bool fx_div_shift(int32_t num, int32_t den, uint8_t shift, int32_t *out): R13:R12 = num,
+ * R15:R14 = den, 2(SP) = shift, 4(SP) = out; bool fx_div32(num, den, out): 2(SP) = out, the
+ * same with shift 0 (fx_arith.c defines both so). -> R12 = 1 and *out = num 2^shift / den
+ * rounded to nearest (ties away from zero), or R12 = 0 (den = 0 or the quotient does not
+ * fit int32). Steps of fx_div_shift(): the magnitudes n, d; n = 0 gives 0; shift >= 64
+ * fails; the dividend n 2^shift as hi:lo by fx_shl64 (for shift > 32 as n 2^(shift-32),
+ * failing if that does not fit 32 bits); hi >= d fails; the division core; + 1 when the
+ * remainder is at least d - remainder; the sign. Frame: R10, R9, R8, R7 pushed; R8 = shift,
+ * R7 = out, R9 bit 15 = the sign of the result, R11:R10 = d.
+ */
+    .section .text.fx_div_shift,"ax",@progbits
+    .global fx_div_shift
+    .type fx_div_shift,@function
+    .global fx_div32
+    .type fx_div32,@function
+fx_div_shift:
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    mov.b   10(r1), r8
+    mov     12(r1), r7
+    jmp     1f
+fx_div32:
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    clr     r8
+    mov     10(r1), r7
+1:  mov     r14, r10                ; den = 0 fails
+    bis     r15, r10
+    tst     r10
+    jz      .Ldiv_fail
+    mov     r13, r9                 ; sign
+    xor     r15, r9
+    mov     r14, r10                ; d = |den|
+    mov     r15, r11
+    tst     r11
+    jge     2f
+    inv     r10
+    inv     r11
+    add     #1, r10
+    adc     r11
+2:  tst     r13                     ; n = |num|
+    jge     3f
+    inv     r12
+    inv     r13
+    add     #1, r12
+    adc     r13
+3:  mov     r12, r14                ; n = 0: 0
+    bis     r13, r14
+    tst     r14
+    jz      .Ldiv_store
+    cmp     #64, r8
+    jhs     .Ldiv_fail
+    clr     r14
+    clr     r15
+    push    r11                     ; d across fx_shl64 (it clobbers R11)
+    push    r10
+    mov     r8, r10                 ; n 2^shift, or n 2^(shift - 32) for shift > 32
+    cmp     #33, r8
+    jlo     4f
+    sub     #32, r10
+4:  push    r10
+    call    #fx_shl64
+    pop     r10
+    pop     r10
+    pop     r11
+    cmp     #33, r8
+    jlo     5f
+    tst     r15                     ; shift > 32: n 2^(shift - 32) must fit 32 bits;
+    jnz     .Ldiv_fail              ; it is hi, and lo = 0
+    tst     r14
+    jnz     .Ldiv_fail
+    mov     r12, r14
+    mov     r13, r15
+    clr     r12
+    clr     r13
+5:  cmp     r11, r15                ; hi >= d fails
+    jlo     6f
+    jne     .Ldiv_fail
+    cmp     r10, r14
+    jhs     .Ldiv_fail
+6:  mov     r9, r8                  ; the sign across the core (it clobbers R9)
+    call    #udiv64_core            ; R13:R12 = q, R15:R14 = remainder
+    mov     r8, r9
+    sub     r14, r10                ; remainder >= d - remainder: q + 1
+    subc    r15, r11
+    cmp     r11, r15
+    jlo     .Ldiv_store
+    jne     7f
+    cmp     r10, r14
+    jlo     .Ldiv_store
+7:  add     #1, r12
+    adc     r13
+    jc      .Ldiv_fail              ; 2^32
+.Ldiv_store:
+    br      #fx_store
+.Ldiv_fail:
+    br      #fx_fail
+
+/*
+ * bool fx_mul_shift(int32_t a, int32_t b, uint8_t shift, int32_t *out): R13:R12 = a,
+ * R15:R14 = b, 2(SP) = shift, 4(SP) = out -> R12 = 1 and *out = a b / 2^shift rounded to
+ * nearest (ties away from zero), or R12 = 0 when it does not fit int32. Steps of
+ * fx_mul_shift() in fx_arith.c: p = |a| |b| (<= 2^62), 0 for shift >= 64, else for shift > 0
+ * ((p >> (shift - 1)) + 1) >> 1, then the shared tail (frame as fx_div_shift).
+ */
+    .section .text.fx_mul_shift,"ax",@progbits
+    .global fx_mul_shift
+    .type fx_mul_shift,@function
+fx_mul_shift:
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    mov.b   10(r1), r8
+    mov     12(r1), r7
+    call    #mul_magnitudes         ; R15:R14:R13:R12 = p, R9 bit 15 = sign
+    cmp     #64, r8
+    jlo     1f
+    clr     r12                     ; shift >= 64: 0
+    clr     r13
+    jmp     fx_store
+1:  tst     r8
+    jz      2f
+    sub     #1, r8
+    push    r8
+    call    #fx_shr64
+    pop     r8
+    add     #1, r12                 ; + 1, then >> 1 (p + 1 < 2^63: bit 63 is 0)
+    adc     r13
+    adc     r14
+    adc     r15
+    rra     r15
+    rrc     r14
+    rrc     r13
+    rrc     r12
+2:  tst     r15                     ; must fit 32 bits
+    jnz     fx_fail
+    tst     r14
+    jnz     fx_fail
+    jmp     fx_store
+/*
+ * Shared tail of fx_div_shift, fx_div32 and fx_mul_shift: R13:R12 = the magnitude m,
+ * R9 bit 15 = the sign -> *out = +-m and R12 = 1 when it fits int32 (m <= 2^31 - 1, or
+ * 2^31 for a negative result), else R12 = 0 (fx_fail); pops the frame.
+ */
+    .type fx_store,@function
+fx_store:
+    tst     r9
+    jn      1f
+    tst     r13                     ; positive: m <= 2^31 - 1
+    jn      fx_fail
+    jmp     3f
+1:  cmp     #0x8000, r13            ; negative: m <= 2^31
+    jlo     2f
+    jne     fx_fail
+    tst     r12
+    jnz     fx_fail
+2:  inv     r12
+    inv     r13
+    add     #1, r12
+    adc     r13
+3:  mov     r12, 0(r7)
+    mov     r13, 2(r7)
+    mov     #1, r12
+    jmp     4f
+    .type fx_fail,@function
+fx_fail:
+    clr     r12
+4:  pop     r7
+    pop     r8
     pop     r9
     pop     r10
     ret
+
 
 /*
  * uint16_t fx_udiv32_16(uint32_t n, uint16_t d, uint16_t *rem): R13:R12 = n, R14 = d,

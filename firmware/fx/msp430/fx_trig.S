@@ -1,8 +1,8 @@
 /*
- * fx_trig.S - MSP430 versions of fx_sin, fx_cos, fx_atan2 and the first-quadrant
- * arctangent fx_atan_q1 (firmware/fx/fx_trig.c holds the portable C that defines the
- * results; these perform the very same integer steps, which tests/vectors/fx_vectors.c
- * checks bit for bit).
+ * fx_trig.S - MSP430 versions of fx_sin, fx_cos, fx_atan2, fx_atan_ratio and the
+ * first-quadrant arctangent fx_atan_q1 (firmware/fx/fx_trig.c holds the portable C that
+ * defines the results; these perform the very same integer steps, which
+ * tests/vectors/fx_vectors.c checks bit for bit).
  *
  * Registers as clang emits calls (TI EABI): 32-bit arguments in R13:R12 and R15:R14 (high
  * word first here: R12 is the low word), 32-bit result in R13:R12; R11..R15 may be
@@ -252,7 +252,7 @@ fx_atan2:
     mov     r10, r13
     mov     #4, r11
 1:  tst     r15
-    jge     2f
+    jge     .Latan_place
     clr     r9                      ; x = -x
     sub     r14, r9
     clr     r10
@@ -260,7 +260,35 @@ fx_atan2:
     mov     r9, r14
     mov     r10, r15
     bis     #8, r11
-2:  mov     r12, r10                ; (0, 0) gives 0
+    jmp     .Latan_place
+
+/*
+ * fx_angle_t fx_atan_ratio(int32_t num, int32_t den): R13:R12 = num, R15:R14 = den -> R13:R12.
+ * fx_atan_ratio() of fx_trig.c: the core on |num|, |den|, negated when the signs differ
+ * (bit 2 of R11, the "y < 0" of fx_atan2, whose tail it shares); (0, 0) gives 0.
+ */
+    .global fx_atan_ratio
+    .type fx_atan_ratio,@function
+fx_atan_ratio:
+    push    r10
+    push    r9
+    clr     r11
+    tst     r13
+    jge     1f
+    inv     r12                     ; num = -num
+    inv     r13
+    add     #1, r12
+    adc     r13
+    mov     #4, r11
+1:  tst     r15
+    jge     .Latan_place
+    inv     r14                     ; den = -den, the sign flips
+    inv     r15
+    add     #1, r14
+    adc     r15
+    xor     #4, r11
+.Latan_place:
+    mov     r12, r10                ; (0, 0) gives 0
     bis     r13, r10
     bis     r14, r10
     bis     r15, r10
