@@ -205,6 +205,8 @@ def sp_delta(insn):
         return 2
     if m in ("pop", "pop.b", "pop.w"):
         return -2
+    if ops and ops[0] == "@r1+" and dest(insn) != SP:
+        return -2  # a source read off the stack with autoincrement (add @r1+, r12): a pop
     if m in ("pushm", "pushm.w", "pushm.a", "popm", "popm.w", "popm.a"):
         n = imm(ops[0])
         per = 4 if m.endswith(".a") else 2

@@ -152,6 +152,25 @@ class Errors(unittest.TestCase):
         img = image(text)
         self.assertTrue(any("returns with 2 bytes" in e for e in img.funcs["f"].errors))
 
+    def test_autoincrement_reads_pop(self):
+        # Four words pushed, then summed off the stack with @r1+ (as fx_hypot does): each
+        # read pops 2 bytes, so the return finds the depth back at 0; the frame is 8.
+        text = """
+00001000 <f>:
+    1000:      	push	r15
+    1002:      	push	r14
+    1004:      	push	r13
+    1006:      	push	r12
+    1008:      	add	@r1+, r12
+    100a:      	addc	@r1+, r13
+    100c:      	addc	@r1+, r14
+    100e:      	addc	@r1+, r15
+    1010:      	ret
+"""
+        img = image(text)
+        self.assertEqual(img.funcs["f"].errors, [])
+        self.assertEqual(img.funcs["f"].frame, 8)
+
     def test_join_with_two_depths(self):
         text = """
 00001000 <f>:

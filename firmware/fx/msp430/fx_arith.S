@@ -246,11 +246,11 @@ fx_mul_shift:
     jnz     fx_fail
     jmp     fx_store
 /*
- * Shared tail of fx_div_shift, fx_div32 and fx_mul_shift: R13:R12 = the magnitude m,
+ * Shared tail (plain labels, not functions: the callers jump here with their frame pushed)
+ * of fx_div_shift, fx_div32 and fx_mul_shift: R13:R12 = the magnitude m,
  * R9 bit 15 = the sign -> *out = +-m and R12 = 1 when it fits int32 (m <= 2^31 - 1, or
  * 2^31 for a negative result), else R12 = 0 (fx_fail); pops the frame.
  */
-    .type fx_store,@function
 fx_store:
     tst     r9
     jn      1f
@@ -270,7 +270,6 @@ fx_store:
     mov     r13, 2(r7)
     mov     #1, r12
     jmp     4f
-    .type fx_fail,@function
 fx_fail:
     clr     r12
 4:  pop     r7
