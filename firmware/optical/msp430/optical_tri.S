@@ -707,9 +707,9 @@ out:
     ret
 
 /*
- * Cut the six 32-bit values at @R12 (in place, as 16 bits in the first 12 bytes... no: to
- * the 16-bit array @R13) by the common floor shift s that brings them all below 2^14 (to15()
- * in fastmath.c) -> R12 = s. Clobbers R8..R11, R14, R15.
+ * Cut the six 32-bit values at @R12 into the 16-bit array @R13 by the common floor shift s
+ * that brings them all below 2^14 (to15() in fastmath.c) -> R12 = s. Clobbers R8..R11, R14,
+ * R15.
  */
     .section .text.optical_quality_parts,"ax",@progbits
 to15:
