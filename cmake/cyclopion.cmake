@@ -78,7 +78,7 @@ if(CY_TARGET_MSP430)
 
     # cy_board_flash_test(NAME LIBRARY libfoo.a BUDGET bytes)
     # target.NAME: the flash a module library takes in the main board image, against its
-    # budget (tests/target/drive_flash.py): the board's objects and libraries linked again with
+    # budget (tests/target/board_flash.py): the board's objects and libraries linked again with
     # a roomy memory map, the library's share (text, rodata, data of every object the board
     # reaches) summed from the linker map. Deferred to the end of the configuration, when the
     # main board's target exists.
@@ -115,7 +115,7 @@ if(CY_TARGET_MSP430)
             endif()
         endforeach()
         add_test(NAME target.${name}
-            COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/target/drive_flash.py
+            COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/target/board_flash.py
                 --lld ${CY_LLD} --ld-dir ${PROJECT_SOURCE_DIR}/hal/msp430/ld
                 --library ${library} --budget ${budget}
                 --map ${CMAKE_BINARY_DIR}/bin/main_board_${name}.map ${files})

@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
-"""Flash taken by firmware/drive in the main board image, checked against its budget.
+"""Flash taken by one module library in the main board image, checked against its budget.
 
 Links the main board's objects and libraries again, with the board's section layout but a
 test memory map (the whole flash, 3.75 KB of RAM), so that the figure exists even while the
 image as a whole is over the 32 KB / 2 KB budget. --gc-sections keeps only what the main
-board reaches, exactly as in the board link. From the linker map it sums, per object of
-libcy_drive.a, the input sections that land in flash (.text, .rodata and the load image of
-.data), prints the table and fails (exit 1) when their total exceeds --budget bytes.
+board reaches, exactly as in the board link. From the linker map it sums, per object of the
+--library (libcy_drive.a, libcy_optical.a, ...), the input sections that land in flash
+(.text, .rodata and the load image of .data), prints the table and fails (exit 1) when their
+total exceeds --budget bytes.
 
-  drive_flash.py --lld ld.lld-16 --ld-dir hal/msp430/ld --budget 6656 \
+  board_flash.py --lld ld.lld-16 --ld-dir hal/msp430/ld --library libcy_drive.a --budget 6656 \
       --map out.map [--elf out.elf] main_msp430.c.obj libcy_main_board.a ... libcy_drive.a ...
 """
 import argparse
@@ -58,8 +59,8 @@ def main():
     ap.add_argument("inputs", nargs="+", help="the main board's objects and libraries")
     ap.add_argument("--lld", required=True)
     ap.add_argument("--ld-dir", required=True, help="hal/msp430/ld (f249_sections.ld)")
-    ap.add_argument("--budget", type=int, required=True, help="bytes of flash for cy_drive")
-    ap.add_argument("--library", default="libcy_drive.a", help="whose objects are summed")
+    ap.add_argument("--budget", type=int, required=True, help="bytes of flash for the library")
+    ap.add_argument("--library", required=True, help="whose objects are summed (libcy_drive.a)")
     ap.add_argument("--map", help="keep the linker map here")
     ap.add_argument("--elf", help="keep the linked image here (e.g. for tools/stack_bound.py)")
     args = ap.parse_args()
@@ -75,7 +76,7 @@ def main():
                              + args.inputs, capture_output=True, text=True)
         if run.returncode != 0:
             sys.stderr.write(run.stderr)
-            print("drive_flash: the link failed", file=sys.stderr)
+            print("board_flash: the link failed", file=sys.stderr)
             return 1
         with open(map_path) as f:
             sizes = flash_by_object(f.read())
@@ -88,7 +89,7 @@ def main():
     print(f"{total:>7}  {args.library} in the image (budget {args.budget}); "
           f"the whole image {sum(sizes.values())}")
     if total > args.budget:
-        print(f"drive_flash: {args.library} takes {total} bytes of flash, the budget is "
+        print(f"board_flash: {args.library} takes {total} bytes of flash, the budget is "
               f"{args.budget}", file=sys.stderr)
         return 1
     return 0
