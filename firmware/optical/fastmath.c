@@ -33,6 +33,8 @@ uint16_t optical_win(uint16_t l, uint16_t g)
     return v > 0x7FFFu ? 0x7FFFu : (uint16_t)v;
 }
 
+#ifndef OPTICAL_ASM
+
 static uint32_t umag(int32_t v)
 {
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
@@ -42,8 +44,6 @@ static uint16_t sat16(uint32_t v)
 {
     return v > 0xFFFFu ? 0xFFFFu : (uint16_t)v;
 }
-
-#ifndef OPTICAL_ASM
 
 /* The parts of the arctangent that optical_expect_scan reuses. */
 typedef struct {
@@ -243,8 +243,6 @@ void optical_eval(int16_t mid, uint16_t half)
         test(W.u.id.cand[2u * c], W.u.id.cand[2u * c + 1u], mid, half);
 }
 
-#endif
-
 bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16)
 {
     uint32_t ax = umag(b->x - a->x), ay = umag(b->y - a->y);
@@ -264,8 +262,6 @@ bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t 
         return false;
     return a->flat || hi * w16 >= a->dk;
 }
-
-#ifndef OPTICAL_ASM
 
 /* floor(v / 2) */
 static int32_t half32(int32_t v)

@@ -496,7 +496,6 @@ static fx_q16_t threshold(const ctx_t *x)
 {
     const optical_config_t *cfg = x->cfg;
     fx_q16_t t = cfg->range;
-    uint32_t tstep = step_of((uint32_t)cfg->range, (uint32_t)cfg->range_max, cfg->range_steps);
     for (uint8_t step = 0;; step++) {
         uint32_t t8 = (uint32_t)t >> 8;
         uint32_t wmin = t8 ? x->wd.dk / t8 : 0xFFFFu; /* 2^-16 turn */
@@ -507,7 +506,11 @@ static fx_q16_t threshold(const ctx_t *x)
             W.wchk[j] = 0x7Fu;
             kept += keep;
         }
-        if (kept >= 3 || step >= cfg->range_steps || tstep == 0)
+        if (kept >= 3 || step >= cfg->range_steps)
+            return t;
+        /* (the division only when a widening is needed) */
+        uint32_t tstep = step_of((uint32_t)cfg->range, (uint32_t)cfg->range_max, cfg->range_steps);
+        if (tstep == 0)
             return t;
         t += (fx_q16_t)tstep;
     }

@@ -736,3 +736,169 @@ optical_eval:
     pop     r6
     pop     r9
     ret
+
+/*
+ * bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16):
+ * R12 = a, R13 = b, R14 = w16 -> R12 (fastmath.c's steps). R10 = a, R9 = x8, R11 = rhi then
+ * hi, R13 = rlo then lo, R15 = tol. Interrupts held off around each multiply.
+ * optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18.
+ */
+    .section .text.optical_width_ok,"ax",@progbits
+    .global optical_width_ok
+    .type optical_width_ok,@function
+optical_width_ok:
+    push    r10
+    push    r9
+    mov     r12, r10
+    mov     0(r13), r12             ; x8 = the magnitude of b.x - a.x, 2^-8 m, capped
+    mov     2(r13), r15
+    sub     4(r10), r12
+    subc    6(r10), r15
+    call    #wd_mag8
+    mov     r12, r9
+    mov     4(r13), r12             ; y8
+    mov     6(r13), r15
+    sub     8(r10), r12
+    subc    10(r10), r15
+    call    #wd_mag8
+    cmp     r9, r12                 ; o = max + min / 2, saturated
+    jhs     1f
+    xor     r12, r9
+    xor     r9, r12
+    xor     r12, r9
+1:  clrc
+    rrc     r9
+    add     r9, r12
+    jnc     2f
+    mov     #-1, r12
+2:  mov     r12, r11                ; rhi = o + eps8, saturated
+    add     12(r10), r11
+    jnc     3f
+    mov     #-1, r11
+3:  push    r2
+    dint
+    nop
+    mov     r12, &MPY               ; rlo = (o 58623) >> 16 - eps8, or 0
+    mov     #58623, &OP2
+    mov     &RESHI, r13
+    mov     r11, &MPY               ; tol = tol8 + (rhi rel16) >> 16, saturated
+    mov     16(r10), &OP2
+    mov     &RESHI, r15
+    pop     r2
+    sub     12(r10), r13
+    jc      4f
+    clr     r13
+4:  add     14(r10), r15
+    jnc     5f
+    mov     #-1, r15
+5:  sub     r15, r13                ; lo = rlo - tol, or 0
+    jc      6f
+    clr     r13
+6:  add     r15, r11                ; hi = rhi + tol, saturated
+    jnc     7f
+    mov     #-1, r11
+7:  cmp     #5216, r14
+    jhs     wd_wide
+    push    r2                      ; p = lo w16
+    dint
+    nop
+    mov     r13, &MPY
+    mov     r14, &OP2
+    mov     &RESLO, r12
+    mov     &RESHI, r13
+    pop     r2
+    mov     r12, r9                 ; p - (p >> 5) > dk: false
+    mov     r13, r15
+    clrc
+    rrc     r15
+    rrc     r9
+    clrc
+    rrc     r15
+    rrc     r9
+    clrc
+    rrc     r15
+    rrc     r9
+    clrc
+    rrc     r15
+    rrc     r9
+    clrc
+    rrc     r15
+    rrc     r9
+    sub     r9, r12
+    subc    r15, r13
+    cmp     r13, 2(r10)
+    jne     8f
+    cmp     r12, 0(r10)
+8:  jlo     wd_false
+    tst.b   18(r10)                 ; flat: only that bound
+    jnz     wd_true
+    push    r2                      ; hi w16 >= dk
+    dint
+    nop
+    mov     r11, &MPY
+    mov     r14, &OP2
+    mov     &RESLO, r12
+    mov     &RESHI, r13
+    pop     r2
+    cmp     2(r10), r13
+    jne     9f
+    cmp     0(r10), r12
+9:  jhs     wd_true
+wd_false:
+    clr     r12
+    pop     r9
+    pop     r10
+    ret
+wd_true:
+    mov     #1, r12
+    pop     r9
+    pop     r10
+    ret
+wd_wide:                            ; w16 > 5215: lo 5215 <= dk + (dk >> 4)
+    push    r2
+    dint
+    nop
+    mov     r13, &MPY
+    mov     #5215, &OP2
+    mov     &RESLO, r9
+    mov     &RESHI, r11
+    pop     r2
+    mov     0(r10), r12
+    mov     2(r10), r13
+    clrc
+    rrc     r13
+    rrc     r12
+    clrc
+    rrc     r13
+    rrc     r12
+    clrc
+    rrc     r13
+    rrc     r12
+    clrc
+    rrc     r13
+    rrc     r12
+    add     0(r10), r12
+    addc    2(r10), r13
+    cmp     r11, r13                ; s >= p: true
+    jne     1f
+    cmp     r9, r12
+1:  jhs     wd_true
+    jmp     wd_false
+
+/* R15:R12 = a signed difference -> R12 = min(|v| >> 8, 0xffff). */
+wd_mag8:
+    tst     r15
+    jge     1f
+    inv     r12
+    inv     r15
+    inc     r12
+    adc     r15
+1:  cmp     #0x0100, r15
+    jhs     2f
+    swpb    r12
+    mov.b   r12, r12
+    swpb    r15
+    bis     r15, r12
+    ret
+2:  mov     #-1, r12
+    ret
