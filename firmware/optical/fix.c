@@ -391,6 +391,8 @@ static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, 
         st = optical_triangulate(b, th, x->cfg->quality_max, tri);
         if (st != OPTICAL_OK)
             return st;
+        if (pass + 1u >= passes) /* (the last: no need to know how far it moved) */
+            break;
         uint32_t moved = fx_hypot(tri->pose.x - p.x, tri->pose.y - p.y);
         p = tri->pose;
         if (moved < 16) /* 0.25 mm */
