@@ -17,6 +17,7 @@
 /* The wire is little endian; fields are copied byte by byte from their place in memory. */
 _Static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "linkmsg.c needs a little-endian CPU");
 _Static_assert(LINKMSG_ID_DIR <= 0xFFu, "message ids are stored in a byte");
+_Static_assert(sizeof(linkmsg_t) <= 32, "field offsets are stored in 5 bits");
 
 /* A field: its offset in linkmsg_t (< 32) << 3 | its size in bytes (1, 2 or 4). */
 #define FIELD(member)                                                                              \
