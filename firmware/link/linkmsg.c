@@ -1,118 +1,77 @@
 /*
  * linkmsg.c - inter-board messages as frames (see linkmsg.h).
+ *
+ * One table says where each message's fields go: their order on the wire and where they sit in
+ * linkmsg_t. A message of up to 8 data bytes is one frame; a longer one (a pose and more) is
+ * an A frame with its first 8 bytes and a B frame with the rest and the tag. Encoding and
+ * decoding are the same byte copy in opposite directions. The tag of a B frame is the CRC-8 of
+ * its A frame's data, the framer's CRC (hal/common/link_framer.h, in both HAL implementations).
  */
 #include "link/linkmsg.h"
 
+#include <stddef.h>
+
 #include "hal/irq.h"
+#include "link_framer.h"
 
-static void put16(uint8_t *p, uint16_t v)
-{
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-}
+/* The wire is little endian; fields are copied byte by byte from their place in memory. */
+_Static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "linkmsg.c needs a little-endian CPU");
+_Static_assert(LINKMSG_ID_DIR <= 0xFFu, "message ids are stored in a byte");
+_Static_assert(sizeof(linkmsg_t) <= 32, "field offsets are stored in 5 bits");
 
-static void put32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-    p[2] = (uint8_t)(v >> 16);
-    p[3] = (uint8_t)(v >> 24);
-}
+/* A field: its offset in linkmsg_t (< 32) << 3 | its size in bytes (1, 2 or 4). */
+#define FIELD(member)                                                                              \
+    (uint8_t)(offsetof(linkmsg_t, u.member) << 3 | sizeof(((linkmsg_t *)NULL)->u.member))
+#define POSE(msg) FIELD(msg.pose.x), FIELD(msg.pose.y), FIELD(msg.pose.heading)
 
-static uint16_t get16(const uint8_t *p)
-{
-    return (uint16_t)(p[0] | ((uint16_t)p[1] << 8));
-}
+typedef struct {
+    uint8_t id;        /* of the frame, of the A frame of a pair (its B frame is id + 1) */
+    uint8_t len;       /* data bytes; over 8: an A/B pair, the B frame adds the tag */
+    uint8_t slot;      /* of a pair: its place in linkmsg_rx_t.have and .a */
+    uint8_t fields[5]; /* in wire order */
+} msg_desc_t;
 
-static uint32_t get32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
-}
-
-/* CRC-8 (polynomial 0x07) of an A frame's 8 data bytes: the tag of its B frame. */
-static uint8_t tag_of(const uint8_t *a)
-{
-    uint8_t crc = 0;
-    for (uint8_t i = 0; i < 8; i++) {
-        crc ^= a[i];
-        for (uint8_t b = 0; b < 8; b++)
-            crc = (uint8_t)((crc & 0x80u) ? (uint8_t)(crc << 1) ^ 0x07u : (uint8_t)(crc << 1));
-    }
-    return crc;
-}
-
-/* A frame (x, y) and the first four bytes of the B frame (heading). */
-static void pose_pair(uint16_t id_a, const linkmsg_pose_t *p, hal_link_frame_t out[2])
-{
-    out[0].id = id_a;
-    out[0].len = 8;
-    put32(out[0].data, (uint32_t)p->x);
-    put32(out[0].data + 4, (uint32_t)p->y);
-    out[1].id = (uint16_t)(id_a + 1u);
-    put32(out[1].data, p->heading);
-}
+/* Indexed by linkmsg_type_t - 1. */
+static const msg_desc_t msgs[] = {
+    {LINKMSG_ID_STOP, 1, 0, {FIELD(stop.reason)}},
+    {LINKMSG_ID_POSE_A, 13, 0, {POSE(pose), FIELD(pose.request)}},
+    {LINKMSG_ID_FIX_A, 15, 1, {POSE(fix), FIELD(fix.latch), FIELD(fix.flags)}},
+    {LINKMSG_ID_FIX_ACK, 3, 0, {FIELD(fix_ack.status), FIELD(fix_ack.latch)}},
+    {LINKMSG_ID_LATCH_REQ, 3, 0, {FIELD(latch_req.first), FIELD(latch_req.count)}},
+    {LINKMSG_ID_LATCH_A, 15, 2, {POSE(latch), FIELD(latch.seq), FIELD(latch.status)}},
+    {LINKMSG_ID_DIR, 1, 0, {FIELD(dir.reverse)}},
+};
+#define MSG_COUNT (sizeof msgs / sizeof msgs[0])
 
 uint8_t linkmsg_encode(const linkmsg_t *m, hal_link_frame_t out[2])
 {
-    switch (m->type) {
-    case LINKMSG_STOP:
-        out[0].id = LINKMSG_ID_STOP;
-        out[0].len = 1;
-        out[0].data[0] = m->u.stop.reason;
-        return 1;
-    case LINKMSG_POSE:
-        pose_pair(LINKMSG_ID_POSE_A, &m->u.pose.pose, out);
-        out[1].data[4] = m->u.pose.request;
-        out[1].data[5] = tag_of(out[0].data);
-        out[1].len = 6;
-        return 2;
-    case LINKMSG_FIX:
-        pose_pair(LINKMSG_ID_FIX_A, &m->u.fix.pose, out);
-        put16(out[1].data + 4, m->u.fix.latch);
-        out[1].data[6] = m->u.fix.flags;
-        out[1].data[7] = tag_of(out[0].data);
-        out[1].len = 8;
-        return 2;
-    case LINKMSG_FIX_ACK:
-        out[0].id = LINKMSG_ID_FIX_ACK;
-        out[0].len = 3;
-        out[0].data[0] = (uint8_t)m->u.fix_ack.status;
-        put16(out[0].data + 1, m->u.fix_ack.latch);
-        return 1;
-    case LINKMSG_LATCH_REQ:
-        out[0].id = LINKMSG_ID_LATCH_REQ;
-        out[0].len = 3;
-        put16(out[0].data, m->u.latch_req.first);
-        out[0].data[2] = m->u.latch_req.count;
-        return 1;
-    case LINKMSG_LATCH:
-        pose_pair(LINKMSG_ID_LATCH_A, &m->u.latch.pose, out);
-        put16(out[1].data + 4, m->u.latch.seq);
-        out[1].data[6] = (uint8_t)m->u.latch.status;
-        out[1].data[7] = tag_of(out[0].data);
-        out[1].len = 8;
-        return 2;
-    case LINKMSG_DIR:
-        out[0].id = LINKMSG_ID_DIR;
-        out[0].len = 1;
-        out[0].data[0] = m->u.dir.reverse;
-        return 1;
-    default:
+    uint8_t t = (uint8_t)(m->type - 1u);
+    if (t >= MSG_COUNT)
         return 0;
+    const msg_desc_t *d = &msgs[t];
+    const uint8_t *fp = d->fields;
+    uint8_t k = 0; /* ends as the message's data bytes */
+    while (k < d->len) {
+        for (uint8_t i = 0; i < (*fp & 7u); i++, k++)
+            *(k < 8 ? &out[0].data[k] : &out[1].data[k - 8]) = ((const uint8_t *)m)[(*fp >> 3) + i];
+        fp++;
     }
+    out[0].id = d->id;
+    if (k <= 8) {
+        out[0].len = k;
+        return 1;
+    }
+    out[0].len = 8;
+    out[1].id = (uint16_t)(d->id + 1u);
+    out[1].len = (uint8_t)(k - 7u);
+    out[1].data[k - 8u] = link_crc8(out[0].data, 8);
+    return 2;
 }
 
 void linkmsg_rx_init(linkmsg_rx_t *rx)
 {
-    for (uint8_t i = 0; i < 3; i++)
-        rx->have[i] = 0;
+    rx->have[0] = rx->have[1] = rx->have[2] = 0;
     rx->errors = 0;
-}
-
-/* Slot of an A/B pair by its A id (called with the three A ids only). */
-static uint8_t slot_of(uint16_t id_a)
-{
-    return id_a == LINKMSG_ID_FIX_A ? 1u : id_a == LINKMSG_ID_LATCH_A ? 2u : 0u;
 }
 
 static bool bad(linkmsg_rx_t *rx)
@@ -123,81 +82,36 @@ static bool bad(linkmsg_rx_t *rx)
 
 bool linkmsg_rx_feed(linkmsg_rx_t *rx, const hal_link_frame_t *f, linkmsg_t *out)
 {
-    const uint8_t *d = f->data;
-    uint8_t s;
-    switch (f->id) {
-    case LINKMSG_ID_STOP:
-        if (f->len != 1)
-            return bad(rx);
-        out->type = LINKMSG_STOP;
-        out->u.stop.reason = d[0];
-        return true;
-    case LINKMSG_ID_FIX_ACK:
-        if (f->len != 3)
-            return bad(rx);
-        out->type = LINKMSG_FIX_ACK;
-        out->u.fix_ack.status = (int8_t)d[0];
-        out->u.fix_ack.latch = get16(d + 1);
-        return true;
-    case LINKMSG_ID_LATCH_REQ:
-        if (f->len != 3)
-            return bad(rx);
-        out->type = LINKMSG_LATCH_REQ;
-        out->u.latch_req.first = get16(d);
-        out->u.latch_req.count = d[2];
-        return true;
-    case LINKMSG_ID_DIR:
-        if (f->len != 1)
-            return bad(rx);
-        out->type = LINKMSG_DIR;
-        out->u.dir.reverse = d[0];
-        return true;
-    case LINKMSG_ID_POSE_A:
-    case LINKMSG_ID_FIX_A:
-    case LINKMSG_ID_LATCH_A:
-        s = slot_of(f->id);
-        if (f->len != 8) {
-            rx->have[s] = 0;
-            return bad(rx);
+    const msg_desc_t *d = msgs;
+    while (f->id != d->id && (d->len <= 8 || f->id != d->id + 1u))
+        if (++d == msgs + MSG_COUNT)
+            return false;           /* another id: traffic of others on a shared bus */
+    const uint8_t *first = f->data; /* where the message's data bytes 0..7 are */
+    if (d->len > 8) {
+        uint8_t *a = rx->a[d->slot];
+        uint8_t had = rx->have[d->slot];
+        rx->have[d->slot] = 0;
+        if (f->id == d->id) {
+            /* An A frame: kept until its B frame. */
+            if (f->len != 8)
+                return bad(rx);
+            for (uint8_t i = 0; i < 8; i++)
+                a[i] = f->data[i];
+            rx->have[d->slot] = 1;
+            return false;
         }
-        for (uint8_t i = 0; i < 8; i++)
-            rx->a[s][i] = d[i];
-        rx->have[s] = 1;
-        return false;
-    case LINKMSG_ID_POSE_B:
-    case LINKMSG_ID_FIX_B:
-    case LINKMSG_ID_LATCH_B:
-        s = slot_of((uint16_t)(f->id - 1u));
-        if (!rx->have[s] || f->len != (s == 0 ? 6u : 8u) || d[f->len - 1u] != tag_of(rx->a[s])) {
-            rx->have[s] = 0;
+        if (!had || f->len != (uint8_t)(d->len - 7u) || f->data[f->len - 1u] != link_crc8(a, 8))
             return bad(rx);
-        }
-        rx->have[s] = 0;
-        {
-            linkmsg_pose_t p;
-            p.x = (fx_q16_t)get32(rx->a[s]);
-            p.y = (fx_q16_t)get32(rx->a[s] + 4);
-            p.heading = get32(d);
-            if (s == 0) {
-                out->type = LINKMSG_POSE;
-                out->u.pose.pose = p;
-                out->u.pose.request = d[4];
-            } else if (s == 1) {
-                out->type = LINKMSG_FIX;
-                out->u.fix.pose = p;
-                out->u.fix.latch = get16(d + 4);
-                out->u.fix.flags = d[6];
-            } else {
-                out->type = LINKMSG_LATCH;
-                out->u.latch.pose = p;
-                out->u.latch.seq = get16(d + 4);
-                out->u.latch.status = (int8_t)d[6];
-            }
-        }
-        return true;
-    default:
-        return false;
+        first = a;
+    } else if (f->len != d->len) {
+        return bad(rx);
     }
+    out->type = (uint8_t)(d - msgs + 1);
+    const uint8_t *fp = d->fields;
+    for (uint8_t k = 0; k < d->len; fp++)
+        for (uint8_t i = 0; i < (*fp & 7u); i++, k++)
+            ((uint8_t *)out)[(*fp >> 3) + i] = k < 8 ? first[k] : f->data[k - 8];
+    return true;
 }
 
 int linkmsg_send(const linkmsg_t *m)

@@ -17,17 +17,6 @@ uint8_t link_crc8(const uint8_t *p, uint8_t n)
     return crc;
 }
 
-static uint8_t put(uint8_t *out, uint8_t n, uint8_t byte)
-{
-    if (byte == FLAG || byte == ESC) {
-        out[n++] = ESC;
-        out[n++] = (uint8_t)(byte ^ 0x20u);
-    } else {
-        out[n++] = byte;
-    }
-    return n;
-}
-
 uint8_t link_framer_encode(const hal_link_frame_t *f, uint8_t *out)
 {
     if (f->id > HAL_LINK_MAX_ID || f->len > HAL_LINK_MAX_DATA)
@@ -35,17 +24,22 @@ uint8_t link_framer_encode(const hal_link_frame_t *f, uint8_t *out)
     uint8_t raw[2 + HAL_LINK_MAX_DATA + 1];
     raw[0] = (uint8_t)(f->id >> 3);
     raw[1] = (uint8_t)(((f->id & 7u) << 5) | f->len);
+    uint8_t m = 2;
     for (uint8_t i = 0; i < f->len; i++)
-        raw[2 + i] = f->data[i];
-    uint8_t m = (uint8_t)(2 + f->len);
+        raw[m++] = f->data[i];
     raw[m] = link_crc8(raw, m);
-    m++;
-    uint8_t n = 0;
-    out[n++] = FLAG;
-    for (uint8_t i = 0; i < m; i++)
-        n = put(out, n, raw[i]);
-    out[n++] = FLAG;
-    return n;
+    uint8_t *o = out;
+    *o++ = FLAG;
+    for (const uint8_t *r = raw; r <= &raw[m]; r++) {
+        uint8_t byte = *r;
+        if (byte == FLAG || byte == ESC) {
+            *o++ = ESC;
+            byte ^= 0x20u;
+        }
+        *o++ = byte;
+    }
+    *o++ = FLAG;
+    return (uint8_t)(o - out);
 }
 
 void link_framer_rx_init(link_framer_rx_t *rx)
@@ -61,11 +55,13 @@ int link_framer_rx_byte(link_framer_rx_t *rx, uint8_t byte, hal_link_frame_t *ou
     if (byte == FLAG) {
         int good = 0;
         if (rx->in_frame && rx->n > 0) {
-            uint8_t len = rx->buf[1] & 0x0Fu;
-            if (rx->escaped || rx->n < 3 || len > HAL_LINK_MAX_DATA ||
-                rx->n != (uint8_t)(3 + len) ||
-                link_crc8(rx->buf, (uint8_t)(rx->n - 1)) != rx->buf[rx->n - 1] ||
-                (rx->buf[1] & 0x10u) != 0) {
+            /*
+             * Header bit 4 taken into the length: a frame with it set, like one longer than
+             * 8 data bytes, cannot have 3 + len bytes (at most sizeof rx->buf are kept).
+             */
+            uint8_t len = rx->buf[1] & 0x1Fu;
+            if (rx->escaped || rx->n != (uint8_t)(3 + len) ||
+                link_crc8(rx->buf, (uint8_t)(rx->n - 1)) != rx->buf[rx->n - 1]) {
                 rx->errors++;
             } else {
                 out->id = (uint16_t)(((uint16_t)rx->buf[0] << 3) | (rx->buf[1] >> 5));

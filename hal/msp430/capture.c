@@ -27,15 +27,14 @@ int hal_capture_init(hal_capture_channel_t ch, hal_capture_cb_t cb, void *arg)
     chans[ch].arg = arg;
     if ((TACTL & MC_2) == 0)
         TACTL = TASSEL_0 | MC_2 | TACLR; /* count TACLK continuously */
-    if (ch == HAL_CAPTURE_INDEX) {
-        P1DIR &= (uint8_t)~0x03u;
-        P1SEL |= 0x03u; /* P1.0 TACLK, P1.1 CCI0A */
+    /* P1.0 TACLK and P1.1 CCI0A (index) or P1.2 CCI1A (beacon) */
+    uint8_t pins = ch == HAL_CAPTURE_INDEX ? 0x03u : 0x05u;
+    P1DIR &= (uint8_t)~pins;
+    P1SEL |= pins;
+    if (ch == HAL_CAPTURE_INDEX)
         TACCTL0 = CM_1 | SCS | CAP | CCIE;
-    } else {
-        P1DIR &= (uint8_t)~0x05u;
-        P1SEL |= 0x05u; /* P1.0 TACLK, P1.2 CCI1A */
+    else
         TACCTL1 = CM_3 | SCS | CAP | CCIE;
-    }
     hal_irq_restore(s);
     return 0;
 }

@@ -11,10 +11,27 @@
 #include "hal/irq.h"
 #include "hal/pinmap.h"
 
+/* Offsets of a port's registers from its PxIN: ports 1 and 2 have the same layout. */
+enum { PORT_DIR = 2, PORT_IFG = 3, PORT_IES = 4, PORT_IE = 5, PORT_SEL = 6 };
+
 static struct {
     hal_edge_cb_t cb;
     void *arg;
 } slots[HAL_EDGE_COUNT];
+
+/* Pin @p bit of the port at @p port (P1IN or P2IN) as an input interrupting on @p flank. */
+__attribute__((noinline)) static void port_init(volatile uint8_t *port, uint8_t bit,
+                                                hal_edge_flank_t flank)
+{
+    port[PORT_DIR] &= (uint8_t)~bit;
+    port[PORT_SEL] &= (uint8_t)~bit;
+    if (flank == HAL_EDGE_FALLING)
+        port[PORT_IES] |= bit;
+    else
+        port[PORT_IES] &= (uint8_t)~bit;
+    port[PORT_IFG] &= (uint8_t)~bit;
+    port[PORT_IE] |= bit;
+}
 
 int hal_edge_init(hal_edge_line_t line, hal_edge_flank_t flank, hal_edge_cb_t cb, void *arg)
 {
@@ -29,24 +46,8 @@ int hal_edge_init(hal_edge_line_t line, hal_edge_flank_t flank, hal_edge_cb_t cb
         WDTCTL = (uint16_t)(WDTPW | WDTHOLD | WDTNMI | (flank == HAL_EDGE_FALLING ? WDTNMIES : 0u));
         IFG1 &= (uint8_t)~NMIIFG;
         IE1 |= NMIIE;
-    } else if (HAL_EDGE_PORT_OF(line) == 1) {
-        P1DIR &= (uint8_t)~bit;
-        P1SEL &= (uint8_t)~bit;
-        if (flank == HAL_EDGE_FALLING)
-            P1IES |= bit;
-        else
-            P1IES &= (uint8_t)~bit;
-        P1IFG &= (uint8_t)~bit;
-        P1IE |= bit;
     } else {
-        P2DIR &= (uint8_t)~bit;
-        P2SEL &= (uint8_t)~bit;
-        if (flank == HAL_EDGE_FALLING)
-            P2IES |= bit;
-        else
-            P2IES &= (uint8_t)~bit;
-        P2IFG &= (uint8_t)~bit;
-        P2IE |= bit;
+        port_init(HAL_EDGE_PORT_OF(line) == 1 ? &P1IN : &P2IN, bit, flank);
     }
     hal_irq_restore(s);
     return 0;

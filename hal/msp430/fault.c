@@ -13,12 +13,14 @@ void cy_halt(void) __attribute__((noreturn));
 
 void hal_fault(uint16_t code)
 {
-    static const char hex[] = "0123456789abcdef";
     char text[] = "\nFAULT 0x0000\n";
     cy_dint();
     hal_fault_code = code;
-    for (int i = 0; i < 4; i++)
-        text[9 + i] = hex[(code >> (12 - 4 * i)) & 0xFu];
+    for (char *p = &text[12]; p > &text[8]; p--) {
+        uint8_t digit = (uint8_t)(code & 0xFu);
+        *p = (char)(digit < 10 ? '0' + digit : 'a' - 10 + digit);
+        code >>= 4;
+    }
     hal_console_puts(text);
     cy_halt();
 }

@@ -4,7 +4,9 @@
 // harness's bus.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <random>
+#include <vector>
 
 extern "C" {
 #include "hal/irq.h"
@@ -139,6 +141,172 @@ TEST(LinkMsg, BFrameNeedsItsOwnAFrame)
     hal_link_frame_t other = {0x123, 2, {1, 2}};
     EXPECT_FALSE(linkmsg_rx_feed(&rx, &other, &out)); // someone else's traffic: ignored
     EXPECT_EQ(rx.errors, 5);
+}
+
+// CRC-8, polynomial 0x07, initial 0, MSB first, bit by bit (the tag of a B frame).
+uint8_t ref_crc8(const std::vector<uint8_t> &v)
+{
+    unsigned crc = 0;
+    for (uint8_t byte : v)
+        for (int i = 7; i >= 0; i--) {
+            unsigned bit = ((crc >> 7) ^ (byte >> i)) & 1u;
+            crc = ((crc << 1) & 0xFFu) ^ (bit ? 0x07u : 0u);
+        }
+    return (uint8_t)crc;
+}
+
+struct Wire {
+    uint16_t id;
+    std::vector<uint8_t> data;
+};
+
+// A B frame's data: its fields, then the tag of the A frame's data.
+std::vector<uint8_t> tagged(std::vector<uint8_t> fields, const std::vector<uint8_t> &a)
+{
+    fields.push_back(ref_crc8(a));
+    return fields;
+}
+
+void expect_frames(const linkmsg_t &m, const std::vector<Wire> &want)
+{
+    hal_link_frame_t f[2];
+    memset(f, 0xA5, sizeof f);
+    ASSERT_EQ(linkmsg_encode(&m, f), want.size()) << "type " << (int)m.type;
+    for (size_t k = 0; k < want.size(); k++) {
+        EXPECT_EQ(f[k].id, want[k].id) << "type " << (int)m.type << " frame " << k;
+        ASSERT_EQ(f[k].len, want[k].data.size()) << "type " << (int)m.type << " frame " << k;
+        EXPECT_EQ(std::vector<uint8_t>(f[k].data, f[k].data + f[k].len), want[k].data)
+            << "type " << (int)m.type << " frame " << k;
+    }
+    // And back: the hand-made frames decode to the message.
+    linkmsg_rx_t rx;
+    linkmsg_rx_init(&rx);
+    linkmsg_t out{};
+    for (size_t k = 0; k < want.size(); k++) {
+        hal_link_frame_t w{want[k].id, (uint8_t)want[k].data.size(), {}};
+        memcpy(w.data, want[k].data.data(), want[k].data.size());
+        EXPECT_EQ(linkmsg_rx_feed(&rx, &w, &out), k + 1 == want.size());
+    }
+    EXPECT_EQ(rx.errors, 0);
+    EXPECT_EQ(out.type, m.type);
+}
+
+// Every message type byte by byte against the layout of linkmsg.h (little endian fields).
+TEST(LinkMsg, EveryMessageHasItsDocumentedBytes)
+{
+    const std::vector<uint8_t> pose_a = {0x04, 0x03, 0x02, 0x01, 0xF8, 0xF7, 0xF6, 0xF5};
+    const linkmsg_pose_t pose = {0x01020304, (fx_q16_t)0xF5F6F7F8u, 0x8A7B6C5Du};
+    linkmsg_t m{};
+
+    m.type = LINKMSG_STOP;
+    m.u.stop.reason = 0xC3;
+    expect_frames(m, {{0x010, {0xC3}}});
+
+    m = {};
+    m.type = LINKMSG_POSE;
+    m.u.pose.pose = pose;
+    m.u.pose.request = 0x9E;
+    expect_frames(m, {{0x020, pose_a}, {0x021, tagged({0x5D, 0x6C, 0x7B, 0x8A, 0x9E}, pose_a)}});
+
+    m = {};
+    m.type = LINKMSG_FIX;
+    m.u.fix.pose = pose;
+    m.u.fix.latch = 0xBEEF;
+    m.u.fix.flags = LINKMSG_FIX_HAS_REF;
+    expect_frames(
+        m, {{0x030, pose_a}, {0x031, tagged({0x5D, 0x6C, 0x7B, 0x8A, 0xEF, 0xBE, 0x01}, pose_a)}});
+
+    m = {};
+    m.type = LINKMSG_FIX_ACK;
+    m.u.fix_ack.status = -3;
+    m.u.fix_ack.latch = 0x1234;
+    expect_frames(m, {{0x032, {0xFD, 0x34, 0x12}}});
+
+    m = {};
+    m.type = LINKMSG_LATCH_REQ;
+    m.u.latch_req.first = 0xA1B2;
+    m.u.latch_req.count = 30;
+    expect_frames(m, {{0x040, {0xB2, 0xA1, 30}}});
+
+    m = {};
+    m.type = LINKMSG_LATCH;
+    m.u.latch.pose = pose;
+    m.u.latch.seq = 0x7E7D;
+    m.u.latch.status = -7;
+    expect_frames(
+        m, {{0x041, pose_a}, {0x042, tagged({0x5D, 0x6C, 0x7B, 0x8A, 0x7D, 0x7E, 0xF9}, pose_a)}});
+
+    m = {};
+    m.type = LINKMSG_DIR;
+    m.u.dir.reverse = 1;
+    expect_frames(m, {{0x050, {0x01}}});
+
+    hal_link_frame_t f[2];
+    m = {};
+    m.type = 0;
+    EXPECT_EQ(linkmsg_encode(&m, f), 0);
+    m.type = LINKMSG_DIR + 1;
+    EXPECT_EQ(linkmsg_encode(&m, f), 0);
+    EXPECT_EQ(linkmsg_send(&m), -1);
+}
+
+// Every id with a wrong length is counted and leaves the message alone; a lone A frame of the
+// wrong length drops the waiting A frame of its pair only.
+TEST(LinkMsg, WrongLengthsAreCountedForEveryId)
+{
+    linkmsg_rx_t rx;
+    linkmsg_rx_init(&rx);
+    linkmsg_t out;
+    memset(&out, 0x5A, sizeof out);
+    linkmsg_t untouched = out;
+    uint16_t errors = 0;
+    const uint16_t ids[] = {0x010, 0x020, 0x021, 0x030, 0x031, 0x032, 0x040, 0x041, 0x042, 0x050};
+    const uint8_t good[] = {1, 8, 6, 8, 8, 3, 3, 8, 8, 1};
+    for (size_t i = 0; i < sizeof ids / sizeof ids[0]; i++)
+        for (uint8_t len = 0; len <= 8; len++) {
+            if (len == good[i])
+                continue;
+            hal_link_frame_t f{ids[i], len, {}};
+            EXPECT_FALSE(linkmsg_rx_feed(&rx, &f, &out)) << std::hex << ids[i] << " len " << +len;
+            EXPECT_EQ(rx.errors, ++errors) << std::hex << ids[i] << " len " << +len;
+        }
+    EXPECT_EQ(memcmp(&out, &untouched, sizeof out), 0);
+
+    // Pairs keep their own A frames: a bad FIX A frame does not drop a waiting POSE A frame.
+    linkmsg_t pose{}, fix{};
+    pose.type = LINKMSG_POSE;
+    pose.u.pose.pose = {5, 6, 7};
+    fix.type = LINKMSG_FIX;
+    hal_link_frame_t fp[2], ff[2];
+    linkmsg_encode(&pose, fp);
+    linkmsg_encode(&fix, ff);
+    EXPECT_FALSE(linkmsg_rx_feed(&rx, &fp[0], &out));
+    hal_link_frame_t bad_a = ff[0];
+    bad_a.len = 4;
+    EXPECT_FALSE(linkmsg_rx_feed(&rx, &bad_a, &out));
+    EXPECT_EQ(rx.errors, ++errors);
+    EXPECT_FALSE(linkmsg_rx_feed(&rx, &ff[1], &out)); // its A frame is gone
+    EXPECT_EQ(rx.errors, ++errors);
+    EXPECT_TRUE(linkmsg_rx_feed(&rx, &fp[1], &out));
+    EXPECT_EQ(out.type, LINKMSG_POSE);
+    EXPECT_EQ(out.u.pose.pose.heading, 7u);
+    EXPECT_EQ(rx.errors, errors);
+    // A B frame of the right length but a wrong tag drops its A frame.
+    EXPECT_FALSE(linkmsg_rx_feed(&rx, &fp[0], &out));
+    hal_link_frame_t bad_tag = fp[1];
+    bad_tag.data[5] ^= 1;
+    EXPECT_FALSE(linkmsg_rx_feed(&rx, &bad_tag, &out));
+    EXPECT_EQ(rx.errors, ++errors);
+    EXPECT_FALSE(linkmsg_rx_feed(&rx, &fp[1], &out));
+    EXPECT_EQ(rx.errors, ++errors);
+    // So does a B frame of the wrong length.
+    EXPECT_FALSE(linkmsg_rx_feed(&rx, &fp[0], &out));
+    hal_link_frame_t bad_len = fp[1];
+    bad_len.len = 8;
+    EXPECT_FALSE(linkmsg_rx_feed(&rx, &bad_len, &out));
+    EXPECT_EQ(rx.errors, ++errors);
+    EXPECT_FALSE(linkmsg_rx_feed(&rx, &fp[1], &out));
+    EXPECT_EQ(rx.errors, ++errors);
 }
 
 struct Inbox {
