@@ -444,21 +444,23 @@ static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t 
 static bool prepare(ctx_t *x)
 {
     const optical_pose_t *ap = x->ap, *lat = x->latched;
-    for (uint8_t i = 0; i < W.n; i++) {
-        fx_angle_t d = x->s[i].angle;
+    const optical_sighting_t *si = x->s; /* (pointers: no index multiplies on the MSP430) */
+    for (uint8_t i = 0; i < W.n; i++, si++) {
+        fx_angle_t d = si->angle;
         int32_t c = 0;
         if (lat != NULL) {
-            if (!coords_ok(lat[i].x, lat[i].y))
+            if (!coords_ok(lat->x, lat->y))
                 return false;
-            int32_t ex = lat[i].x - ap->x, ey = lat[i].y - ap->y;
+            int32_t ex = lat->x - ap->x, ey = lat->y - ap->y;
             if (ex | ey) {
                 /* c = cross(u(d), R(-heading) e) = cross(u(heading + d), e): the sighting's
                  * world direction is its angle plus the latched heading. */
                 fx_q30_t sd, cd;
-                fx_sincos(d + lat[i].heading, &sd, &cd);
+                fx_sincos(d + lat->heading, &sd, &cd);
                 c = fx_mul_q30(ey, cd) - fx_mul_q30(ex, sd);
             }
-            d += lat[i].heading - ap->heading;
+            d += lat->heading - ap->heading;
+            lat++;
         }
         uint16_t t = a16(d);
         uint8_t j = i;
@@ -466,11 +468,13 @@ static bool prepare(ctx_t *x)
             W.th[j] = W.th[j - 1];
             W.c[j] = W.c[j - 1];
             W.ord[j] = W.ord[j - 1];
+            W.we[j] = W.we[j - 1];
             j--;
         }
         W.th[j] = t;
         W.c[j] = c;
         W.ord[j] = i;
+        W.we[j] = si->width; /* until the first scan: the width, for threshold() */
     }
     uint16_t lever8 = 0;
     for (uint8_t j = 0; j < W.n; j++) {
@@ -483,8 +487,9 @@ static bool prepare(ctx_t *x)
     W.amax8 = sat16((uint32_t)W.eps8 + lever8);
     /* Bucket index: first sorted sighting at or after each 1/16 turn (0 when none: wraps). */
     uint8_t j = 0;
-    for (uint8_t b = 0; b < 16; b++) {
-        while (j < W.n && (W.th[j] >> 12) < b)
+    uint16_t lim = 0; /* b 2^12 */
+    for (uint8_t b = 0; b < 16; b++, lim += 0x1000u) {
+        while (j < W.n && W.th[j] < lim)
             j++;
         W.bstart[b] = j < W.n ? j : 0;
     }
@@ -503,7 +508,7 @@ static fx_q16_t threshold(const ctx_t *x)
         uint32_t wmin = t8 ? x->wd.dk / t8 : 0xFFFFu; /* 2^-16 turn */
         uint8_t kept = 0;
         for (uint8_t j = 0; j < W.n; j++) {
-            bool keep = x->s[W.ord[j]].width >= wmin;
+            bool keep = W.we[j] >= wmin; /* (prepare: the width) */
             W.sm[j] = keep ? NONE : DROPPED;
             W.wchk[j] = 0x7Fu;
             kept += keep;

@@ -48,11 +48,31 @@ static uint16_t a16(fx_angle_t a)
     return (uint16_t)((a + 0x8000ul) >> 16);
 }
 
+/* v / 2^n (logical), n < 32: whole bytes first (the MSP430 has no barrel shifter; a
+ * variable shift would go bit by bit through a helper). */
+static uint32_t shr(uint32_t v, uint8_t n)
+{
+    for (; n >= 8; n -= 8)
+        v >>= 8;
+    for (; n; n--)
+        v >>= 1;
+    return v;
+}
+
 /* floor(v / 2^n), n < 32 */
 static int32_t asr(int32_t v, uint8_t n)
 {
-    uint32_t u = (uint32_t)v >> n;
-    return (int32_t)(v < 0 ? u | ~(0xFFFFFFFFu >> n) : u);
+    return v < 0 ? (int32_t)~shr(~(uint32_t)v, n) : (int32_t)shr((uint32_t)v, n);
+}
+
+/* v 2^n, n < 32, as shr. */
+static uint32_t shl(uint32_t v, uint8_t n)
+{
+    for (; n >= 8; n -= 8)
+        v <<= 8;
+    for (; n; n--)
+        v <<= 1;
+    return v;
 }
 
 /*
@@ -120,10 +140,12 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     if ((v[0] | v[1]) == 0 || (v[2] | v[3]) == 0 || (v[0] == v[2] && v[1] == v[3]))
         return OPTICAL_E_DEGENERATE;
     uint8_t sigma = 0;
+    for (; m < (1ul << 20); m <<= 8)
+        sigma += 8;
     for (; m < (1ul << 27); m <<= 1)
         sigma++;
     for (uint8_t i = 0; i < 4; i++)
-        v[i] = (int32_t)((uint32_t)v[i] << sigma);
+        v[i] = (int32_t)shl((uint32_t)v[i], sigma);
 
     fx_sincos(a1, &sc[0], &sc[1]);
     fx_sincos(a2, &sc[2], &sc[3]);

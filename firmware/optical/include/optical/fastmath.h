@@ -61,10 +61,10 @@ typedef struct {
  * out), g[k] its window factor (optical_win), bm[k] the sighting it matched (NONE, MULTI).
  * Per sorted sighting j: th[j] its angle (2^-16 turn, ascending), lev[j] its parallax lever
  * (2^-8 m), sm[j] the beacon it matched (NONE, MULTI, DROPPED: left alone), we[j] the position
- * part of that match. cand holds the candidate pairs (sighting, beacon: two bytes each) of the
- * last optical_expect_scan, nc of them (0xFF: more than OPTICAL_MAX_CAND). The rest belongs
- * to fix.c. The per-beacon arrays share their bytes with the solve's (u.sv): identification
- * is over before the identified angles are gathered.
+ * part of that match (before the first scan: the sighting's width, fix.c). cand holds the candidate
+ * pairs (sighting, beacon: two bytes each) of the last optical_expect_scan, nc of them (0xFF: more
+ * than OPTICAL_MAX_CAND). The rest belongs to fix.c. The per-beacon arrays share their bytes with
+ * the solve's (u.sv): identification is over before the identified angles are gathered.
  */
 typedef struct {
     const optical_xy_t *b; /**< the map, nb beacons */
