@@ -372,6 +372,16 @@ bool optical_tri_core(const int32_t v[4], const int32_t sc[6], int32_t out[2])
 
 #ifndef OPTICAL_ASM
 
+uint32_t optical_shl32(uint32_t v, uint8_t n)
+{
+    return v << n;
+}
+
+int32_t optical_asr32(int32_t v, uint8_t n)
+{
+    return v < 0 ? (int32_t) ~(~(uint32_t)v >> n) : (int32_t)((uint32_t)v >> n);
+}
+
 /* floor(s / 2^16) */
 static int16_t q14(int32_t s)
 {

@@ -527,8 +527,9 @@ static fx_q16_t threshold(const ctx_t *x)
 static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3])
 {
     const optical_config_t *cfg = x->cfg;
-    int32_t jx = p->x - x->ap->x, jy = p->y - x->ap->y;
-    if (fx_hypot(jx, jy) > (uint32_t)cfg->jump_max)
+    /* (|jx| + |jy| <= jump_max bounds the distance without the root) */
+    uint32_t jx = umag(p->x - x->ap->x), jy = umag(p->y - x->ap->y), jm = (uint32_t)cfg->jump_max;
+    if ((jx > jm || jy > jm - jx) && fx_hypot((int32_t)jx, (int32_t)jy) > jm)
         return OPTICAL_E_JUMP;
     fx_angle_t dh = p->heading - x->ap->heading;
     if (umag((int32_t)dh) > cfg->turn_max)

@@ -48,33 +48,6 @@ static uint16_t a16(fx_angle_t a)
     return (uint16_t)((a + 0x8000ul) >> 16);
 }
 
-/* v / 2^n (logical), n < 32: whole bytes first (the MSP430 has no barrel shifter; a
- * variable shift would go bit by bit through a helper). */
-static uint32_t shr(uint32_t v, uint8_t n)
-{
-    for (; n >= 8; n -= 8)
-        v >>= 8;
-    for (; n; n--)
-        v >>= 1;
-    return v;
-}
-
-/* floor(v / 2^n), n < 32 */
-static int32_t asr(int32_t v, uint8_t n)
-{
-    return v < 0 ? (int32_t)~shr(~(uint32_t)v, n) : (int32_t)shr((uint32_t)v, n);
-}
-
-/* v 2^n, n < 32, as shr. */
-static uint32_t shl(uint32_t v, uint8_t n)
-{
-    for (; n >= 8; n -= 8)
-        v <<= 8;
-    for (; n; n--)
-        v <<= 1;
-    return v;
-}
-
 /*
  * Quality: the RMS position error for unit independent bearing errors,
  *     S = sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2) / |r3 sin a12 + r1 sin a23 + r2 sin a31|
@@ -142,10 +115,10 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     uint8_t sigma = 0;
     for (; m < (1ul << 20); m <<= 8)
         sigma += 8;
-    for (; m < (1ul << 27); m <<= 1)
+    for (uint16_t h = (uint16_t)(m >> 16); h < 0x800u; h <<= 1) /* m < 2^27: its high word */
         sigma++;
     for (uint8_t i = 0; i < 4; i++)
-        v[i] = (int32_t)shl((uint32_t)v[i], sigma);
+        v[i] = (int32_t)optical_shl32((uint32_t)v[i], sigma);
 
     fx_sincos(a1, &sc[0], &sc[1]);
     fx_sincos(a2, &sc[2], &sc[3]);
@@ -155,9 +128,9 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     optical_quality_parts(v, c, sc, &T.qp);
     out->quality = quality(&T.qp, sigma);
     /* Relative to B2 in Q16 metres: / 2^sigma, rounded half up. */
-    int32_t half = sigma ? (int32_t)1 << (sigma - 1) : 0;
-    out->pose.x = B2->x + asr(c[0] + half, sigma);
-    out->pose.y = B2->y + asr(c[1] + half, sigma);
+    int32_t half = sigma ? (int32_t)optical_shl32(1, (uint8_t)(sigma - 1u)) : 0;
+    out->pose.x = B2->x + optical_asr32(c[0] + half, sigma);
+    out->pose.y = B2->y + optical_asr32(c[1] + half, sigma);
     /* Each beacon must lie along its own sighting: the directions to B2 and B3 (2^-16 turn,
      * optical_angle16) must differ from the direction to B1 by alpha1 and alpha3 within
      * CONSISTENT. A solution on the other arc of a circle (which the circles alone cannot tell

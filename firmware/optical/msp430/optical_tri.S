@@ -975,3 +975,56 @@ optical_quality_parts:
     pop     r9
     pop     r10
     ret
+
+/*
+ * uint32_t optical_shl32(uint32_t v, uint8_t n): R13:R12 = v, R14 = n (< 32) -> v 2^n
+ * (whole bytes first, then bit by bit).
+ */
+    .section .text.optical_shl32,"ax",@progbits
+    .global optical_shl32
+    .type optical_shl32,@function
+optical_shl32:
+1:  cmp.b   #8, r14
+    jlo     2f
+    swpb    r12                     ; (hi:lo) << 8
+    mov.b   r12, r15
+    and     #0xff00, r12
+    swpb    r13
+    and     #0xff00, r13
+    bis     r15, r13
+    sub.b   #8, r14
+    jmp     1b
+2:  tst.b   r14
+    jz      3f
+4:  rla     r12
+    rlc     r13
+    sub.b   #1, r14
+    jnz     4b
+3:  ret
+
+/*
+ * int32_t optical_asr32(int32_t v, uint8_t n): R13:R12 = v, R14 = n (< 32) -> floor(v / 2^n)
+ * (whole bytes first, then bit by bit).
+ */
+    .section .text.optical_asr32,"ax",@progbits
+    .global optical_asr32
+    .type optical_asr32,@function
+optical_asr32:
+1:  cmp.b   #8, r14
+    jlo     2f
+    swpb    r12                     ; (hi:lo) >> 8, the sign extended
+    mov.b   r12, r12
+    swpb    r13
+    mov     r13, r15
+    and     #0xff00, r15
+    bis     r15, r12
+    sxt     r13
+    sub.b   #8, r14
+    jmp     1b
+2:  tst.b   r14
+    jz      3f
+4:  rra     r13
+    rrc     r12
+    sub.b   #1, r14
+    jnz     4b
+3:  ret

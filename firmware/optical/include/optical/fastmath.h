@@ -162,6 +162,12 @@ bool optical_tri_core(const int32_t v[4], const int32_t sc[6], int32_t out[2]);
 void optical_quality_parts(const int32_t v[4], const int32_t c[2], const int32_t sc[6],
                            optical_qparts_t *out);
 
+/** v 2^n, n < 32 (the MSP430 shifts by whole bytes first: no per-bit helper loop). */
+uint32_t optical_shl32(uint32_t v, uint8_t n);
+
+/** floor(v / 2^n), n < 32 (as optical_shl32). */
+int32_t optical_asr32(int32_t v, uint8_t n);
+
 /** Arguments of optical_width_ok(). */
 typedef struct {
     uint32_t dk;    /**< D 2^8 2^16 / (2 pi), D the post diameter in m */
