@@ -621,10 +621,30 @@ scan:                               ; standing: rel <= span is the window test i
     jlo     next_beacon
     cmp.b   #DROPPED, OW+OW_SM(r12)
     jeq     30f
-    mov     OW+OW_E(r4), r15
-    push    r9
-    call    #mark_keep
-    pop     r9
+    mov     OW+OW_E(r4), OW+OW_WE(r13) ; mark_keep inline: we[j] = e[k]
+    mov     r4, r11                 ; k
+    rra     r11
+    cmp.b   #NONE, OW+OW_SM(r12)    ; sm[j]: k or MULTI
+    jne     40f
+    mov.b   r11, OW+OW_SM(r12)
+    jmp     41f
+40: mov.b   #MULTI, OW+OW_SM(r12)
+41: cmp.b   #NONE, OW+OW_BM(r11)    ; bm[k]: j or MULTI
+    jne     42f
+    mov.b   r12, OW+OW_BM(r11)
+    jmp     43f
+42: mov.b   #MULTI, OW+OW_BM(r11)
+43: mov.b   &OW+OW_NC, r15          ; keep (cand, nc)
+    cmp.b   #0xff, r15
+    jeq     30f
+    cmp.b   #MAXCAND, r15
+    jlo     44f
+    mov.b   #0xff, &OW+OW_NC
+    jmp     30f
+44: add     r15, r15
+    mov.b   r12, OW+OW_CAND(r15)
+    mov.b   r11, OW+OW_CAND+1(r15)
+    inc.b   &OW+OW_NC
 30: add     #1, r12
     cmp.b   &OW+OW_N, r12
     jlo     31f
