@@ -39,7 +39,8 @@ static uint32_t mag(int32_t v)
 
 /*
  * Largest disagreement of the three directions of a solution with the sightings, 2^-16 turn:
- * 2e-4 rad (2.1) plus the error of two optical_angle16 (0.97 each) and a gap rounded to 16 bits.
+ * 2e-4 rad (2.1) plus the error of one optical_angle16 (0.97), of fx_atan2 rounded to 16 bits
+ * (0.5) and of a gap rounded to 16 bits (0.5).
  */
 #define CONSISTENT 5u
 
@@ -132,12 +133,14 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     out->pose.x = B2->x + optical_asr32(c[0] + half, sigma);
     out->pose.y = B2->y + optical_asr32(c[1] + half, sigma);
     /* Each beacon must lie along its own sighting: the directions to B2 and B3 (2^-16 turn,
-     * optical_angle16) must differ from the direction to B1 by alpha1 and alpha3 within
+     * optical_angle16) must differ from the direction to B1 (fx_atan2, rounded to 2^-16 turn:
+     * the bearing's below) by alpha1 and alpha3 within
      * CONSISTENT. A solution on the other arc of a circle (which the circles alone cannot tell
      * apart) leaves one off by about 180 degrees; near the beacons' circle a quantised input
      * can land there, or the arithmetic can lose the point. */
     int32_t ux = v[0] - c[0], uy = v[1] - c[1];
-    uint16_t h1 = optical_angle16(ux, uy);
+    fx_angle_t u1 = fx_atan2(uy, ux); /* the direction to B1, also the bearing's */
+    uint16_t h1 = a16(u1);
     uint16_t d2 = (uint16_t)(optical_angle16(-c[0], -c[1]) - h1 - a16(a1));
     uint16_t d3 = (uint16_t)(optical_angle16(v[2] - c[0], v[3] - c[1]) - h1 - a16(a3));
     if ((uint16_t)(d2 + CONSISTENT) > 2u * CONSISTENT ||
@@ -145,6 +148,6 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
         return OPTICAL_E_INCONSISTENT;
     /* O10: the bearing from the direction of B1 (lambda units: finer than the position's Q16)
      * and its sighting angle. */
-    out->pose.heading = fx_atan2(uy, ux) - theta[k[0]];
+    out->pose.heading = u1 - theta[k[0]];
     return out->quality > quality_max ? OPTICAL_E_SINGULAR : OPTICAL_OK;
 }
