@@ -731,58 +731,80 @@ to15:
     dec     r11
     jnz     1b
     clr     r11                     ; s: bit length of m - 14
-3:  tst     r8
+3:  cmp     #0x0100, r8             ; m >= 2^24: a whole byte
+    jlo     31f
+    swpb    r9                      ; m >>= 8
+    mov.b   r9, r9
+    swpb    r8
+    mov     r8, r10
+    and     #0xff00, r10
+    bis     r10, r9
+    mov.b   r8, r8
+    add     #8, r11
+    jmp     3b
+31: tst     r8
     jz      4f
     clrc
     rrc     r8
     rrc     r9
     inc     r11
-    jmp     3b
+    jmp     31b
 4:  cmp     #0x4000, r9
     jlo     5f
     clrc
     rrc     r9
     inc     r11
     jmp     4b
-5:  ; each value: floor(v / 2^s) as 16 bits
+5:  ; each value: floor(v / 2^s) as 16 bits, by the case of s chosen once
+    mov     r11, r8                 ; s (the result)
     mov     #6, r10
-    push    r11
-6:  mov     @r12, r14               ; lo
-    mov     2(r12), r15             ; hi
-    add     #4, r12
-    mov     @r1, r11
     tst     r11
-    jz      9f                      ; s = 0: the low word
+    jz      20f
     cmp     #16, r11
-    jlo     7f
-    mov     r15, r14                ; s >= 16: hi >> (s - 16)
-    sub     #16, r11
-    jz      9f
-8:  rra     r14
-    dec     r11
-    jnz     8b
-    jmp     9f
-7:  mov     #1, r9                  ; M = 2^(16 - s)
-    mov     #16, r8
-    sub     r11, r8
+    jhs     30f
+    mov     #1, r9                  ; 0 < s < 16: M = 2^(16 - s)
+    mov     #16, r15
+    sub     r11, r15
 10: rla     r9
-    dec     r8
+    dec     r15
     jnz     10b
+11: mov     @r12+, r14              ; lo
+    mov     @r12+, r15              ; hi
     push    r2
     dint
-    mov     r9, r8                  ; (spacer)
+    nop
     mov     r14, &MPY               ; floor((lo M) / 2^16) + hi M, mod 2^16
-    mov     r8, &OP2
+    mov     r9, &OP2
     mov     &RESHI, r14
     mov     r15, &MPY
-    mov     r8, &OP2
+    mov     r9, &OP2
     add     &RESLO, r14
     pop     r2
-9:  mov     r14, 0(r13)
+    mov     r14, 0(r13)
     incd    r13
     dec     r10
-    jnz     6b
-    pop     r12
+    jnz     11b
+    jmp     40f
+20: mov     @r12, 0(r13)            ; s = 0: the low word
+    add     #4, r12
+    incd    r13
+    dec     r10
+    jnz     20b
+    jmp     40f
+30: sub     #16, r11                ; s >= 16: the high word >> (s - 16)
+32: mov     2(r12), r14
+    add     #4, r12
+    mov     r11, r15
+    tst     r15
+    jz      34f
+33: rra     r14
+    dec     r15
+    jnz     33b
+34: mov     r14, 0(r13)
+    incd    r13
+    dec     r10
+    jnz     32b
+40: mov     r8, r12
     ret
 
 /* R13 = pointer to (x, y) 16-bit -> R15:R14 = x^2 + y^2 (interrupts off). */
