@@ -462,7 +462,7 @@ static bool prepare(ctx_t *x)
             d += lat->heading - ap->heading;
             lat++;
         }
-        uint16_t t = a16(d);
+        uint16_t t = (uint16_t)((d + 0x8000ul) >> 16); /* a16(d), without the call */
         uint8_t j = i;
         while (j > 0 && W.th[j - 1] > t) {
             W.th[j] = W.th[j - 1];
@@ -478,21 +478,23 @@ static bool prepare(ctx_t *x)
     }
     uint16_t lever8 = 0;
     for (uint8_t j = 0; j < W.n; j++) {
-        uint16_t l = W.c[j] ? m8(umag(W.c[j])) : 0u;
+        uint16_t l = 0;
+        if (x->latched != NULL && W.c[j]) { /* (standing: all 0) */
+            l = m8(umag(W.c[j]));
+            if (l > lever8)
+                lever8 = l;
+        }
         W.lev[j] = l;
-        if (l > lever8)
-            lever8 = l;
     }
     W.lever8 = lever8;
     W.amax8 = sat16((uint32_t)W.eps8 + lever8);
     /* Bucket index: first sorted sighting at or after each 1/16 turn (0 when none: wraps). */
-    uint8_t j = 0;
-    uint16_t lim = 0; /* b 2^12 */
-    for (uint8_t b = 0; b < 16; b++, lim += 0x1000u) {
-        while (j < W.n && W.th[j] < lim)
-            j++;
-        W.bstart[b] = j < W.n ? j : 0;
-    }
+    uint8_t b = 0;
+    for (uint8_t j = 0; j < W.n; j++) /* the buckets up to th[j]'s start at j */
+        for (uint8_t bj = (uint8_t)(W.th[j] >> 12); b <= bj; b++)
+            W.bstart[b] = j;
+    for (; b < 16; b++)
+        W.bstart[b] = 0;
     return true;
 }
 
