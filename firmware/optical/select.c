@@ -15,31 +15,45 @@
 
 void optical_select(const fx_angle_t *angle, uint8_t n, uint8_t keep[3])
 {
+    /* The gaps as high and low halves: 16-bit compares with branches on the MSP430. */
     uint8_t id[OPTICAL_MAX_SIGHTINGS];
-    fx_angle_t dif[OPTICAL_MAX_SIGHTINGS];
+    uint16_t dh[OPTICAL_MAX_SIGHTINGS], dl[OPTICAL_MAX_SIGHTINGS];
     for (uint8_t i = 0; i < n; i++) {
         id[i] = i;
-        dif[i] = angle[i + 1u < n ? i + 1u : 0u] - angle[i]; /* the last one wraps */
+        fx_angle_t d = angle[i + 1u < n ? i + 1u : 0u] - angle[i]; /* the last one wraps */
+        dh[i] = (uint16_t)(d >> 16);
+        dl[i] = (uint16_t)d;
     }
     while (n > 3) {
         uint8_t k = 0;
-        for (uint8_t i = 1; i < n; i++)
-            if (dif[i] < dif[k])
-                k = i;
+        uint16_t bh = dh[0], bl = dl[0];
+        for (uint8_t i = 1; i < n; i++) {
+            if (dh[i] > bh || (dh[i] == bh && dl[i] >= bl))
+                continue;
+            bh = dh[i];
+            bl = dl[i];
+            k = i;
+        }
         uint8_t prev = k ? (uint8_t)(k - 1u) : (uint8_t)(n - 1u);
         uint8_t nxt = k + 1u < n ? (uint8_t)(k + 1u) : 0u;
-        uint8_t drop; /* position of the sighting removed */
-        if (dif[prev] < dif[nxt]) {
+        uint8_t drop, into; /* position of the sighting removed, of the gap that grows */
+        if (dh[prev] < dh[nxt] || (dh[prev] == dh[nxt] && dl[prev] < dl[nxt])) {
             drop = k; /* its gaps prev and k merge into prev */
-            dif[prev] += dif[k];
+            into = prev;
         } else {
             drop = nxt; /* its gaps k and nxt merge into k */
-            dif[k] += dif[nxt];
+            into = k;
+            bh = dh[nxt];
+            bl = dl[nxt];
         }
+        fx_angle_t sum = (((fx_angle_t)dh[into] << 16) | dl[into]) + (((fx_angle_t)bh << 16) | bl);
+        dh[into] = (uint16_t)(sum >> 16);
+        dl[into] = (uint16_t)sum;
         /* The gap that starts at the dropped sighting went into the merged one: both go. */
         for (uint8_t i = drop; i + 1u < n; i++) {
             id[i] = id[i + 1u];
-            dif[i] = dif[i + 1u];
+            dh[i] = dh[i + 1u];
+            dl[i] = dl[i + 1u];
         }
         n--;
     }
