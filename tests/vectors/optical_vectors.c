@@ -23,7 +23,7 @@
 #include "optical_vectors_data.h"
 
 /* The cycles optical_fix may take on the benchmark revolution (a regression bound). */
-#define OPTICAL_FIX_CYCLE_BOUND 120000ul
+#define OPTICAL_FIX_CYCLE_BOUND 52000ul
 
 #ifdef __MSP430__
 #include "f249.h"
