@@ -379,14 +379,16 @@ pair:
     rlc     r11
     sub     r12, r10                ; R -= d
     subc    r13, r11
-    jc      8f
-    add     r12, r10                ; borrow: restore
-    addc    r13, r11
-    jmp     9f
-8:  bis     #1, r8                  ; quotient bit (F's vacated bit 0)
-9:  sub     #1, r7
+    jnc     8f
+    bis     #1, r8                  ; quotient bit (F's vacated bit 0)
+    sub     #1, r7
     jnz     7b
-    tst     F_X+2(r4)               ; t with the sign of x
+    jmp     9f
+8:  add     r12, r10                ; borrow: restore
+    addc    r13, r11
+    sub     #1, r7
+    jnz     7b
+9:  tst     F_X+2(r4)               ; t with the sign of x
     jge     10f
     inv     r8
     inv     r9
