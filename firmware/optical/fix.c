@@ -97,6 +97,18 @@ static bool coords_ok(fx_q16_t x, fx_q16_t y)
     return (uint32_t)x + (l - 1u) < 2u * l - 1u && (uint32_t)y + (l - 1u) < 2u * l - 1u;
 }
 
+/* Byte offset of input sighting i: a table, since the MSP430 would multiply the index through
+ * a helper. */
+#define SZ_S sizeof(optical_sighting_t)
+static const uint8_t sight_off[OPTICAL_MAX_SIGHTINGS] = {
+    0,        SZ_S,     2 * SZ_S,  3 * SZ_S,  4 * SZ_S,  5 * SZ_S,  6 * SZ_S, 7 * SZ_S,
+    8 * SZ_S, 9 * SZ_S, 10 * SZ_S, 11 * SZ_S, 12 * SZ_S, 13 * SZ_S, 14 * SZ_S};
+_Static_assert(14 * sizeof(optical_sighting_t) <= 255, "sight_off: offsets in a byte");
+
+/* Input sighting of sorted sighting j. */
+#define SIGHTING(x, j)                                                                             \
+    ((const optical_sighting_t *)(const void *)((const uint8_t *)(x)->s + sight_off[W.ord[j]]))
+
 /* ------------------------------------------------------------------ revolution */
 
 int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
@@ -191,9 +203,10 @@ static int8_t unique(const ctx_t *x, bool overlap_rule, uint16_t half, int32_t *
         }
         /* O5, once per (sighting, beacon): bit 7 of wchk marks a misfit. */
         if ((W.wchk[j] & 0x7Fu) != k)
-            W.wchk[j] = (uint8_t)(k | (optical_width_ok(&x->wd, &x->map->b[k], x->s[W.ord[j]].width)
-                                           ? 0u
-                                           : 0x80u));
+            W.wchk[j] =
+                (uint8_t)(k |
+                          (optical_width_ok(&x->wd, &x->map->b[k], SIGHTING(x, j)->width) ? 0u
+                                                                                          : 0x80u));
         if (W.wchk[j] & 0x80u) {
             W.sm[j] = NONE;
             continue;
@@ -328,10 +341,9 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
 /* Precise angle of sorted sighting j in the reference frame. */
 static fx_angle_t ref_angle(const ctx_t *x, uint8_t j)
 {
-    uint8_t i = W.ord[j];
-    fx_angle_t d = x->s[i].angle;
+    fx_angle_t d = SIGHTING(x, j)->angle;
     if (x->latched != NULL)
-        d += x->latched[i].heading - x->ap->heading;
+        d += x->latched[W.ord[j]].heading - x->ap->heading;
     return d;
 }
 
