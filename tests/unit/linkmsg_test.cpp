@@ -12,6 +12,7 @@ extern "C" {
 #include "hal/irq.h"
 #include "hal_posix/harness.h"
 #include "link/linkmsg.h"
+#include "ref_crc8.h"
 }
 
 namespace
@@ -141,18 +142,6 @@ TEST(LinkMsg, BFrameNeedsItsOwnAFrame)
     hal_link_frame_t other = {0x123, 2, {1, 2}};
     EXPECT_FALSE(linkmsg_rx_feed(&rx, &other, &out)); // someone else's traffic: ignored
     EXPECT_EQ(rx.errors, 5);
-}
-
-// CRC-8, polynomial 0x07, initial 0, MSB first, bit by bit (the tag of a B frame).
-uint8_t ref_crc8(const std::vector<uint8_t> &v)
-{
-    unsigned crc = 0;
-    for (uint8_t byte : v)
-        for (int i = 7; i >= 0; i--) {
-            unsigned bit = ((crc >> 7) ^ (byte >> i)) & 1u;
-            crc = ((crc << 1) & 0xFFu) ^ (bit ? 0x07u : 0u);
-        }
-    return (uint8_t)crc;
 }
 
 struct Wire {
