@@ -121,10 +121,6 @@ int agvcalc_op_deadreckon(json_t *req, json_t *resp, char *err, size_t errlen)
     }
     gnav_pose_t p;
     gnav_pose(&g, &p);
-    ac_set(resp, "x", fx_q16_to_double(p.x), 6);
-    ac_set(resp, "y", fx_q16_to_double(p.y), 6);
-    double h = fx_angle_to_deg(p.heading);
-    h = round(h * 1e6) / 1e6;
-    ac_set(resp, "heading_deg", h >= 360.0 ? h - 360.0 : h, 6);
+    ac_set_pose(resp, fx_q16_to_double(p.x), fx_q16_to_double(p.y), fx_angle_to_deg(p.heading));
     return 0;
 }

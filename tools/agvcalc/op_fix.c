@@ -238,10 +238,8 @@ int agvcalc_op_fix(json_t *req, json_t *resp, char *err, size_t errlen)
             ac_set(resp, "quality", fix.quality * PER_COUNT, 6);
         return ac_fail(err, errlen, "%s", why(st));
     }
-    ac_set(resp, "x", fx_q16_to_double(fix.pose.x), 6);
-    ac_set(resp, "y", fx_q16_to_double(fix.pose.y), 6);
-    double h = fx_angle_to_deg(fix.pose.heading);
-    ac_set(resp, "heading_deg", round(h * 1e6) >= 360e6 ? 0.0 : h, 6);
+    ac_set_pose(resp, fx_q16_to_double(fix.pose.x), fx_q16_to_double(fix.pose.y),
+                fx_angle_to_deg(fix.pose.heading));
     json_t *used = json_array();
     for (int i = 0; i < 3; i++)
         json_array_append_new(used, json_integer(fix.used[i]));

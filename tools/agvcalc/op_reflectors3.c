@@ -146,10 +146,8 @@ int agvcalc_op_reflectors3(json_t *req, json_t *resp, char *err, size_t errlen)
     default:
         return ac_fail(err, errlen, "coordinates beyond +-8192 m");
     }
-    ac_set(resp, "x", fx_q16_to_double(r.pose.x), 6);
-    ac_set(resp, "y", fx_q16_to_double(r.pose.y), 6);
-    double h = fx_angle_to_deg(r.pose.heading);
-    ac_set(resp, "heading_deg", round(h * 1e6) >= 360e6 ? 0.0 : h, 6);
+    ac_set_pose(resp, fx_q16_to_double(r.pose.x), fx_q16_to_double(r.pose.y),
+                fx_angle_to_deg(r.pose.heading));
     json_object_set_new(resp, "first", json_integer(r.first));
     ac_set(resp, "quality", r.quality * PER_COUNT, 6);
     if (has_goal) {

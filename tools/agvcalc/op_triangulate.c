@@ -74,10 +74,8 @@ int agvcalc_op_triangulate(json_t *req, json_t *resp, char *err, size_t errlen)
     default:
         return ac_fail(err, errlen, "beacons: more than 2048 m apart");
     }
-    ac_set(resp, "x", fx_q16_to_double(tri.pose.x), 6);
-    ac_set(resp, "y", fx_q16_to_double(tri.pose.y), 6);
-    double h = fx_angle_to_deg(tri.pose.heading);
-    ac_set(resp, "heading_deg", round(h * 1e6) >= 360e6 ? 0.0 : h, 6);
+    ac_set_pose(resp, fx_q16_to_double(tri.pose.x), fx_q16_to_double(tri.pose.y),
+                fx_angle_to_deg(tri.pose.heading));
     ac_set(resp, "quality", tri.quality * PER_COUNT, 6);
     return 0;
 }

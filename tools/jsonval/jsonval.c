@@ -149,3 +149,10 @@ void ac_set(json_t *resp, const char *key, double v, int decimals)
         r = 0.0; /* no "-0" */
     json_object_set_new(resp, key, json_real(r));
 }
+
+void ac_set_pose(json_t *resp, double x, double y, double heading_deg)
+{
+    ac_set(resp, "x", x, 6);
+    ac_set(resp, "y", y, 6);
+    ac_set(resp, "heading_deg", round(heading_deg * 1e6) >= 360e6 ? 0.0 : heading_deg, 6);
+}

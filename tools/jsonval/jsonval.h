@@ -48,6 +48,10 @@ int ac_pose(json_t *obj, const char *key, double lim, bool need_heading, ac_pose
 /** Set a number, rounded to @p decimals decimals (stable text output). */
 void ac_set(json_t *resp, const char *key, double v, int decimals);
 
+/** Set "x", "y" (metres) and "heading_deg" (degrees, [0, 360)), each to 6 decimals; a heading
+ * that rounds to 360 is written as 0. */
+void ac_set_pose(json_t *resp, double x, double y, double heading_deg);
+
 #ifdef __cplusplus
 }
 #endif
