@@ -75,6 +75,16 @@ uint16_t cy_failures(void)
     return failures;
 }
 
+uint32_t cy_rand32(uint32_t *state)
+{
+    uint32_t x = *state;
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    *state = x;
+    return x;
+}
+
 void cy_test_end(void)
 {
     if (failures == 0) {

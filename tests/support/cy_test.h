@@ -31,6 +31,10 @@ uint16_t cy_failures(void);
 /** Print the verdict sentinel (CY-TEST-END PASS / FAIL n); the caller then returns. */
 void cy_test_end(void);
 
+/** The next word of Marsaglia's xorshift32 generator (13, 17, 5) kept in @p *state (seed it
+ * non-zero): the same sequence on both worlds, for test vectors. */
+uint32_t cy_rand32(uint32_t *state);
+
 /**
  * Ask the simulator to apply the queued `@sim` lines and resume (a breakpoint sits here).
  * On the host it does nothing: host twins of target tests do not use the choreography.

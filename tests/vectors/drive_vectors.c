@@ -32,10 +32,7 @@ static uint32_t rng = 0x2545F491u;
 
 static uint32_t rnd32(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 17;
-    rng ^= rng << 5;
-    return rng;
+    return cy_rand32(&rng);
 }
 
 /* Uniform in [lo, lo + span) for span < 2^32. */

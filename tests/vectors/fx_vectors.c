@@ -21,10 +21,7 @@ static uint32_t rng = 0x9E3779B9u;
 
 static uint32_t rnd32(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 17;
-    rng ^= rng << 5;
-    return rng;
+    return cy_rand32(&rng);
 }
 
 /* Random value of a random bit length (small and large magnitudes alike). */

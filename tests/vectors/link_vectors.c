@@ -12,10 +12,7 @@ static uint32_t rng = 0x9E3779B9u;
 
 static uint32_t rnd(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 17;
-    rng ^= rng << 5;
-    return rng;
+    return cy_rand32(&rng);
 }
 
 int main(void)
