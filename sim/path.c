@@ -18,21 +18,6 @@ sim_pose_t sim_piece_end(const sim_piece_t *pc)
     return sim_segment_pose(&seg, 1.0);
 }
 
-int sim_path_append(sim_path_t *p, sim_pose_t start, double kappa, double length, int reverse)
-{
-    if (p->n >= SIM_MAX_PIECES)
-        return -1;
-    sim_pose_t s = p->n ? sim_piece_end(&p->piece[p->n - 1]) : start;
-    sim_piece_t *pc = &p->piece[p->n++];
-    pc->x0 = s.x;
-    pc->y0 = s.y;
-    pc->th0 = s.th;
-    pc->kappa = kappa;
-    pc->length = length;
-    pc->reverse = reverse;
-    return 0;
-}
-
 int sim_path_append_from(sim_path_t *p, sim_pose_t start, double kappa, double length, int reverse)
 {
     if (p->n >= SIM_MAX_PIECES)
@@ -45,6 +30,12 @@ int sim_path_append_from(sim_path_t *p, sim_pose_t start, double kappa, double l
     pc->length = length;
     pc->reverse = reverse;
     return 0;
+}
+
+int sim_path_append(sim_path_t *p, sim_pose_t start, double kappa, double length, int reverse)
+{
+    sim_pose_t s = p->n ? sim_piece_end(&p->piece[p->n - 1]) : start;
+    return sim_path_append_from(p, s, kappa, length, reverse);
 }
 
 sim_pose_t sim_path_end(const sim_path_t *p)
