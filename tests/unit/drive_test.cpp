@@ -1046,6 +1046,17 @@ struct World {
     int cross_n = 0;
     std::vector<Pose> nominal; // the nominal path, densely sampled
 
+    // The seed's vehicle at @p start on the prepared @p p, the sequencer set up with @p sc
+    // (which must outlive the run).
+    void begin(drive_path_t *p, drive_pose_t start, const drive_seq_config_t &sc)
+    {
+        board = &kSeedBoard;
+        path = p;
+        pose = from_fx(start);
+        drive_decoder_init(&dec, 132);
+        drive_seq_init(&seq, p, &sc);
+    }
+
     double L() const
     {
         return fx_q16_to_double(board->wheelbase);
@@ -1269,13 +1280,9 @@ TEST(DriveSeq, FullTravelDrivesTheSeedPathAndStops)
             drive_path_prepare(&path, &start, pts.data(), (uint8_t)pts.size(), &cfg, &kSeedBoard),
             DRIVE_OK);
         World w;
-        w.board = &kSeedBoard;
-        w.path = &path;
-        w.pose = from_fx(start);
-        w.nominal = nominal_of(&path);
-        drive_decoder_init(&w.dec, 132);
         drive_seq_config_t sc = seq_cfg(DRIVE_MODE_FULL);
-        drive_seq_init(&w.seq, &path, &sc);
+        w.begin(&path, start, sc);
+        w.nominal = nominal_of(&path);
         w.run(120);
         ASSERT_TRUE(w.done) << "state " << drive_seq_state_name(w.seq.state) << " fault "
                             << w.fault_why << " status " << w.seq.solve_status;
@@ -1305,12 +1312,8 @@ TEST(DriveSeq, SimplifiedTravelStopsAtEveryPoint)
     ASSERT_EQ(drive_path_prepare(&path, &start, pts.data(), (uint8_t)pts.size(), &cfg, &kSeedBoard),
               DRIVE_OK);
     World w;
-    w.board = &kSeedBoard;
-    w.path = &path;
-    w.pose = from_fx(start);
-    drive_decoder_init(&w.dec, 132);
     drive_seq_config_t sc = seq_cfg(DRIVE_MODE_SIMPLIFIED);
-    drive_seq_init(&w.seq, &path, &sc);
+    w.begin(&path, start, sc);
     w.run(300);
     ASSERT_TRUE(w.done) << drive_seq_state_name(w.seq.state);
     int targets = 0;
@@ -1354,12 +1357,8 @@ TEST(DriveSeq, RejectedPathFixFailuresAndSpuriousEvents)
     ASSERT_EQ(drive_path_prepare(&path, &start, pts.data(), (uint8_t)pts.size(), &cfg, &kSeedBoard),
               DRIVE_OK);
     World w;
-    w.board = &kSeedBoard;
-    w.path = &path;
-    w.pose = from_fx(start);
+    w.begin(&path, start, sc);
     w.fail_fixes = true;
-    drive_decoder_init(&w.dec, 132);
-    drive_seq_init(&w.seq, &path, &sc);
     w.run(60);
     EXPECT_TRUE(w.fault);
     EXPECT_EQ(w.fault_why, DRIVE_FAULT_FIXES);
@@ -1369,11 +1368,7 @@ TEST(DriveSeq, RejectedPathFixFailuresAndSpuriousEvents)
     uint16_t nrows;
     const drive_seq_row_t *rows = drive_seq_table(&nrows);
     World z;
-    z.board = &kSeedBoard;
-    z.path = &path;
-    z.pose = from_fx(start);
-    drive_decoder_init(&z.dec, 132);
-    drive_seq_init(&z.seq, &path, &sc);
+    z.begin(&path, start, sc);
     std::mt19937_64 rng(4);
     int injected = 0;
     drive_wseq_t s;
@@ -1456,12 +1451,8 @@ TEST(DriveSeq, ShortSecondArcStopsAtTheOnlyPulse)
     drive_path_config_t cfg = path_cfg(0.4, 1.0, false);
     ASSERT_EQ(drive_path_prepare(&path, &start, pts.data(), 1, &cfg, &kSeedBoard), DRIVE_OK);
     World w;
-    w.board = &kSeedBoard;
-    w.path = &path;
-    w.pose = from_fx(start);
-    drive_decoder_init(&w.dec, 132);
     drive_seq_config_t sc = seq_cfg(DRIVE_MODE_FULL);
-    drive_seq_init(&w.seq, &path, &sc);
+    w.begin(&path, start, sc);
     w.run(20);
     ASSERT_TRUE(w.done) << drive_seq_state_name(w.seq.state);
     EXPECT_EQ(w.seq.loaded.pulses, 1);
