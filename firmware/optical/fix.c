@@ -386,7 +386,7 @@ static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, 
     for (uint8_t i = 0; i < 3; i++) {
         uint8_t j = W.pos[t[i]];
         b[i] = x->map->b[W.sm[j]];
-        moving |= W.c[j] != 0;
+        moving |= x->latched != NULL && W.c[j] != 0; /* (standing: W.c unset) */
     }
     optical_pose_t p = *x->ap;
     if (!moving)
@@ -397,7 +397,7 @@ static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, 
         for (uint8_t i = 0; i < 3; i++) {
             uint8_t j = W.pos[t[i]];
             th[i] = W.u.sv.ang[t[i]];
-            if (W.c[j])
+            if (moving && W.c[j])
                 th[i] = corrected(th[i], j, fx_hypot(b[i].x - p.x, b[i].y - p.y));
         }
         st = optical_triangulate(b, th, x->cfg->quality_max, tri);
@@ -452,14 +452,18 @@ static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t 
 }
 
 /* O11: the sightings into the vehicle frame of the reference instant, sorted by angle, with
- * their parallax levers; false when a latched pose lies beyond the coordinate limit. */
+ * their parallax levers (standing: none, and W.c / W.lev are not read: lever8 = 0, no
+ * latched poses); false when a latched pose lies beyond the coordinate limit. */
 static bool prepare(ctx_t *x)
 {
     const optical_pose_t *ap = x->ap, *lat = x->latched;
     const optical_sighting_t *si = x->s; /* (pointers: no index multiplies on the MSP430) */
-    for (uint8_t i = 0; i < W.n; i++, si++) {
+    uint16_t lever8 = 0;
+    uint8_t n = W.n;
+    for (uint8_t i = 0; i < n; i++, si++) {
         fx_angle_t d = si->angle;
         int32_t c = 0;
+        uint16_t l = 0;
         if (lat != NULL) {
             if (!coords_ok(lat->x, lat->y))
                 return false;
@@ -470,39 +474,47 @@ static bool prepare(ctx_t *x)
                 fx_q30_t sd, cd;
                 fx_sincos(d + lat->heading, &sd, &cd);
                 c = fx_mul_q30(ey, cd) - fx_mul_q30(ex, sd);
+                if (c) {
+                    l = m8(umag(c));
+                    if (l > lever8)
+                        lever8 = l;
+                }
             }
             d += lat->heading - ap->heading;
             lat++;
         }
         uint16_t t = (uint16_t)((d + 0x8000ul) >> 16); /* a16(d), without the call */
+        /* Insertion by angle (standing, the input is sorted: at most the last one, wrapped to
+         * 0 by the rounding, moves). */
         uint8_t j = i;
-        while (j > 0 && W.th[j - 1] > t) {
-            W.th[j] = W.th[j - 1];
-            W.c[j] = W.c[j - 1];
-            W.ord[j] = W.ord[j - 1];
-            W.we[j] = W.we[j - 1];
-            j--;
+        if (lat == NULL) {
+            while (j > 0 && W.th[j - 1] > t) {
+                W.th[j] = W.th[j - 1];
+                W.ord[j] = W.ord[j - 1];
+                W.we[j] = W.we[j - 1];
+                j--;
+            }
+        } else {
+            while (j > 0 && W.th[j - 1] > t) {
+                W.th[j] = W.th[j - 1];
+                W.c[j] = W.c[j - 1];
+                W.ord[j] = W.ord[j - 1];
+                W.we[j] = W.we[j - 1];
+                W.lev[j] = W.lev[j - 1];
+                j--;
+            }
+            W.c[j] = c;
+            W.lev[j] = l;
         }
         W.th[j] = t;
-        W.c[j] = c;
         W.ord[j] = i;
         W.we[j] = si->width; /* until the first scan: the width, for threshold() */
-    }
-    uint16_t lever8 = 0;
-    for (uint8_t j = 0; j < W.n; j++) {
-        uint16_t l = 0;
-        if (x->latched != NULL && W.c[j]) { /* (standing: all 0) */
-            l = m8(umag(W.c[j]));
-            if (l > lever8)
-                lever8 = l;
-        }
-        W.lev[j] = l;
     }
     W.lever8 = lever8;
     W.amax8 = sat16((uint32_t)W.eps8 + lever8);
     /* Bucket index: first sorted sighting at or after each 1/16 turn (0 when none: wraps). */
     uint8_t b = 0;
-    for (uint8_t j = 0; j < W.n; j++) /* the buckets up to th[j]'s start at j */
+    for (uint8_t j = 0; j < n; j++) /* the buckets up to th[j]'s start at j */
         for (uint8_t bj = (uint8_t)(W.th[j] >> 12); b <= bj; b++)
             W.bstart[b] = j;
     for (; b < 16; b++)
@@ -558,7 +570,7 @@ static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3]
         const optical_xy_t *bk = &x->map->b[W.sm[j]];
         int32_t dx = bk->x - p->x, dy = bk->y - p->y;
         fx_angle_t th = W.u.sv.ang[i];
-        if (W.c[j])
+        if (x->latched != NULL && W.c[j])
             th = corrected(th, j, fx_hypot(dx, dy));
         uint16_t res = (uint16_t)(optical_angle16(dx, dy) - h16 - a16(th));
         if (abs16(res) > rmax + 3u)
