@@ -58,12 +58,12 @@ static uint32_t umag(int32_t v)
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
 }
 
-static uint16_t a16(fx_angle_t a)
+static inline __attribute__((always_inline)) uint16_t a16(fx_angle_t a)
 {
     return (uint16_t)((a + 0x8000ul) >> 16);
 }
 
-static uint16_t abs16(uint16_t d)
+static inline __attribute__((always_inline)) uint16_t abs16(uint16_t d)
 {
     return (int16_t)d < 0 ? (uint16_t)(0u - d) : d;
 }
@@ -338,15 +338,6 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
 
 /* ------------------------------------------------------------------ fix */
 
-/* Precise angle of sorted sighting j in the reference frame. */
-static fx_angle_t ref_angle(const ctx_t *x, uint8_t j)
-{
-    fx_angle_t d = SIGHTING(x, j)->angle;
-    if (x->latched != NULL)
-        d += x->latched[W.ord[j]].heading - x->ap->heading;
-    return d;
-}
-
 /*
  * O11: the angle under which the reference position sees the beacon of sorted sighting j
  * (reference-frame angle d) at range r (Q16) from it: d + asin(c / r).
@@ -365,16 +356,22 @@ static int8_t finish(optical_fix_t *out, int8_t status)
     return status;
 }
 
-/* The identified (W.sm) into W.pos / W.m and their reference-frame angles. */
+/* The identified (W.sm) into W.pos / W.m and their reference-frame angles (the sighting's
+ * angle turned by its latched heading's change to the reference instant). */
 static void gather(const ctx_t *x)
 {
-    W.m = 0;
+    fx_angle_t *ang = W.u.sv.ang;
+    uint8_t m = 0;
     for (uint8_t j = 0; j < W.n; j++) {
         if (W.sm[j] >= DROPPED)
             continue;
-        W.u.sv.ang[W.m] = ref_angle(x, j);
-        W.pos[W.m++] = j;
+        fx_angle_t d = SIGHTING(x, j)->angle;
+        if (x->latched != NULL)
+            d += x->latched[W.ord[j]].heading - x->ap->heading;
+        *ang++ = d;
+        W.pos[m++] = j;
     }
+    W.m = m;
 }
 
 /* Triangulate the triplet at positions t[] of the identified set; when moving, refine the
@@ -560,20 +557,21 @@ static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3]
     fx_angle_t dh = p->heading - x->ap->heading;
     if (umag((int32_t)dh) > cfg->turn_max)
         return OPTICAL_E_TURN;
-    uint16_t rmax = a16(cfg->resid_max), h16 = a16(p->heading);
-    uint8_t checked = 0;
-    for (uint8_t i = 0; i < W.m && checked < CHECK_MAX; i++) {
+    uint16_t tol = (uint16_t)(a16(cfg->resid_max) + 3u), h16 = a16(p->heading);
+    const optical_xy_t *mb = x->map->b;
+    uint8_t left = CHECK_MAX;
+    for (uint8_t i = 0; i < W.m && left; i++) {
         if (i == t3[0] || i == t3[1] || i == t3[2])
             continue;
-        checked++;
+        left--;
         uint8_t j = W.pos[i];
-        const optical_xy_t *bk = &x->map->b[W.sm[j]];
+        const optical_xy_t *bk = &mb[W.sm[j]];
         int32_t dx = bk->x - p->x, dy = bk->y - p->y;
         fx_angle_t th = W.u.sv.ang[i];
         if (x->latched != NULL && W.c[j])
             th = corrected(th, j, fx_hypot(dx, dy));
         uint16_t res = (uint16_t)(optical_angle16(dx, dy) - h16 - a16(th));
-        if (abs16(res) > rmax + 3u)
+        if (abs16(res) > tol)
             return OPTICAL_E_DISAGREE;
     }
     return OPTICAL_OK;
