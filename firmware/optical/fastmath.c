@@ -202,7 +202,8 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half)
                 g = v >= 0xFFFEu ? 0xFFFEu : (uint16_t)(v + 1u);
             }
         }
-        W.u.id.g[k] = g;
+        if (W.lever8) /* (standing, only e is read) */
+            W.u.id.g[k] = g;
         uint16_t ek = (uint16_t)(optical_win(W.eps8, g) + OPTICAL_MARGIN);
         W.u.id.e[k] = ek;
         /* The candidate sightings: from the bucket of the window's start. */

@@ -307,8 +307,10 @@ static void kernels(void)
             cy_print_hex16(KW.u.id.psi[k]);
             cy_print(":");
             cy_print_hex16(KW.u.id.e[k]);
-            cy_print(":");
-            cy_print_hex16(KW.u.id.g[k]);
+            if (KW.lever8) { /* (standing: g is not stored) */
+                cy_print(":");
+                cy_print_hex16(KW.u.id.g[k]);
+            }
         }
         print_marks();
         cy_print(" nc ");
