@@ -81,11 +81,11 @@ octant:
     rla     r15
     rla     r15
     rla     r15
+    push    r2
+    dint
     mov     r12, r13                ; 2 (u >> 9): recip_tab - 128 based
     swpb    r13
     and     #0x00fe, r13
-    push    r2
-    dint
     mov     r15, &MPY
     mov     optical_recip_tab-128(r13), r15
     sub     optical_recip_tab-126(r13), r15 ; RT[i] - RT[i+1]
@@ -516,9 +516,9 @@ es_beacon:
     jhs     es_win
     push    r2
     dint
+    clr     r15                     ; k = 1, or 2/3 (row 14) when m8 >= 2 amax8
     mov     r13, &MPY               ; h = (r C) >> 16
     mov     optical_ct_tab(r14), &OP2
-    clr     r15                     ; k = 1, or 2/3 (row 14) when m8 >= 2 amax8
     cmp     4(r1), r9
     jlo     6f
     mov     #14, r15
@@ -827,30 +827,28 @@ optical_width_ok:
     mov     #-1, r11
 7:  cmp     #5216, r14
     jhs     wd_wide
-    push    r2                      ; p = lo w16
+    push    r2                      ; p = lo w16, q = hi w16 (w16 stays in MPY)
     dint
     nop
-    mov     r13, &MPY
-    mov     r14, &OP2
+    mov     r14, &MPY
+    mov     r13, &OP2
     mov     &RESLO, r12
     mov     &RESHI, r13
+    mov     r11, &OP2
+    mov     &RESLO, r14
+    mov     &RESHI, r11
     pop     r2
-    mov     r12, r9                 ; p - (p >> 5) > dk: false
+    mov     r12, r9                 ; p - (p >> 5) > dk: false (p < 2^29: rra shifts in 0)
     mov     r13, r15
-    clrc
-    rrc     r15
+    rra     r15
     rrc     r9
-    clrc
-    rrc     r15
+    rra     r15
     rrc     r9
-    clrc
-    rrc     r15
+    rra     r15
     rrc     r9
-    clrc
-    rrc     r15
+    rra     r15
     rrc     r9
-    clrc
-    rrc     r15
+    rra     r15
     rrc     r9
     sub     r9, r12
     subc    r15, r13
@@ -860,17 +858,9 @@ optical_width_ok:
 8:  jlo     wd_false
     tst.b   18(r10)                 ; flat: only that bound
     jnz     wd_true
-    push    r2                      ; hi w16 >= dk
-    dint
-    nop
-    mov     r11, &MPY
-    mov     r14, &OP2
-    mov     &RESLO, r12
-    mov     &RESHI, r13
-    pop     r2
-    cmp     2(r10), r13
+    cmp     2(r10), r11             ; q >= dk
     jne     9f
-    cmp     0(r10), r12
+    cmp     0(r10), r14
 9:  jhs     wd_true
 wd_false:
     clr     r12
