@@ -17,7 +17,8 @@ _Static_assert(offsetof(optical_work_t, x) == 2 && offsetof(optical_work_t, head
                    offsetof(optical_work_t, nb) == 20 && offsetof(optical_work_t, th) == 24 &&
                    offsetof(optical_work_t, lev) == 54 && offsetof(optical_work_t, we) == 84 &&
                    offsetof(optical_work_t, sm) == 174 && offsetof(optical_work_t, bstart) == 189 &&
-                   offsetof(optical_work_t, u) == 250 && offsetof(optical_work_t, u.id.e) == 314 &&
+                   offsetof(optical_work_t, wchk) == 220 && offsetof(optical_work_t, u) == 250 &&
+                   offsetof(optical_work_t, u.id.e) == 314 &&
                    offsetof(optical_work_t, u.id.g) == 378 &&
                    offsetof(optical_work_t, u.id.bm) == 442 &&
                    offsetof(optical_work_t, u.id.cand) == 474 &&
@@ -235,6 +236,19 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half)
         }
     }
     return bad;
+}
+
+uint8_t optical_drop(uint32_t dk, uint32_t t8)
+{
+    uint32_t wmin = t8 ? dk / t8 : 0xFFFFu; /* 2^-16 turn */
+    uint8_t kept = 0;
+    for (uint8_t j = 0; j < W.n; j++) {
+        bool keep = W.we[j] >= wmin;
+        W.sm[j] = keep ? OPTICAL_NONE : OPTICAL_DROPPED;
+        W.wchk[j] = 0x7Fu;
+        kept += keep;
+    }
+    return kept;
 }
 
 void optical_eval(int16_t mid, uint16_t half)

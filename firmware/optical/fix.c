@@ -521,16 +521,8 @@ static fx_q16_t threshold(const ctx_t *x)
     const optical_config_t *cfg = x->cfg;
     fx_q16_t t = cfg->range;
     for (uint8_t step = 0;; step++) {
-        uint32_t t8 = (uint32_t)t >> 8;
-        uint32_t wmin = t8 ? x->wd.dk / t8 : 0xFFFFu; /* 2^-16 turn */
-        uint8_t kept = 0;
-        for (uint8_t j = 0; j < W.n; j++) {
-            bool keep = W.we[j] >= wmin; /* (prepare: the width) */
-            W.sm[j] = keep ? NONE : DROPPED;
-            W.wchk[j] = 0x7Fu;
-            kept += keep;
-        }
-        if (kept >= 3 || step >= cfg->range_steps)
+        /* (prepare left the widths in we) */
+        if (optical_drop(x->wd.dk, (uint32_t)t >> 8) >= 3 || step >= cfg->range_steps)
             return t;
         /* (the division only when a widening is needed) */
         uint32_t tstep = step_of((uint32_t)cfg->range, (uint32_t)cfg->range_max, cfg->range_steps);

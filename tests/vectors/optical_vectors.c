@@ -392,6 +392,37 @@ static void kernels(void)
         cy_bench_add(&st_a16, (uint16_t)(t1 - t0));
     }
     cy_bench_report(&st_a16);
+    /* O4's drop: widths around the threshold, ranges from 0 to beyond 2^16 units of 2^-8 m */
+    for (uint8_t t = 0; t < 60; t++) {
+        uint32_t dk = 213000u + rnd32() % 1000000u, t8 = rnd32() % 20000u;
+        if (t % 10 == 1)
+            t8 = 0;
+        else if (t % 10 == 2)
+            t8 = 0x10000u + rnd32() % 0x01000000u;
+        else if (t % 10 == 3)
+            t8 = dk >> 16; /* the quotient just beyond 16 bits */
+        else if (t % 10 == 4)
+            dk = rnd32();
+        uint32_t q = t8 ? dk / t8 : 0xFFFFu;
+        KW.n = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
+        for (uint8_t j = 0; j < KW.n; j++) {
+            uint32_t w = q + (rnd32() % 5u) - 2u;
+            KW.we[j] = (rnd32() & 3u) == 0 ? (uint16_t)rnd32()
+                       : w > 0xFFFFu       ? 0xFFFFu
+                                           : (uint16_t)w;
+        }
+        cy_print("drop ");
+        cy_print_dec(t);
+        cy_print(" ");
+        cy_print_dec(optical_drop(dk, t8));
+        for (uint8_t j = 0; j < KW.n; j++) {
+            cy_print(" ");
+            cy_print_dec(KW.sm[j]);
+            cy_print(":");
+            cy_print_dec(KW.wchk[j]);
+        }
+        cy_println();
+    }
     for (uint16_t t = 0; t < 300; t++) {
         optical_width_t w;
         optical_xy_t b;

@@ -35,6 +35,7 @@
     .set OW_WE,     84
     .set OW_SM,     174
     .set OW_BSTART, 189
+    .set OW_WCHK,   220
     .set OW_PSI,    250
     .set OW_E,      314
     .set OW_G,      378
@@ -764,6 +765,59 @@ optical_eval:
     pop     r6
     pop     r9
     ret
+
+/*
+ * uint8_t optical_drop(uint32_t dk, uint32_t t8): R13:R12 = dk, R15:R14 = t8 -> R12 = the
+ * sightings kept (fastmath.c). wmin = floor(dk / t8) into R11 (a 16-step restoring division
+ * when t8 and the quotient fit 16 bits); R13 = 1 when wmin >= 2^16 (none kept), else 0.
+ */
+    .section .text.optical_drop,"ax",@progbits
+    .global optical_drop
+    .type optical_drop,@function
+optical_drop:
+    tst     r15
+    jnz     3f
+    mov     #-1, r11                ; t8 = 0: 0xffff
+    tst     r14
+    jz      4f
+    cmp     r14, r13                ; dk >= t8 2^16: none kept
+    jhs     5f
+    mov     #16, r15                ; the quotient's bits into R12, the remainder in R13
+1:  rla     r12
+    rlc     r13
+    jc      2f
+    cmp     r14, r13
+    jlo     6f
+2:  sub     r14, r13
+    bis     #1, r12
+6:  add     #-1, r15
+    jnz     1b
+    mov     r12, r11
+    jmp     4f
+3:  call    #__mspabi_divul         ; t8 >= 2^16: the quotient fits 16 bits
+    mov     r12, r11
+4:  clr     r13
+7:  mov.b   &OW+OW_N, r14
+    clr     r12                     ; kept
+    tst     r14
+    jz      9f
+    mov     r14, r15
+    add     r15, r15                ; R14 = j + 1, R15 = 2 (j + 1)
+8:  mov.b   #0x7f, OW+OW_WCHK-1(r14)
+    mov.b   #NONE, OW+OW_SM-1(r14)
+    cmp     r11, OW+OW_WE-2(r15)    ; we[j] >= wmin (< 2^16): kept
+    jlo     10f
+    tst     r13
+    jnz     10f
+    sub     #-1, r12
+    jmp     11f
+10: mov.b   #DROPPED, OW+OW_SM-1(r14)
+11: decd    r15
+    add     #-1, r14
+    jnz     8b
+9:  ret
+5:  mov     #1, r13
+    jmp     7b
 
 /*
  * bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16):
