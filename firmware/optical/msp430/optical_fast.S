@@ -236,49 +236,14 @@ optical_angle16:
     rra     r15
     rrc     r14
     jmp     octant
-20: tst     r12                     ; ax < 2^16 (ay too): left by 8, 4, 2, 1
+20: tst     r12                     ; ax < 2^16 (ay too): left, a bit at a time
     jz      9f
-    push    r10                     ; (norm16 counts its shift there)
-    call    #norm16
-    pop     r10
-    jmp     octant
+    jn      octant
+21: rla     r14
+    rla     r12
+    jn      octant
+    jmp     21b
 9:  ret
-
-/*
- * Left to [2^15, 2^16): R12 = u (1..0xffff), R14 = v <= u, by 8, 4, 2, 1 bits -> R10 += the
- * shift.
- */
-    .section .text.optical_norm16,"ax",@progbits
-norm16:
-    cmp     #0x0100, r12
-    jhs     1f
-    swpb    r12
-    swpb    r14
-    add     #8, r10
-1:  cmp     #0x1000, r12
-    jhs     2f
-    rla     r12
-    rla     r12
-    rla     r12
-    rla     r12
-    rla     r14
-    rla     r14
-    rla     r14
-    rla     r14
-    add     #4, r10
-2:  cmp     #0x4000, r12
-    jhs     3f
-    rla     r12
-    rla     r12
-    rla     r14
-    rla     r14
-    add     #2, r10
-3:  tst     r12
-    jn      4f
-    rla     r12
-    rla     r14
-    add     #1, r10
-4:  ret
 
 /*
  * Window part with margin: R13 = lever l (2^-8 m), R11 = g -> R15 = min(ceil(l g / 256),
@@ -407,10 +372,11 @@ clear_marks:
 /*
  * uint8_t optical_expect_scan(int16_t mid, uint16_t half): R12 = mid, R13 = half -> R12 = 0,
  * or 1 when a beacon lies beyond the coordinate limit.
- * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000), R7 = mid,
- * R8 = 2 nc; per beacon R9 = m8, R10 = l, R11 = flags. The frame: 0(r1) the map's end, 2(r1)
- * min(2 amax8, 0xffff) (m8 from there on: k = 2/3). Without sightings the half-width is taken
- * as 0x7000 (the scan of every sighting, i.e. of none).
+ * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000), R7 = lever8
+ * (0: standing), R8 = 2 nc; per beacon R9 = m8, R10 = l, R11 = flags. The frame: 0(r1) the
+ * map's end, 2(r1) min(2 amax8, 0xffff) (m8 from there on: k = 2/3), 4(r1) max(77, amax8 + 1)
+ * (m8 from there on: a window factor; saturated). Without sightings the half-width is taken as
+ * 0x7000 (the scan of every sighting, i.e. of none).
  */
     .section .text.optical_expect_scan,"ax",@progbits
     .global optical_expect_scan
@@ -424,18 +390,26 @@ optical_expect_scan:
     push    r5
     push    r4
     mov     r12, &sc_mid
-    mov     r12, r7
+    mov     &OW+OW_LEVER8, r7
     tst.b   &OW+OW_N
     jnz     1f
     mov     #0x7000, r13
 1:  mov     r13, &sc_half
     call    #clear_marks
     clr     r8                      ; 2 nc
-    mov     &OW+OW_AMAX8, r12       ; 2 amax8, saturated
-    rla     r12
+    mov     &OW+OW_AMAX8, r12       ; amax8 + 1, at least 77, saturated
+    mov     r12, r13
+    add     #1, r13
     jnc     2f
+    mov     #-1, r13
+2:  cmp     #77, r13
+    jhs     3f
+    mov     #77, r13
+3:  push    r13
+    rla     r12                     ; 2 amax8, saturated
+    jnc     4f
     mov     #-1, r12
-2:  push    r12
+4:  push    r12
     mov     &OW+OW_B, r5
     mov.b   &OW+OW_NB, r12          ; the map's end
     rla     r12
@@ -501,26 +475,51 @@ es_beacon:
 3:  cmp     r12, &OW+OW_GATE8       ; beyond the gate
     jlo     es_gated
     mov     r12, r9                 ; m8
-    clr     r10                     ; l
+    clr     r10                     ; l: u, v left to [2^15, 2^16) by 8, 4, 2, 1
     tst     r12
     jz      4f                      ; (0, 0): angle 0
     jn      5f
-    call    #norm16
+    cmp     #0x0100, r12
+    jhs     1f
+    swpb    r12
+    swpb    r14
+    mov     #8, r10
+1:  cmp     #0x1000, r12
+    jhs     2f
+    rla     r12
+    rla     r12
+    rla     r12
+    rla     r12
+    rla     r14
+    rla     r14
+    rla     r14
+    rla     r14
+    add     #4, r10
+2:  cmp     #0x4000, r12
+    jhs     3f
+    rla     r12
+    rla     r12
+    rla     r14
+    rla     r14
+    incd    r10
+3:  tst     r12
+    jn      5f
+    rla     r12
+    rla     r14
+    inc     r10
 5:  call    #octant                 ; R12 angle, R13 r, R14 2 min(i, 63)
 4:  sub     &OW+OW_HEAD, r12        ; psi
     mov     r12, OW+OW_PSI(r4)
     ; g: no bound within amax8 or 0.3 m; e = win(eps8, g) + margin
     mov     #-1, r11
-    cmp     #77, r9
+    cmp     4(r1), r9               ; (the frame's max(77, amax8 + 1))
     jlo     es_win
-    cmp     r9, &OW+OW_AMAX8
-    jhs     es_win
     push    r2
     dint
     clr     r15                     ; k = 1, or 2/3 (row 14) when m8 >= 2 amax8
     mov     r13, &MPY               ; h = (r C) >> 16
     mov     optical_ct_tab(r14), &OP2
-    cmp     4(r1), r9
+    cmp     4(r1), r9               ; (the frame's 2 amax8, below the saved SR)
     jlo     6f
     mov     #14, r15
 6:  mov     &RESHI, r13
@@ -548,7 +547,7 @@ es_beacon:
     add     #MARGIN, r15
 es_e:                               ; R11 = g, R12 = psi, R15 = e
     mov     r15, OW+OW_E(r4)
-    tst     &OW+OW_LEVER8
+    tst     r7
     jz      8f
     mov     r11, OW+OW_G(r4)        ; moving: g, and the largest lever's window
     mov     &OW+OW_AMAX8, r13
@@ -557,7 +556,7 @@ es_e:                               ; R11 = g, R12 = psi, R15 = e
     cmp     #0x7000, r15            ; that wide: test every sighting
     jhs     es_all
     mov     r12, r10                ; lo = psi + mid - wmax, span = 2 wmax
-    add     r7, r10
+    add     &sc_mid, r10
     sub     r15, r10
     mov     r15, r9
     add     r9, r9
@@ -569,7 +568,7 @@ es_e:                               ; R11 = g, R12 = psi, R15 = e
     rra     r12
     rra     r12
     mov.b   OW+OW_BSTART(r12), r12
-    tst     &OW+OW_LEVER8
+    tst     r7
     jnz     es_lever
     ; standing: rel <= span is the window test itself. R13 = &th[j], R14 the sightings up to
     ; the end, then (R12 = the start) those before the start.
@@ -657,7 +656,7 @@ es_next:
     cmp     @r1, r5
     jlo     es_beacon
 es_done:
-    add     #4, r1
+    add     #6, r1
     rra     r8                      ; nc
     mov.b   r8, &OW+OW_NC
     clr     r12                     ; 1 when a coordinate is beyond the limit
