@@ -835,13 +835,38 @@ optical_width_ok:
     mov     2(r13), r15
     sub     4(r10), r12
     subc    6(r10), r15
-    call    #wd_mag8
-    mov     r12, r9
-    mov     4(r13), r12             ; y8
+    tst     r15
+    jge     1f
+    inv     r12
+    inv     r15
+    sub     #-1, r12                ; (+1, carry as add)
+    adc     r15
+1:  mov     #-1, r9
+    cmp     #0x0100, r15
+    jhs     2f
+    swpb    r12
+    mov.b   r12, r9
+    swpb    r15
+    bis     r15, r9
+2:  mov     4(r13), r12             ; y8
     mov     6(r13), r15
     sub     8(r10), r12
     subc    10(r10), r15
-    call    #wd_mag8
+    tst     r15
+    jge     1f
+    inv     r12
+    inv     r15
+    sub     #-1, r12
+    adc     r15
+1:  cmp     #0x0100, r15
+    jhs     2f
+    swpb    r12
+    mov.b   r12, r12
+    swpb    r15
+    bis     r15, r12
+    jmp     3f
+2:  mov     #-1, r12
+3:
     cmp     r9, r12                 ; o = max + min / 2, saturated
     jhs     1f
     xor     r12, r9
@@ -956,20 +981,3 @@ wd_wide:                            ; w16 > 5215: lo 5215 <= dk + (dk >> 4)
 1:  jhs     wd_true
     jmp     wd_false
 
-/* R15:R12 = a signed difference -> R12 = min(|v| >> 8, 0xffff). */
-wd_mag8:
-    tst     r15
-    jge     1f
-    inv     r12
-    inv     r15
-    inc     r12
-    adc     r15
-1:  cmp     #0x0100, r15
-    jhs     2f
-    swpb    r12
-    mov.b   r12, r12
-    swpb    r15
-    bis     r15, r12
-    ret
-2:  mov     #-1, r12
-    ret
