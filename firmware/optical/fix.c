@@ -172,8 +172,9 @@ static uint16_t pos_part(uint8_t k, uint8_t j)
                       OPTICAL_MARGIN);
 }
 
-/* The seed's overlapping-window rule: k's window meets the window of another beacon. */
-static bool overlaps(uint8_t k, uint16_t half)
+/* The seed's overlapping-window rule: k's window meets the window of another beacon. (Not
+ * inlined: unique would prepare its operands on every call, mostly without the rule.) */
+__attribute__((noinline)) static bool overlaps(uint8_t k, uint16_t half)
 {
     uint32_t wk = 2u * (uint32_t)half + W.u.id.e[k];
     for (uint8_t j = 0; j < W.nb; j++) {
