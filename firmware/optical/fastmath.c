@@ -107,10 +107,10 @@ uint16_t optical_angle16(int32_t dx, int32_t dy)
     return octant((uint16_t)ax, (uint16_t)ay, flags, &p);
 }
 
-/* |v| < OPTICAL_COORD_LIMIT (2^29): the high word in (-0x2000, 0x2000). */
+/* -OPTICAL_COORD_LIMIT <= v < OPTICAL_COORD_LIMIT (2^29): the high word + 0x2000 below 0x4000. */
 static bool coord_ok(int32_t v)
 {
-    return (uint32_t)v + 0x1FFFFFFFu < 0x3FFFFFFFu;
+    return (uint32_t)v + 0x20000000u < 0x40000000u;
 }
 
 static void clear(void)

@@ -338,6 +338,26 @@ static void kernels(void)
     }
     cy_bench_report(&st_exs);
     cy_bench_report(&st_eval);
+    /* The coordinate limit's edges: [-2^29, 2^29) is accepted. */
+    static const int32_t lim[] = {-0x20000000l, -0x1FFFFFFFl, 0x1FFFFFFFl, 0x20000000l,
+                                  -0x20000001l};
+    for (uint8_t t = 0; t < 10; t++) {
+        kmap[0].x = kmap[0].y = kmap[1].x = 0;
+        kmap[1].y = 0x10000;
+        if (t & 1)
+            kmap[1].y = lim[t >> 1];
+        else
+            kmap[1].x = lim[t >> 1];
+        KW.b = kmap;
+        KW.nb = 2;
+        KW.n = 0;
+        KW.x = KW.y = 0;
+        cy_print("lim ");
+        cy_print_dec(t);
+        cy_print(" ");
+        cy_print_dec(optical_expect_scan(0, 100));
+        cy_println();
+    }
     /* The triangulation kernels: offsets scaled as optical_triangulate scales them, the
      * inscribed angles from random sighting gaps (some near 0 and 180 degrees). */
     for (uint8_t t = 0; t < 120; t++) {

@@ -123,8 +123,8 @@ extern optical_work_t optical_work;
  * i = floor(64 t)), k = 2/3 (ceil(2^(9 + l) 2/3) / 2^(9 + l)) when m8 >= 2 amax8, else 1;
  * e = optical_win(eps8, g) + margin. The offsets' flooring moves the angles by up to sqrt 2
  * units of 2^-8 m: the caller adds 2 to eps8. Clears bm and sm (except DROPPED) and marks
- * every pair as optical_eval. Returns 1 when a beacon lies beyond OPTICAL_COORD_LIMIT (the
- * results are then meaningless), else 0.
+ * every pair as optical_eval. Returns 1 when a beacon coordinate lies outside
+ * [-OPTICAL_COORD_LIMIT, OPTICAL_COORD_LIMIT) (the results are then meaningless), else 0.
  */
 uint8_t optical_expect_scan(int16_t mid, uint16_t half);
 
