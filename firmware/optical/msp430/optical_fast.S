@@ -74,14 +74,11 @@ gscale:
  */
     .section .text.optical_octant,"ax",@progbits
 octant:
-    mov     r12, r15                ; f = u << 7
-    rla     r15
-    rla     r15
-    rla     r15
-    rla     r15
-    rla     r15
-    rla     r15
-    rla     r15
+    mov     r12, r15                ; f = u << 7: (u mod 2^8) << 7, bit 8 of u into bit 15
+    swpb    r15
+    bit     #1, r15
+    bic     #0x00ff, r15
+    rrc     r15
     push    r2
     dint
     mov     r12, r13                ; 2 (u >> 9): recip_tab - 128 based
