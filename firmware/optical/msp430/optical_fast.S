@@ -1,13 +1,13 @@
 /*
  * optical_fast.S - MSP430 versions of the identification kernels of firmware/optical:
- * optical_angle16, optical_expect_scan, optical_eval (fastmath.c holds the portable C that
- * defines the results; these perform the very same integer steps, and
- * tests/vectors/optical_vectors.c checks them bit for bit on both worlds).
+ * optical_angle16, optical_expect_scan, optical_eval, optical_drop, optical_width_ok
+ * (fastmath.c holds the portable C that defines the results; these perform the very same
+ * integer steps, and tests/vectors/optical_vectors.c checks them bit for bit on both worlds).
  *
  * Registers as clang emits calls (TI EABI): arguments in R12..R15 (32-bit ones in pairs, R12
  * the low word), results in R12; R11..R15 may be clobbered, R4..R10 are preserved. The
  * 16 x 16 hardware multiplier (MPY 0x130, OP2 0x138, RESLO 0x13A, RESHI 0x13C) is used with
- * interrupts held off (SR saved, restored by POP SR) for at most about 70 cycles, as the
+ * interrupts held off (SR saved, restored by POP SR) for at most about 100 cycles, as the
  * compiler's and fx's multiply helpers do; the instruction after DINT never touches it.
  * Cycle counts are mspdebug's: it charges the constant-generator immediates #1, #2, #4, #8 and
  * #-1 like memory operands (see firmware/fx/msp430/fx_trig.S).
@@ -70,7 +70,8 @@ gscale:
 /*
  * The octant's arctangent (octant() in fastmath.c): R12 = u in [2^15, 2^16), R14 = v <= u,
  * R11 = flags (2 swapped, 4 dx < 0, 8 dy < 0) -> R12 = the angle (2^-16 turn), R13 = r
- * (2^30 / u), R14 = 2 min(i, 63). Clobbers R15. Interrupts held off for 70 cycles.
+ * (2^30 / u), R14 = 2 min(i, 63). Clobbers R15. Interrupts held off for about 100 cycles (the
+ * three products).
  */
     .section .text.optical_octant,"ax",@progbits
 octant:
