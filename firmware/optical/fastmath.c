@@ -17,7 +17,8 @@ _Static_assert(offsetof(optical_work_t, x) == 2 && offsetof(optical_work_t, head
                    offsetof(optical_work_t, nb) == 20 && offsetof(optical_work_t, th) == 24 &&
                    offsetof(optical_work_t, lev) == 54 && offsetof(optical_work_t, we) == 84 &&
                    offsetof(optical_work_t, sm) == 174 && offsetof(optical_work_t, bstart) == 189 &&
-                   offsetof(optical_work_t, u) == 250 && offsetof(optical_work_t, u.id.e) == 314 &&
+                   offsetof(optical_work_t, wchk) == 220 && offsetof(optical_work_t, u) == 250 &&
+                   offsetof(optical_work_t, u.id.e) == 314 &&
                    offsetof(optical_work_t, u.id.g) == 378 &&
                    offsetof(optical_work_t, u.id.bm) == 442 &&
                    offsetof(optical_work_t, u.id.cand) == 474 &&
@@ -106,10 +107,10 @@ uint16_t optical_angle16(int32_t dx, int32_t dy)
     return octant((uint16_t)ax, (uint16_t)ay, flags, &p);
 }
 
-/* |v| < OPTICAL_COORD_LIMIT (2^29): the high word in (-0x2000, 0x2000). */
+/* -OPTICAL_COORD_LIMIT <= v < OPTICAL_COORD_LIMIT (2^29): the high word + 0x2000 below 0x4000. */
 static bool coord_ok(int32_t v)
 {
-    return (uint32_t)v + 0x1FFFFFFFu < 0x3FFFFFFFu;
+    return (uint32_t)v + 0x20000000u < 0x40000000u;
 }
 
 static void clear(void)
@@ -202,7 +203,8 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half)
                 g = v >= 0xFFFEu ? 0xFFFEu : (uint16_t)(v + 1u);
             }
         }
-        W.u.id.g[k] = g;
+        if (W.lever8) /* (standing, only e is read) */
+            W.u.id.g[k] = g;
         uint16_t ek = (uint16_t)(optical_win(W.eps8, g) + OPTICAL_MARGIN);
         W.u.id.e[k] = ek;
         /* The candidate sightings: from the bucket of the window's start. */
@@ -234,6 +236,19 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half)
         }
     }
     return bad;
+}
+
+uint8_t optical_drop(uint32_t dk, uint32_t t8)
+{
+    uint32_t wmin = t8 ? dk / t8 : 0xFFFFu; /* 2^-16 turn */
+    uint8_t kept = 0;
+    for (uint8_t j = 0; j < W.n; j++) {
+        bool keep = W.we[j] >= wmin;
+        W.sm[j] = keep ? OPTICAL_NONE : OPTICAL_DROPPED;
+        W.wchk[j] = 0x7Fu;
+        kept += keep;
+    }
+    return kept;
 }
 
 void optical_eval(int16_t mid, uint16_t half)

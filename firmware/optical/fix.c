@@ -172,8 +172,9 @@ static uint16_t pos_part(uint8_t k, uint8_t j)
                       OPTICAL_MARGIN);
 }
 
-/* The seed's overlapping-window rule: k's window meets the window of another beacon. */
-static bool overlaps(uint8_t k, uint16_t half)
+/* The seed's overlapping-window rule: k's window meets the window of another beacon. (Not
+ * inlined: unique would prepare its operands on every call, mostly without the rule.) */
+__attribute__((noinline)) static bool overlaps(uint8_t k, uint16_t half)
 {
     uint32_t wk = 2u * (uint32_t)half + W.u.id.e[k];
     for (uint8_t j = 0; j < W.nb; j++) {
@@ -188,37 +189,37 @@ static bool overlaps(uint8_t k, uint16_t half)
 /*
  * Keep in W.sm only the matches unique both ways (and, when asked, clear of overlapping
  * windows) whose width fits the map distance (O5); count them. With @p lo, narrow [*lo, *hi]
- * to the heading offsets every kept match allows.
+ * (heading offsets within +-half0, 2^-16 turn) to the offsets every kept match allows.
  */
-static int8_t unique(const ctx_t *x, bool overlap_rule, uint16_t half, int32_t *lo, int32_t *hi)
+static int8_t unique(const ctx_t *x, bool overlap_rule, uint16_t half, int16_t *lo, int16_t *hi)
 {
     int8_t found = 0;
     for (uint8_t j = 0; j < W.n; j++) {
         uint8_t k = W.sm[j];
         if (k >= DROPPED)
             continue;
-        if (W.u.id.bm[k] != j || (overlap_rule && overlaps(k, half))) {
-            W.sm[j] = NONE;
-            continue;
+        if (W.u.id.bm[k] == j && !(overlap_rule && overlaps(k, half))) {
+            /* O5, once per (sighting, beacon): bit 7 of wchk marks a misfit. */
+            uint8_t c = W.wchk[j];
+            if ((c & 0x7Fu) != k) {
+                c = k;
+                if (!optical_width_ok(&x->wd, &x->map->b[k], SIGHTING(x, j)->width))
+                    c |= 0x80u;
+                W.wchk[j] = c;
+            }
+            if (!(c & 0x80u)) {
+                found++;
+                if (lo) { /* *lo = max(*lo, off - e), *hi = min(*hi, off + e), in 16 bits */
+                    uint16_t off = (uint16_t)(W.th[j] - W.u.id.psi[k]), e = W.we[j];
+                    if ((int16_t)off > *lo && (uint16_t)(off - (uint16_t)*lo) > e)
+                        *lo = (int16_t)(off - e);
+                    if ((int16_t)off < *hi && (uint16_t)((uint16_t)*hi - off) > e)
+                        *hi = (int16_t)(off + e);
+                }
+                continue;
+            }
         }
-        /* O5, once per (sighting, beacon): bit 7 of wchk marks a misfit. */
-        if ((W.wchk[j] & 0x7Fu) != k)
-            W.wchk[j] =
-                (uint8_t)(k |
-                          (optical_width_ok(&x->wd, &x->map->b[k], SIGHTING(x, j)->width) ? 0u
-                                                                                          : 0x80u));
-        if (W.wchk[j] & 0x80u) {
-            W.sm[j] = NONE;
-            continue;
-        }
-        found++;
-        if (lo) {
-            int32_t off = (int16_t)(W.th[j] - W.u.id.psi[k]), e = W.we[j];
-            if (off - e > *lo)
-                *lo = off - e;
-            if (off + e < *hi)
-                *hi = off + e;
-        }
+        W.sm[j] = NONE;
     }
     return found;
 }
@@ -280,7 +281,7 @@ static uint16_t half0(const optical_config_t *cfg)
 static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
 {
     const optical_config_t *cfg = x->cfg;
-    int32_t lo = -(int32_t)half0(cfg), hi = -lo;
+    int16_t hi = (int16_t)half0(cfg), lo = (int16_t)-hi;
     uint8_t nc = W.nc; /* the first pass's candidates (0xFF: too many to keep) */
     int8_t found;
     *mode = IDENT_SAFE;
@@ -288,19 +289,21 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
     /* Within the bounds: each safe match narrows the heading interval for the next pass; the
      * narrower windows hold a subset of the first pass's candidates. */
     for (uint8_t pass = 1;; pass++) {
-        int16_t mid = (int16_t)((uint32_t)(lo + hi) >> 1); /* floor((lo + hi) / 2) */
-        uint16_t half = (uint16_t)((uint32_t)(hi - lo + 1) >> 1);
+        uint16_t d = (uint16_t)((uint16_t)hi - (uint16_t)lo); /* (hi >= lo) */
         if (pass > 1) {
+            int16_t mid = (int16_t)((uint16_t)lo + (d >> 1)); /* floor((lo + hi) / 2) */
+            uint16_t half = (uint16_t)((d >> 1) + (d & 1u));  /* ceil((hi - lo) / 2) */
             if (nc != 0xFFu)
                 optical_eval(mid, half);
             else
                 optical_expect_scan(mid, half);
         }
-        int32_t nlo = lo, nhi = hi;
-        found = unique(x, cfg->reject_overlap, half, &nlo, &nhi);
+        int16_t nlo = lo, nhi = hi;
+        found = unique(x, cfg->reject_overlap, (uint16_t)((d >> 1) + (d & 1u)), &nlo, &nhi);
         if (nlo > nhi)
             return -1;
-        if (pass < MAX_PASSES && found < 3 + CHECK_MAX && 4 * (nhi - nlo) < 3 * (hi - lo)) {
+        uint32_t nd = (uint16_t)((uint16_t)nhi - (uint16_t)nlo);
+        if (pass < MAX_PASSES && found < 3 + CHECK_MAX && (nd << 2) < (uint32_t)d + 2ul * d) {
             lo = nlo; /* tighter by a quarter or more: another pass, never fewer matches */
             hi = nhi;
             continue;
@@ -318,13 +321,14 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
         }
     }
     uint32_t step = step_of(a16(cfg->window), a16(cfg->widen_max), cfg->widen_steps);
+    int32_t wlo = lo, whi = hi;
     for (uint8_t w = 1; w <= cfg->widen_steps && step; w++) {
-        lo -= (int32_t)step;
-        hi += (int32_t)step;
-        if (hi - lo >= 0x8000)
+        wlo -= (int32_t)step;
+        whi += (int32_t)step;
+        if (whi - wlo >= 0x8000)
             break;
-        int16_t mid = (int16_t)((uint32_t)(lo + hi) >> 1); /* floor((lo + hi) / 2) */
-        uint16_t half = (uint16_t)((uint32_t)(hi - lo + 1) >> 1);
+        int16_t mid = (int16_t)((uint32_t)(wlo + whi) >> 1); /* floor((lo + hi) / 2) */
+        uint16_t half = (uint16_t)((uint32_t)(whi - wlo + 1) >> 1);
         optical_expect_scan(mid, half);
         found = unique(x, true, half, NULL, NULL);
         *widened = w;
@@ -527,16 +531,8 @@ static fx_q16_t threshold(const ctx_t *x)
     const optical_config_t *cfg = x->cfg;
     fx_q16_t t = cfg->range;
     for (uint8_t step = 0;; step++) {
-        uint32_t t8 = (uint32_t)t >> 8;
-        uint32_t wmin = t8 ? x->wd.dk / t8 : 0xFFFFu; /* 2^-16 turn */
-        uint8_t kept = 0;
-        for (uint8_t j = 0; j < W.n; j++) {
-            bool keep = W.we[j] >= wmin; /* (prepare: the width) */
-            W.sm[j] = keep ? NONE : DROPPED;
-            W.wchk[j] = 0x7Fu;
-            kept += keep;
-        }
-        if (kept >= 3 || step >= cfg->range_steps)
+        /* (prepare left the widths in we) */
+        if (optical_drop(x->wd.dk, (uint32_t)t >> 8) >= 3 || step >= cfg->range_steps)
             return t;
         /* (the division only when a widening is needed) */
         uint32_t tstep = step_of((uint32_t)cfg->range, (uint32_t)cfg->range_max, cfg->range_steps);

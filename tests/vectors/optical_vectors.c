@@ -307,8 +307,10 @@ static void kernels(void)
             cy_print_hex16(KW.u.id.psi[k]);
             cy_print(":");
             cy_print_hex16(KW.u.id.e[k]);
-            cy_print(":");
-            cy_print_hex16(KW.u.id.g[k]);
+            if (KW.lever8) { /* (standing: g is not stored) */
+                cy_print(":");
+                cy_print_hex16(KW.u.id.g[k]);
+            }
         }
         print_marks();
         cy_print(" nc ");
@@ -336,6 +338,26 @@ static void kernels(void)
     }
     cy_bench_report(&st_exs);
     cy_bench_report(&st_eval);
+    /* The coordinate limit's edges: [-2^29, 2^29) is accepted. */
+    static const int32_t lim[] = {-0x20000000l, -0x1FFFFFFFl, 0x1FFFFFFFl, 0x20000000l,
+                                  -0x20000001l};
+    for (uint8_t t = 0; t < 10; t++) {
+        kmap[0].x = kmap[0].y = kmap[1].x = 0;
+        kmap[1].y = 0x10000;
+        if (t & 1)
+            kmap[1].y = lim[t >> 1];
+        else
+            kmap[1].x = lim[t >> 1];
+        KW.b = kmap;
+        KW.nb = 2;
+        KW.n = 0;
+        KW.x = KW.y = 0;
+        cy_print("lim ");
+        cy_print_dec(t);
+        cy_print(" ");
+        cy_print_dec(optical_expect_scan(0, 100));
+        cy_println();
+    }
     /* The triangulation kernels: offsets scaled as optical_triangulate scales them, the
      * inscribed angles from random sighting gaps (some near 0 and 180 degrees). */
     for (uint8_t t = 0; t < 120; t++) {
@@ -390,6 +412,37 @@ static void kernels(void)
         cy_bench_add(&st_a16, (uint16_t)(t1 - t0));
     }
     cy_bench_report(&st_a16);
+    /* O4's drop: widths around the threshold, ranges from 0 to beyond 2^16 units of 2^-8 m */
+    for (uint8_t t = 0; t < 60; t++) {
+        uint32_t dk = 213000u + rnd32() % 1000000u, t8 = rnd32() % 20000u;
+        if (t % 10 == 1)
+            t8 = 0;
+        else if (t % 10 == 2)
+            t8 = 0x10000u + rnd32() % 0x01000000u;
+        else if (t % 10 == 3)
+            t8 = dk >> 16; /* the quotient just beyond 16 bits */
+        else if (t % 10 == 4)
+            dk = rnd32();
+        uint32_t q = t8 ? dk / t8 : 0xFFFFu;
+        KW.n = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
+        for (uint8_t j = 0; j < KW.n; j++) {
+            uint32_t w = q + (rnd32() % 5u) - 2u;
+            KW.we[j] = (rnd32() & 3u) == 0 ? (uint16_t)rnd32()
+                       : w > 0xFFFFu       ? 0xFFFFu
+                                           : (uint16_t)w;
+        }
+        cy_print("drop ");
+        cy_print_dec(t);
+        cy_print(" ");
+        cy_print_dec(optical_drop(dk, t8));
+        for (uint8_t j = 0; j < KW.n; j++) {
+            cy_print(" ");
+            cy_print_dec(KW.sm[j]);
+            cy_print(":");
+            cy_print_dec(KW.wchk[j]);
+        }
+        cy_println();
+    }
     for (uint16_t t = 0; t < 300; t++) {
         optical_width_t w;
         optical_xy_t b;

@@ -1,13 +1,13 @@
 /*
  * optical_fast.S - MSP430 versions of the identification kernels of firmware/optical:
- * optical_angle16, optical_expect_scan, optical_eval (fastmath.c holds the portable C that
- * defines the results; these perform the very same integer steps, and
- * tests/vectors/optical_vectors.c checks them bit for bit on both worlds).
+ * optical_angle16, optical_expect_scan, optical_eval, optical_drop, optical_width_ok
+ * (fastmath.c holds the portable C that defines the results; these perform the very same
+ * integer steps, and tests/vectors/optical_vectors.c checks them bit for bit on both worlds).
  *
  * Registers as clang emits calls (TI EABI): arguments in R12..R15 (32-bit ones in pairs, R12
  * the low word), results in R12; R11..R15 may be clobbered, R4..R10 are preserved. The
  * 16 x 16 hardware multiplier (MPY 0x130, OP2 0x138, RESLO 0x13A, RESHI 0x13C) is used with
- * interrupts held off (SR saved, restored by POP SR) for at most about 70 cycles, as the
+ * interrupts held off (SR saved, restored by POP SR) for at most about 100 cycles, as the
  * compiler's and fx's multiply helpers do; the instruction after DINT never touches it.
  * Cycle counts are mspdebug's: it charges the constant-generator immediates #1, #2, #4, #8 and
  * #-1 like memory operands (see firmware/fx/msp430/fx_trig.S).
@@ -35,6 +35,7 @@
     .set OW_WE,     84
     .set OW_SM,     174
     .set OW_BSTART, 189
+    .set OW_WCHK,   220
     .set OW_PSI,    250
     .set OW_E,      314
     .set OW_G,      378
@@ -53,68 +54,60 @@
 sc_mid:  .skip 2
 sc_half: .skip 2
 
-/* The octant's unfolding: angle = base[f] +- a, minus when neg[f] (f: 1 swapped, 2 dx < 0,
- * 4 dy < 0). */
+/* The octant's unfolding: angle = (a ^ m[f]) + b[f] (f: 2 swapped, 4 dx < 0, 8 dy < 0), i.e.
+ * base[f] + a, or base[f] - a = base[f] + 1 + ~a. */
     .section .rodata.optical_unfold,"a",@progbits
     .balign 2
-oct_base:
-    .short  0, 16384, 32768, 16384, 0, 49152, 32768, 49152
-oct_neg:
-    .byte   0, 1, 1, 0, 1, 0, 0, 1
+oct_m:
+    .short  0, -1, -1, 0, -1, 0, 0, -1
+oct_b:
+    .short  0, 16385, 32769, 16384, 1, 49152, 32768, 49153
 /* The scale of the window factor: ceil(2^(9 + l) k), k = 1, 2/3, l = 0..6. */
-    .balign 2
 gscale:
     .short  512, 1024, 2048, 4096, 8192, 16384, 32768
     .short  342, 683, 1366, 2731, 5462, 10923, 21846
 
 /*
  * The octant's arctangent (octant() in fastmath.c): R12 = u in [2^15, 2^16), R14 = v <= u,
- * R11 = flags (1 swapped, 2 dx < 0, 4 dy < 0) -> R12 = the angle (2^-16 turn), R13 = r
- * (2^30 / u), R14 = 2 min(i, 63). Clobbers R15. Interrupts held off for 70 cycles.
+ * R11 = flags (2 swapped, 4 dx < 0, 8 dy < 0) -> R12 = the angle (2^-16 turn), R13 = r
+ * (2^30 / u), R14 = 2 min(i, 63). Clobbers R15. Interrupts held off for about 100 cycles (the
+ * three products).
  */
     .section .text.optical_octant,"ax",@progbits
 octant:
-    mov     r12, r15                ; f = u << 7
-    rla     r15
-    rla     r15
-    rla     r15
-    rla     r15
-    rla     r15
-    rla     r15
-    rla     r15
+    mov     r12, r15                ; f = u << 7: (u mod 2^8) << 7, bit 8 of u into bit 15
+    swpb    r15
+    bit     #1, r15
+    bic     #0x00ff, r15
+    rrc     r15
+    push    r2
+    dint
     mov     r12, r13                ; 2 (u >> 9): recip_tab - 128 based
     swpb    r13
     and     #0x00fe, r13
-    push    r2
-    dint
-    push    r11
     mov     r15, &MPY
-    mov     optical_recip_tab-128(r13), r11
-    mov     r11, r15                ; RT[i] - RT[i+1]
-    sub     optical_recip_tab-126(r13), r15
+    mov     optical_recip_tab-128(r13), r15
+    sub     optical_recip_tab-126(r13), r15 ; RT[i] - RT[i+1]
     mov     r15, &OP2
-    mov     &RESLO, r15
-    add     #0x8000, r15
+    mov     optical_recip_tab-128(r13), r13
+    mov     &RESLO, r15             ; (the rounding bit into the carry)
+    rla     r15
     mov     &RESHI, r15
     adc     r15
-    sub     r15, r11                ; r
-    mov     r11, r13
+    sub     r15, r13                ; r
     cmp     r12, r14                ; v >= u: 45 degrees (2^-18 turn)
-    jlo     1f
-    mov     #32768, r12
-    mov     #126, r14
-    jmp     3f
-1:  mov     r14, &MPY               ; q = (v r) >> 14, saturated
+    jhs     3f
+    mov     r14, &MPY               ; q = (v r) >> 14, saturated
     mov     r13, &OP2
-    mov     &RESLO, r11
+    mov     &RESLO, r15
     mov     &RESHI, r12
     cmp     #0x4000, r12
     jhs     4f
-    rla     r11
+    rla     r15
     rlc     r12
-    rla     r11
+    rla     r15
     rlc     r12
-2:  mov     r12, r14                ; 2 (q >> 10)
+1:  mov     r12, r14                ; 2 (q >> 10)
     swpb    r14
     mov.b   r14, r14
     rra     r14
@@ -127,30 +120,26 @@ octant:
     rla     r12
     mov     r12, &MPY
     mov     optical_atan_tab(r14), r12
-    mov     optical_atan_tab+2(r14), r11
-    sub     r12, r11                ; AT[i+1] - AT[i]
-    mov     r11, &OP2
-    mov     &RESLO, r11
-    add     #0x8000, r11
-    mov     &RESHI, r11
-    adc     r11
-    add     r11, r12                ; a, 2^-18 turn
-3:  pop     r11
-    pop     r2
-    add     #2, r12                 ; (a + 2) >> 2 (a <= 32768)
-    clrc
+    mov     optical_atan_tab+2(r14), r15
+    sub     r12, r15                ; AT[i+1] - AT[i]
+    mov     r15, &OP2
+    mov     &RESLO, r15
+    rla     r15
+    mov     &RESHI, r15
+    adc     r15
+    add     r15, r12                ; a, 2^-18 turn
+2:  pop     r2
+    incd    r12                     ; (a + 2) >> 2 (a <= 32768: no carry out)
     rrc     r12
     rra     r12
-    tst.b   oct_neg(r11)            ; unfold
-    jz      5f
-    inv     r12
-    inc     r12
-5:  mov     r11, r15
-    add     r15, r15
-    add     oct_base(r15), r12
+    xor     oct_m(r11), r12         ; unfold
+    add     oct_b(r11), r12
     ret
-4:  mov     #-1, r12
+3:  mov     #32768, r12
+    mov     #126, r14
     jmp     2b
+4:  mov     #-1, r12
+    jmp     1b
 
 /* uint16_t optical_angle16(int32_t dx, int32_t dy): R13:R12 = dx, R15:R14 = dy -> R12. */
     .section .text.optical_angle16,"ax",@progbits
@@ -164,14 +153,14 @@ optical_angle16:
     inv     r13
     add     #1, r12
     adc     r13
-    bis     #2, r11
+    bis     #4, r11
 1:  tst     r15
     jge     2f
     inv     r14
     inv     r15
     add     #1, r14
     adc     r15
-    bis     #4, r11
+    bis     #8, r11
 2:  cmp     r13, r15                ; ay > ax: swap
     jlo     4f
     jne     3f
@@ -183,7 +172,7 @@ optical_angle16:
     xor     r13, r15
     xor     r15, r13
     xor     r13, r15
-    bis     #1, r11
+    bis     #2, r11
 4:  tst     r13                     ; both to [2^15, 2^16): right by 8, 4, 2, 1, 1
     jz      20f
     cmp     #0x0100, r13            ; (logical: ax may be 2^31)
@@ -245,47 +234,14 @@ optical_angle16:
     rra     r15
     rrc     r14
     jmp     octant
-20: tst     r12                     ; ax < 2^16 (ay too): left by 8, 4, 2, 1
+20: tst     r12                     ; ax < 2^16 (ay too): left, a bit at a time
     jz      9f
-    call    #norm16
-    jmp     octant
+    jn      octant
+21: rla     r14
+    rla     r12
+    jn      octant
+    jmp     21b
 9:  ret
-
-/*
- * Left to [2^15, 2^16): R12 = u (1..0xffff), R14 = v <= u, by 8, 4, 2, 1 bits -> R10 += the
- * shift.
- */
-    .section .text.optical_norm16,"ax",@progbits
-norm16:
-    cmp     #0x0100, r12
-    jhs     1f
-    swpb    r12
-    swpb    r14
-    add     #8, r10
-1:  cmp     #0x1000, r12
-    jhs     2f
-    rla     r12
-    rla     r12
-    rla     r12
-    rla     r12
-    rla     r14
-    rla     r14
-    rla     r14
-    rla     r14
-    add     #4, r10
-2:  cmp     #0x4000, r12
-    jhs     3f
-    rla     r12
-    rla     r12
-    rla     r14
-    rla     r14
-    add     #2, r10
-3:  tst     r12
-    jn      4f
-    rla     r12
-    rla     r14
-    add     #1, r10
-4:  ret
 
 /*
  * Window part with margin: R13 = lever l (2^-8 m), R11 = g -> R15 = min(ceil(l g / 256),
@@ -319,8 +275,7 @@ win6:
 
 /*
  * Marks (test() in fastmath.c): R12 = sighting j, R13 = 2j, R4 = 2 beacon k, R15 = w: sm[j],
- * bm[k] get the partner or MULTI, we[j] = w. mark_keep also keeps the pair (cand, nc), keep
- * only that. Clobbers R15 (and R9 = k).
+ * bm[k] get the partner (or MULTI), we[j] = w. Clobbers R9 (= k).
  */
     .section .text.optical_mark,"ax",@progbits
 mark:
@@ -338,23 +293,22 @@ mark:
     ret
 3:  mov.b   #MULTI, OW+OW_BM(r9)
     ret
-mark_keep:
-    call    #mark
+
+/*
+ * Keep the pair (j, k) (optical_expect_scan): R12 = j, R4 = 2k, R8 = 2 nc (0x1fe: more than
+ * MAXCAND pairs, none kept any more). Clobbers R9.
+ */
 keep:
-    mov.b   &OW+OW_NC, r15
-    cmp.b   #0xff, r15
-    jeq     5f
-    cmp.b   #MAXCAND, r15
-    jlo     4f
-    mov.b   #0xff, &OW+OW_NC
-    ret
-4:  add     r15, r15
-    mov.b   r12, OW+OW_CAND(r15)
+    cmp     #2*MAXCAND, r8
+    jhs     1f
+    mov.b   r12, OW+OW_CAND(r8)
     mov     r4, r9
     rra     r9
-    mov.b   r9, OW+OW_CAND+1(r15)
-    inc.b   &OW+OW_NC
-5:  ret
+    mov.b   r9, OW+OW_CAND+1(r8)
+    incd    r8
+    ret
+1:  mov     #0x1fe, r8
+    ret
 
 /*
  * Pair test (test() in fastmath.c): R12 = j, R13 = 2j, R4 = 2k -> carry set when the pair
@@ -397,19 +351,18 @@ pair_test:
     .section .text.optical_clear,"ax",@progbits
 clear_marks:
     mov.b   &OW+OW_N, r14
-    clr     r15
     tst     r14
     jz      2f
-1:  cmp.b   #DROPPED, OW+OW_SM(r15)
+1:  cmp.b   #DROPPED, OW+OW_SM-1(r14)
     jeq     3f
-    mov.b   #NONE, OW+OW_SM(r15)
-3:  inc     r15
-    cmp     r14, r15
-    jlo     1b
+    mov.b   #NONE, OW+OW_SM-1(r14)
+3:  add     #-1, r14
+    jnz     1b
 2:  mov.b   &OW+OW_NB, r14
     clr     r15
-4:  mov     #-1, OW+OW_BM(r15)      ; two at a time (the array has room for 32)
-    incd    r15
+4:  mov     #-1, OW+OW_BM(r15)      ; four at a time (the array has room for 32)
+    mov     #-1, OW+OW_BM+2(r15)
+    add     #4, r15
     cmp     r14, r15
     jlo     4b
     ret
@@ -417,8 +370,11 @@ clear_marks:
 /*
  * uint8_t optical_expect_scan(int16_t mid, uint16_t half): R12 = mid, R13 = half -> R12 = 0,
  * or 1 when a beacon lies beyond the coordinate limit.
- * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000), R7 = mid -
- * half, R8 = 2 half; per beacon R9 = m8, R10 = l, R11 = flags.
+ * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000), R7 = lever8
+ * (0: standing), R8 = 2 nc; per beacon R9 = m8, R10 = l, R11 = flags. The frame: 0(r1) the
+ * map's end, 2(r1) min(2 amax8, 0xffff) (m8 from there on: k = 2/3), 4(r1) max(77, amax8 + 1)
+ * (m8 from there on: a window factor; saturated). Without sightings the half-width is taken as
+ * 0x7000 (the scan of every sighting, i.e. of none).
  */
     .section .text.optical_expect_scan,"ax",@progbits
     .global optical_expect_scan
@@ -432,21 +388,38 @@ optical_expect_scan:
     push    r5
     push    r4
     mov     r12, &sc_mid
-    mov     r13, &sc_half
-    mov     r12, r7
-    sub     r13, r7
-    mov     r13, r8
-    add     r8, r8
+    mov     &OW+OW_LEVER8, r7
+    tst.b   &OW+OW_N
+    jnz     1f
+    mov     #0x7000, r13
+1:  mov     r13, &sc_half
     call    #clear_marks
-    clr.b   &OW+OW_NC
+    clr     r8                      ; 2 nc
+    mov     &OW+OW_AMAX8, r12       ; amax8 + 1, at least 77, saturated
+    mov     r12, r13
+    add     #1, r13
+    jnc     2f
+    mov     #-1, r13
+2:  cmp     #77, r13
+    jhs     3f
+    mov     #77, r13
+3:  push    r13
+    rla     r12                     ; 2 amax8, saturated
+    jnc     4f
+    mov     #-1, r12
+4:  push    r12
     mov     &OW+OW_B, r5
+    mov.b   &OW+OW_NB, r12          ; the map's end
+    rla     r12
+    rla     r12
+    rla     r12
+    add     r5, r12
+    push    r12
     clr     r4
     clr     r6
-beacon:
-    mov.b   &OW+OW_NB, r12          ; 2k < 2 nb
-    add     r12, r12
-    cmp     r12, r4
+    cmp     @r1, r5
     jhs     es_done
+es_beacon:
     mov     @r5+, r12               ; bx, by
     mov     @r5+, r13
     mov     @r5+, r14
@@ -461,14 +434,13 @@ beacon:
     subc    &OW+OW_X+2, r13
     sub     &OW+OW_Y, r14
     subc    &OW+OW_Y+2, r15
-    clr     OW+OW_E(r4)             ; gated out until known
     mov     r13, r9                 ; within +-2^23
     add     #0x0080, r9
     mov     r15, r10
     add     #0x0080, r10
     bis     r10, r9
     cmp     #0x0100, r9
-    jhs     next_beacon
+    jhs     es_gated
     swpb    r12                     ; x8 = floor(dx / 256), y8
     mov.b   r12, r12
     swpb    r13
@@ -479,67 +451,84 @@ beacon:
     swpb    r15
     and     #0xff00, r15
     bis     r15, r14
-    clr     r11                     ; magnitudes, flags
+    clr     r11                     ; magnitudes; flags 4 dx < 0, 8 dy < 0, 2 swapped
     tst     r12
     jge     1f
     mov     r12, r9
     clr     r12
     sub     r9, r12
-    bis     #2, r11
+    bis     #4, r11
 1:  tst     r14
     jge     2f
     mov     r14, r9
     clr     r14
     sub     r9, r14
-    bis     #4, r11
-2:  cmp     r12, &OW+OW_GATE8       ; beyond the gate
-    jlo     next_beacon
-    cmp     r14, &OW+OW_GATE8
-    jlo     next_beacon
-    cmp     r14, r12                ; the larger in R12
+    bis     #8, r11
+2:  cmp     r14, r12                ; the larger in R12
     jhs     3f
     xor     r12, r14
     xor     r14, r12
     xor     r12, r14
-    bis     #1, r11
-3:  mov     r12, r9                 ; m8
-    clr     r10                     ; l
+    bis     #2, r11
+3:  cmp     r12, &OW+OW_GATE8       ; beyond the gate
+    jlo     es_gated
+    mov     r12, r9                 ; m8
+    clr     r10                     ; l: u, v left to [2^15, 2^16) by 8, 4, 2, 1
     tst     r12
     jz      4f                      ; (0, 0): angle 0
     jn      5f
-    call    #norm16
+    cmp     #0x0100, r12
+    jhs     1f
+    swpb    r12
+    swpb    r14
+    mov     #8, r10
+1:  cmp     #0x1000, r12
+    jhs     2f
+    rla     r12
+    rla     r12
+    rla     r12
+    rla     r12
+    rla     r14
+    rla     r14
+    rla     r14
+    rla     r14
+    add     #4, r10
+2:  cmp     #0x4000, r12
+    jhs     3f
+    rla     r12
+    rla     r12
+    rla     r14
+    rla     r14
+    incd    r10
+3:  tst     r12
+    jn      5f
+    rla     r12
+    rla     r14
+    inc     r10
 5:  call    #octant                 ; R12 angle, R13 r, R14 2 min(i, 63)
 4:  sub     &OW+OW_HEAD, r12        ; psi
     mov     r12, OW+OW_PSI(r4)
-    mov     r12, r15                ; lo = psi + mid - half - e (e added below)
-    add     r7, r15
-    push    r15
     ; g: no bound within amax8 or 0.3 m; e = win(eps8, g) + margin
     mov     #-1, r11
-    cmp     #77, r9
-    jlo     20f
-    cmp     r9, &OW+OW_AMAX8
-    jhs     20f
+    cmp     4(r1), r9               ; (the frame's max(77, amax8 + 1))
+    jlo     es_win
     push    r2
     dint
-    mov     &OW+OW_AMAX8, r15
+    clr     r15                     ; k = 1, or 2/3 (row 14) when m8 >= 2 amax8
     mov     r13, &MPY               ; h = (r C) >> 16
     mov     optical_ct_tab(r14), &OP2
-    mov     &RESHI, r13
-    clr     r14                     ; k = 1, or 2/3 when m8 >= 2 amax8
-    rla     r15
-    jc      11f
-    cmp     r15, r9
-    jlo     11f
-    mov     #14, r14
-11: cmp     #7, r10
-    jhs     12f
-    add     r10, r14                ; g = (h scale[k][l]) >> 16 + 1
-    add     r10, r14
+    cmp     4(r1), r9               ; (the frame's 2 amax8, below the saved SR)
+    jlo     6f
+    mov     #14, r15
+6:  mov     &RESHI, r13
+    cmp     #7, r10
+    jhs     es_big
+    add     r10, r15                ; g = (h scale[k][l]) >> 16 + 1
+    add     r10, r15
     mov     r13, &MPY
-    mov     gscale(r14), &OP2
+    mov     gscale(r15), &OP2
     mov     &RESHI, r11
-    add     #1, r11
+    sub     #-1, r11
     mov     &OW+OW_EPS8, &MPY       ; e = ceil(eps8 g / 256), capped, + margin
     mov     r11, &OP2
     mov     &RESLO, r15
@@ -548,58 +537,27 @@ beacon:
     adc     r13
     pop     r2
     cmp     #0x0080, r13
-    jhs     17f
+    jhs     7f
     swpb    r13
     swpb    r15
     mov.b   r15, r15
     bis     r13, r15
     add     #MARGIN, r15
-    jmp     21f
-17: mov     #0x7fff+MARGIN, r15
-    jmp     21f
-12: tst     r14                     ; l >= 7: (h or (2h + 2) / 3) << (l - 7)
-    jz      13f
-    rla     r13
-    add     #2, r13
-    mov     r13, &MPY
-    mov     #0xaaab, &OP2           ; floor(x 43691 / 2^17) = floor(x / 3), x < 2^16
-    mov     &RESHI, r13
-    clrc
-    rrc     r13
-13: pop     r2
-    sub     #7, r10
-    jz      15f
-14: tst     r13
-    jn      16f
-    rla     r13
-    sub     #1, r10
-    jnz     14b
-15: cmp     #0xfffe, r13
-    jhs     16f
-    add     #1, r13
-    mov     r13, r11
-    jmp     20f
-16: mov     #0xfffe, r11
-20: mov     &OW+OW_EPS8, r13
-    call    #win6
-21: mov     r11, OW+OW_G(r4)
+es_e:                               ; R11 = g, R12 = psi, R15 = e
     mov     r15, OW+OW_E(r4)
-    ; the scan: wmax = e (standing) or the largest lever's window, + half
-    tst     &OW+OW_LEVER8
-    jz      22f
+    tst     r7
+    jz      8f
+    mov     r11, OW+OW_G(r4)        ; moving: g, and the largest lever's window
     mov     &OW+OW_AMAX8, r13
     call    #win6
-22: pop     r10                     ; lo = psi + mid - half - w, span = 2 (half + w)
+8:  add     &sc_half, r15           ; wmax
+    cmp     #0x7000, r15            ; that wide: test every sighting
+    jhs     es_all
+    mov     r12, r10                ; lo = psi + mid - wmax, span = 2 wmax
+    add     &sc_mid, r10
     sub     r15, r10
     mov     r15, r9
     add     r9, r9
-    add     r8, r9
-    mov.b   &OW+OW_N, r14           ; c = n
-    tst     r14
-    jz      next_beacon
-    add     &sc_half, r15           ; wmax
-    cmp     #0x7000, r15
-    jhs     scan_all
     mov     r10, r12                ; j = bstart[lo >> 12]
     swpb    r12
     mov.b   r12, r12
@@ -608,93 +566,97 @@ beacon:
     rra     r12
     rra     r12
     mov.b   OW+OW_BSTART(r12), r12
-    tst     &OW+OW_LEVER8
-    jnz     scan_lever
-scan:                               ; standing: rel <= span is the window test itself
+    tst     r7
+    jnz     es_lever
+    ; standing: rel <= span is the window test itself. R13 = &th[j], R14 the sightings up to
+    ; the end, then (R12 = the start) those before the start.
     mov     r12, r13
     add     r13, r13
-    mov     OW+OW_TH(r13), r11
+    add     #OW+OW_TH, r13
+    mov.b   &OW+OW_N, r14
+    sub     r12, r14
+es_scan:
+    mov     @r13+, r11
     sub     r10, r11
     cmp     #0xf000, r11            ; in lo's 1/16 turn, before lo
-    jhs     30f
+    jhs     es_snext
     cmp     r11, r9                 ; past the window
-    jlo     next_beacon
-    cmp.b   #DROPPED, OW+OW_SM(r12)
-    jeq     30f
-    mov     OW+OW_E(r4), OW+OW_WE(r13) ; mark_keep inline: we[j] = e[k]
+    jlo     es_next
+    mov     r13, r11                ; j, 2j
+    sub     #OW+OW_TH+2, r11
+    mov     r11, r15
+    rra     r15
+    cmp.b   #DROPPED, OW+OW_SM(r15)
+    jeq     es_snext
+    mov     OW+OW_E(r4), OW+OW_WE(r11) ; we[j] = e[k]
     mov     r4, r11                 ; k
     rra     r11
-    cmp.b   #NONE, OW+OW_SM(r12)    ; sm[j]: k or MULTI
+    cmp.b   #NONE, OW+OW_SM(r15)    ; sm[j]: k or MULTI
     jne     40f
-    mov.b   r11, OW+OW_SM(r12)
+    mov.b   r11, OW+OW_SM(r15)
     jmp     41f
-40: mov.b   #MULTI, OW+OW_SM(r12)
+40: mov.b   #MULTI, OW+OW_SM(r15)
 41: cmp.b   #NONE, OW+OW_BM(r11)    ; bm[k]: j or MULTI
     jne     42f
-    mov.b   r12, OW+OW_BM(r11)
+    mov.b   r15, OW+OW_BM(r11)
     jmp     43f
 42: mov.b   #MULTI, OW+OW_BM(r11)
-43: mov.b   &OW+OW_NC, r15          ; keep (cand, nc)
-    cmp.b   #0xff, r15
-    jeq     30f
-    cmp.b   #MAXCAND, r15
-    jlo     44f
-    mov.b   #0xff, &OW+OW_NC
-    jmp     30f
-44: add     r15, r15
-    mov.b   r12, OW+OW_CAND(r15)
-    mov.b   r11, OW+OW_CAND+1(r15)
-    inc.b   &OW+OW_NC
-30: add     #1, r12
-    cmp.b   &OW+OW_N, r12
-    jlo     31f
+43: cmp     #2*MAXCAND, r8          ; keep (cand, nc)
+    jhs     44f
+    mov.b   r15, OW+OW_CAND(r8)
+    mov.b   r11, OW+OW_CAND+1(r8)
+    incd    r8
+es_snext:
+    add     #-1, r14
+    jnz     es_scan
+    tst     r12                     ; then from the first sighting to the start
+    jz      es_next
+    mov     r12, r14
     clr     r12
-31: sub     #1, r14
-    jnz     scan
-    jmp     next_beacon
-scan_lever:                         ; moving: each sighting's window
-    mov     r12, r13
-    add     r13, r13
-    mov     OW+OW_TH(r13), r11
-    sub     r10, r11
-    cmp     #0xf000, r11
-    jhs     32f
-    cmp     r11, r9
-    jlo     next_beacon
-    cmp.b   #DROPPED, OW+OW_SM(r12)
-    jeq     32f
-    push    r9
-    push    r14
-    call    #pair_test
-    pop     r14
-    jnc     33f
-    call    #keep
-33: pop     r9
-32: add     #1, r12
-    cmp.b   &OW+OW_N, r12
-    jlo     34f
-    clr     r12
-34: sub     #1, r14
-    jnz     scan_lever
-    jmp     next_beacon
-scan_all:                           ; that wide: every sighting
-    clr     r12
-35: mov     r12, r13
-    add     r13, r13
-    cmp.b   #DROPPED, OW+OW_SM(r12)
-    jeq     36f
-    push    r14
-    call    #pair_test
-    pop     r14
-    jnc     36f
-    call    #keep
-36: add     #1, r12
-    sub     #1, r14
-    jnz     35b
-next_beacon:
+    mov     #OW+OW_TH, r13
+    jmp     es_scan
+44: mov     #0x1fe, r8              ; more than MAXCAND: nc = 0xff
+    jmp     es_snext
+7:  mov     #0x7fff+MARGIN, r15
+    jmp     es_e
+es_big:                             ; l >= 7: (h or (2h + 2) / 3) << (l - 7)
+    tst     r15
+    jz      1f
+    rla     r13
+    add     #2, r13
+    mov     r13, &MPY
+    mov     #0xaaab, &OP2           ; floor(x 43691 / 2^17) = floor(x / 3), x < 2^16
+    mov     &RESHI, r13
+    clrc
+    rrc     r13
+1:  pop     r2
+    sub     #7, r10
+    jz      3f
+2:  tst     r13
+    jn      4f
+    rla     r13
+    sub     #1, r10
+    jnz     2b
+3:  cmp     #0xfffe, r13
+    jhs     4f
+    add     #1, r13
+    mov     r13, r11
+    jmp     es_win
+4:  mov     #0xfffe, r11
+es_win:                             ; R11 = g: e = win(eps8, g) + margin
+    mov     &OW+OW_EPS8, r13
+    call    #win6
+    jmp     es_e
+es_gated:
+    clr     OW+OW_E(r4)
+es_next:
     incd    r4
-    jmp     beacon
+    cmp     @r1, r5
+    jlo     es_beacon
 es_done:
+    add     #6, r1
+    rra     r8                      ; nc
+    mov.b   r8, &OW+OW_NC
     clr     r12                     ; 1 when a coordinate is beyond the limit
     cmp     #0x4000, r6
     jlo     1f
@@ -707,6 +669,50 @@ es_done:
     pop     r9
     pop     r10
     ret
+es_lever:                           ; moving: each sighting's window
+    mov.b   &OW+OW_N, r14
+31: mov     r12, r13
+    add     r13, r13
+    mov     OW+OW_TH(r13), r11
+    sub     r10, r11
+    cmp     #0xf000, r11
+    jhs     32f
+    cmp     r11, r9
+    jlo     es_next
+    cmp.b   #DROPPED, OW+OW_SM(r12)
+    jeq     32f
+    push    r9
+    push    r14
+    call    #pair_test
+    pop     r14
+    jnc     33f
+    call    #keep
+33: pop     r9
+32: inc     r12
+    cmp.b   &OW+OW_N, r12
+    jlo     34f
+    clr     r12
+34: dec     r14
+    jnz     31b
+    jmp     es_next
+es_all:                             ; that wide: every sighting
+    mov.b   &OW+OW_N, r14
+    tst     r14
+    jz      es_next
+    clr     r12
+35: mov     r12, r13
+    add     r13, r13
+    cmp.b   #DROPPED, OW+OW_SM(r12)
+    jeq     36f
+    push    r14
+    call    #pair_test
+    pop     r14
+    jnc     36f
+    call    #keep
+36: inc     r12
+    dec     r14
+    jnz     35b
+    jmp     es_next
 
 /*
  * void optical_eval(int16_t mid, uint16_t half): R12 = mid, R13 = half. Standing: the pair
@@ -758,6 +764,59 @@ optical_eval:
     ret
 
 /*
+ * uint8_t optical_drop(uint32_t dk, uint32_t t8): R13:R12 = dk, R15:R14 = t8 -> R12 = the
+ * sightings kept (fastmath.c). wmin = floor(dk / t8) into R11 (a 16-step restoring division
+ * when t8 and the quotient fit 16 bits); R13 = 1 when wmin >= 2^16 (none kept), else 0.
+ */
+    .section .text.optical_drop,"ax",@progbits
+    .global optical_drop
+    .type optical_drop,@function
+optical_drop:
+    tst     r15
+    jnz     3f
+    mov     #-1, r11                ; t8 = 0: 0xffff
+    tst     r14
+    jz      4f
+    cmp     r14, r13                ; dk >= t8 2^16: none kept
+    jhs     5f
+    mov     #16, r15                ; the quotient's bits into R12, the remainder in R13
+1:  rla     r12
+    rlc     r13
+    jc      2f
+    cmp     r14, r13
+    jlo     6f
+2:  sub     r14, r13
+    bis     #1, r12
+6:  add     #-1, r15
+    jnz     1b
+    mov     r12, r11
+    jmp     4f
+3:  call    #__mspabi_divul         ; t8 >= 2^16: the quotient fits 16 bits
+    mov     r12, r11
+4:  clr     r13
+7:  mov.b   &OW+OW_N, r14
+    clr     r12                     ; kept
+    tst     r14
+    jz      9f
+    mov     r14, r15
+    add     r15, r15                ; R14 = j + 1, R15 = 2 (j + 1)
+8:  mov.b   #0x7f, OW+OW_WCHK-1(r14)
+    mov.b   #NONE, OW+OW_SM-1(r14)
+    cmp     r11, OW+OW_WE-2(r15)    ; we[j] >= wmin (< 2^16): kept
+    jlo     10f
+    tst     r13
+    jnz     10f
+    sub     #-1, r12
+    jmp     11f
+10: mov.b   #DROPPED, OW+OW_SM-1(r14)
+11: decd    r15
+    add     #-1, r14
+    jnz     8b
+9:  ret
+5:  mov     #1, r13
+    jmp     7b
+
+/*
  * bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16):
  * R12 = a, R13 = b, R14 = w16 -> R12 (fastmath.c's steps). R10 = a, R9 = x8, R11 = rhi then
  * hi, R13 = rlo then lo, R15 = tol. Interrupts held off around each multiply.
@@ -774,13 +833,38 @@ optical_width_ok:
     mov     2(r13), r15
     sub     4(r10), r12
     subc    6(r10), r15
-    call    #wd_mag8
-    mov     r12, r9
-    mov     4(r13), r12             ; y8
+    tst     r15
+    jge     1f
+    inv     r12
+    inv     r15
+    sub     #-1, r12                ; (+1, carry as add)
+    adc     r15
+1:  mov     #-1, r9
+    cmp     #0x0100, r15
+    jhs     2f
+    swpb    r12
+    mov.b   r12, r9
+    swpb    r15
+    bis     r15, r9
+2:  mov     4(r13), r12             ; y8
     mov     6(r13), r15
     sub     8(r10), r12
     subc    10(r10), r15
-    call    #wd_mag8
+    tst     r15
+    jge     1f
+    inv     r12
+    inv     r15
+    sub     #-1, r12
+    adc     r15
+1:  cmp     #0x0100, r15
+    jhs     2f
+    swpb    r12
+    mov.b   r12, r12
+    swpb    r15
+    bis     r15, r12
+    jmp     3f
+2:  mov     #-1, r12
+3:
     cmp     r9, r12                 ; o = max + min / 2, saturated
     jhs     1f
     xor     r12, r9
@@ -819,30 +903,28 @@ optical_width_ok:
     mov     #-1, r11
 7:  cmp     #5216, r14
     jhs     wd_wide
-    push    r2                      ; p = lo w16
+    push    r2                      ; p = lo w16, q = hi w16 (w16 stays in MPY)
     dint
     nop
-    mov     r13, &MPY
-    mov     r14, &OP2
+    mov     r14, &MPY
+    mov     r13, &OP2
     mov     &RESLO, r12
     mov     &RESHI, r13
+    mov     r11, &OP2
+    mov     &RESLO, r14
+    mov     &RESHI, r11
     pop     r2
-    mov     r12, r9                 ; p - (p >> 5) > dk: false
+    mov     r12, r9                 ; p - (p >> 5) > dk: false (p < 2^29: rra shifts in 0)
     mov     r13, r15
-    clrc
-    rrc     r15
+    rra     r15
     rrc     r9
-    clrc
-    rrc     r15
+    rra     r15
     rrc     r9
-    clrc
-    rrc     r15
+    rra     r15
     rrc     r9
-    clrc
-    rrc     r15
+    rra     r15
     rrc     r9
-    clrc
-    rrc     r15
+    rra     r15
     rrc     r9
     sub     r9, r12
     subc    r15, r13
@@ -852,17 +934,9 @@ optical_width_ok:
 8:  jlo     wd_false
     tst.b   18(r10)                 ; flat: only that bound
     jnz     wd_true
-    push    r2                      ; hi w16 >= dk
-    dint
-    nop
-    mov     r11, &MPY
-    mov     r14, &OP2
-    mov     &RESLO, r12
-    mov     &RESHI, r13
-    pop     r2
-    cmp     2(r10), r13
+    cmp     2(r10), r11             ; q >= dk
     jne     9f
-    cmp     0(r10), r12
+    cmp     0(r10), r14
 9:  jhs     wd_true
 wd_false:
     clr     r12
@@ -905,20 +979,3 @@ wd_wide:                            ; w16 > 5215: lo 5215 <= dk + (dk >> 4)
 1:  jhs     wd_true
     jmp     wd_false
 
-/* R15:R12 = a signed difference -> R12 = min(|v| >> 8, 0xffff). */
-wd_mag8:
-    tst     r15
-    jge     1f
-    inv     r12
-    inv     r15
-    inc     r12
-    adc     r15
-1:  cmp     #0x0100, r15
-    jhs     2f
-    swpb    r12
-    mov.b   r12, r12
-    swpb    r15
-    bis     r15, r12
-    ret
-2:  mov     #-1, r12
-    ret

@@ -123,8 +123,8 @@ extern optical_work_t optical_work;
  * i = floor(64 t)), k = 2/3 (ceil(2^(9 + l) 2/3) / 2^(9 + l)) when m8 >= 2 amax8, else 1;
  * e = optical_win(eps8, g) + margin. The offsets' flooring moves the angles by up to sqrt 2
  * units of 2^-8 m: the caller adds 2 to eps8. Clears bm and sm (except DROPPED) and marks
- * every pair as optical_eval. Returns 1 when a beacon lies beyond OPTICAL_COORD_LIMIT (the
- * results are then meaningless), else 0.
+ * every pair as optical_eval. Returns 1 when a beacon coordinate lies outside
+ * [-OPTICAL_COORD_LIMIT, OPTICAL_COORD_LIMIT) (the results are then meaningless), else 0.
  */
 uint8_t optical_expect_scan(int16_t mid, uint16_t half);
 
@@ -136,6 +136,14 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half);
  * must stay below 2^16; nc not 0xFF.
  */
 void optical_eval(int16_t mid, uint16_t half);
+
+/**
+ * O4 (fix.c's threshold): every sighting j narrower than wmin = floor(@p dk / @p t8) (0xFFFF
+ * when t8 = 0), its width in we[j] (2^-16 turn), is dropped: sm[j] = DROPPED, the others NONE;
+ * wchk[j] = 0x7F (no O5 verdict yet). @p dk: the post diameter as optical_width_t.dk, @p t8
+ * the range threshold in 2^-8 m. Returns the sightings kept.
+ */
+uint8_t optical_drop(uint32_t dk, uint32_t t8);
 
 /** Window part min(ceil(l g / 256), 0x7FFF) of lever l (2^-8 m); 0x7FFF when g = 0xFFFF. */
 uint16_t optical_win(uint16_t l, uint16_t g);
