@@ -282,7 +282,7 @@ static void kernels(void)
     static cy_bench_stat_t st_exs = {"optical_expect_scan_per_beacon", 0, 0, 0};
     static cy_bench_stat_t st_eval = {"optical_eval_per_pair", 0, 0, 0};
     static cy_bench_stat_t st_core = {"optical_tri_core", 0, 0, 0};
-    static cy_bench_stat_t st_qual = {"optical_quality_parts", 0, 0, 0};
+    static cy_bench_stat_t st_qual = {"optical_tri_quality", 0, 0, 0};
     static cy_bench_stat_t st_a16 = {"optical_angle16", 0, 0, 0};
     for (uint8_t t = 0; t < 60; t++) {
         scene(t);
@@ -336,47 +336,56 @@ static void kernels(void)
     }
     cy_bench_report(&st_exs);
     cy_bench_report(&st_eval);
-    /* The triangulation kernels: offsets scaled as optical_triangulate scales them, the
-     * inscribed angles from random sighting gaps (some near 0 and 180 degrees). */
+    /* The triangulation kernels: beacon offsets from beacon 2 of every span (Q16), the
+     * inscribed angles of a vehicle among them (fx_atan2) or random ones (near 0 and 180
+     * degrees too: most of them inconsistent or beyond the circles' range). */
     for (uint8_t t = 0; t < 120; t++) {
-        int32_t v[4], sc[6], out[2] = {0, 0};
-        uint32_t m = 0;
-        for (uint8_t i = 0; i < 4; i++) {
-            v[i] = rnd_in(t & 1 ? 0x07FFFFFFu : 0x00FFFFFFu);
-            m |= v[i] < 0 ? 0u - (uint32_t)v[i] : (uint32_t)v[i];
-        }
-        if (m == 0)
+        int32_t v[4], sc[4];
+        static const uint32_t span[4] = {0x07FFFFFFu, 0x00FFFFFFu, 0x0003FFFFu, 0x00000FFFu};
+        uint32_t lim = span[t & 3];
+        for (uint8_t i = 0; i < 4; i++)
+            v[i] = rnd_in(lim);
+        if ((v[0] | v[1]) == 0 || (v[2] | v[3]) == 0 || (v[0] == v[2] && v[1] == v[3]))
             continue;
-        while (m < (1ul << 27)) {
-            m <<= 1;
-            for (uint8_t i = 0; i < 4; i++)
-                v[i] *= 2;
+        fx_angle_t a1, a2;
+        if (t % 3) {
+            int32_t px = rnd_in(lim), py = rnd_in(lim);
+            fx_angle_t h1 = fx_atan2(v[1] - py, v[0] - px), h2 = fx_atan2(-py, -px);
+            a1 = h2 - h1;
+            a2 = fx_atan2(v[3] - py, v[2] - px) - h2;
+        } else {
+            a1 = rnd32();
+            a2 = rnd32();
+            if (t % 5 == 0)
+                a1 = (fx_angle_t)rnd_in(3000) + (t & 8 ? 0x80000000u : 0u);
         }
-        fx_angle_t a1 = rnd32() >> 1, a2 = rnd32() >> 1;
-        if (t % 5 == 0)
-            a1 = (fx_angle_t)rnd_in(3000) + (t & 2 ? 0x80000000u : 0u);
         fx_sincos(a1, &sc[0], &sc[1]);
         fx_sincos(a2, &sc[2], &sc[3]);
-        fx_sincos(a1 + a2, &sc[4], &sc[5]);
+        optical_tsol_t ts = {{0, 0}, {0, 0}, {0, 0, 0}, 0, 0};
         uint16_t t0 = cy_bench_now();
-        bool ok = optical_tri_core(v, sc, out);
+        int8_t st = optical_tri_core(v, sc, &ts);
         uint16_t t1 = cy_bench_now();
         cy_bench_add(&st_core, (uint16_t)(t1 - t0));
         cy_print("tri ");
         cy_print_dec(t);
         cy_print(" ");
-        cy_print_dec(ok);
-        field("x", (uint32_t)out[0]);
-        field("y", (uint32_t)out[1]);
-        if (ok) {
-            optical_qparts_t q;
+        cy_print_dec(st);
+        for (uint8_t i = 0; i < 4; i++)
+            field("v", (uint32_t)v[i]);
+        if (st == OPTICAL_OK) {
+            field("o", (uint32_t)ts.off[0]);
+            field("o", (uint32_t)ts.off[1]);
+            field("w", (uint32_t)ts.w[0]);
+            field("w", (uint32_t)ts.w[1]);
+            for (uint8_t i = 0; i < 3; i++)
+                field("l", (uint32_t)ts.l[i]);
+            field("r", ts.r);
+            field("x", (uint32_t)(int32_t)ts.x);
             t0 = cy_bench_now();
-            optical_quality_parts(v, out, sc, &q);
+            uint32_t q = optical_tri_quality(v, &ts);
             t1 = cy_bench_now();
             cy_bench_add(&st_qual, (uint16_t)(t1 - t0));
-            field("n", q.num);
-            field("d", q.den);
-            field("s", q.sc);
+            field("q", q);
         }
         cy_println();
     }
