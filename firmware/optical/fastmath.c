@@ -24,7 +24,7 @@ _Static_assert(offsetof(optical_work_t, x) == 2 && offsetof(optical_work_t, head
                    offsetof(optical_work_t, u.sv.frame) == 350,
                "optical_work_t layout (optical_fast.S, optical_tri.S)");
 _Static_assert(offsetof(optical_tsol_t, l) == 16 && offsetof(optical_tsol_t, r) == 28 &&
-                   offsetof(optical_tsol_t, x) == 32 && sizeof optical_work.u.sv.frame >= 130,
+                   offsetof(optical_tsol_t, x) == 32 && sizeof optical_work.u.sv.frame >= 110,
                "optical_tsol_t layout and frame size (optical_tri.S)");
 #endif
 
@@ -304,7 +304,7 @@ static int32_t dot(const int32_t *x, const int32_t *y, uint8_t n)
     return hh + asr(m, 16);
 }
 
-/* The shift that brings the larger magnitude m (nonzero) to [2^top, 2^(top + 1)): n left. */
+/* The left shifts that bring m (nonzero) to 2^top or more. */
 static uint8_t lead(uint32_t m, uint8_t top)
 {
     uint8_t n = 0;
@@ -323,37 +323,53 @@ static uint32_t mag2(int32_t a, int32_t b)
     return tmag(a) | tmag(b);
 }
 
+/* *v 2^n when that lies in [-2^lim, 2^lim) (else false, *v unchanged); n <= 0: floor. */
+static bool scale(int32_t *v, int8_t n, uint8_t lim)
+{
+    if (n <= 0) {
+        *v = asr(*v, (uint8_t)-n);
+        return true;
+    }
+    int32_t b = (int32_t)(1ul << (lim - n));
+    if (*v >= b || *v < -b)
+        return false;
+    *v = (int32_t)((uint32_t)*v << n);
+    return true;
+}
+
 int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out)
 {
+    uint32_t m = mag2(v[0], v[1]) | mag2(v[2], v[3]);
+    if (m >= (1ul << 27))
+        return OPTICAL_E_ARG;
+    if ((v[0] | v[1]) == 0 || (v[2] | v[3]) == 0 || (v[0] == v[2] && v[1] == v[3]))
+        return OPTICAL_E_DEGENERATE;
     /* lambda: the largest component to [2^28, 2^29) */
-    uint8_t sigma = lead(mag2(v[0], v[1]) | mag2(v[2], v[3]), 28);
+    uint8_t sigma = lead(m, 28);
     for (uint8_t i = 0; i < 4; i++)
         v[i] = (int32_t)((uint32_t)v[i] << sigma);
     int32_t s1 = sc[0], c1 = sc[1], s2 = sc[2], c2 = sc[3];
     /* A = R(alpha1) b1 / 4, C = R(-alpha2) b3 / 4 */
-    int32_t r[6][2] = {{c1, -s1}, {s1, c1}, {c2, s2}, {-s2, c2}, {s2, s1}, {0, 0}};
+    int32_t r[5][2] = {{c1, -s1}, {s1, c1}, {c2, s2}, {-s2, c2}, {s2, s1}};
     int32_t ax = dot(r[0], &v[0], 2), ay = dot(r[1], &v[0], 2);
     int32_t cx = dot(r[2], &v[2], 2), cy = dot(r[3], &v[2], 2);
-    /* V = (s2 a + s1 c) / 16 = U / 16; 16 K = cross(4 A, 4 C) / 2^32 = kappa / 2^32 */
+    /* V = (s2 a + s1 c) / 16 = U / 16; 16 K = cross(4 A, 4 C) / 2^32 = kappa / 2^32 (the
+     * halves of 4 A and 4 C: the products lo lo dropped stay below a unit) */
     int32_t xs[2] = {ax, cx}, ys[2] = {ay, cy};
     int32_t u[3] = {dot(r[4], xs, 2), dot(r[4], ys, 2), 0};
     int32_t k4[2] = {ax * 4, cx * 4}, kk[2] = {cy * 4, -ay * 4};
     int32_t k = dot(k4, kk, 2);
-    uint32_t m = mag2(u[0], u[1]);
+    m = mag2(u[0], u[1]);
     if (m == 0)
         return OPTICAL_E_SINGULAR;
-    /* U^ = V 2^e, its larger component in [2^27, 2^28) (V < 2^26.5: e >= 1); K' = K 2^e =
-     * r2 |U^| / 2^32: 2^28 or more only when beacon 2 lies beyond 2^31 lambda (refused below) */
+    /* U^ = V 2^e, its larger component in [2^27, 2^28) (V < 2^26.5: e >= 1); K' = 16 K
+     * 2^(e - 4) = r2 |U^| / 2^32: 2^28 or more only when beacon 2 lies beyond 2^31 lambda
+     * (refused below) */
     uint8_t e = lead(m, 27);
     u[0] = (int32_t)((uint32_t)u[0] << e);
     u[1] = (int32_t)((uint32_t)u[1] << e);
-    if (e < 4) {
-        k = asr(k, (uint8_t)(4u - e));
-    } else {
-        if (tmag(k) >= (1ul << (32u - e)))
-            return OPTICAL_E_SINGULAR;
-        k = (int32_t)((uint32_t)k << (e - 4u));
-    }
+    if (!scale(&k, (int8_t)(e - 4), 28))
+        return OPTICAL_E_SINGULAR;
     u[2] = k;
     /* Each beacon ahead along its sighting: l_i = (a U + c_i kappa) 2^e / 2^38 = +-r_i |U^| /
      * 2^34 (i = 1, 3) with the sign of K' = +-r2 |U^| / 2^32: on the other arc one of them has
@@ -377,15 +393,10 @@ int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out)
     int8_t sh = (int8_t)(12 - f - g - tt);
     for (uint8_t i = 0; i < 2; i++) {
         int32_t d = dot(&t, &u[i], 1); /* |d| < 2^26 */
-        if (sh > 0) {
-            /* beacon 2 2^31 lambda (4 to 8 times the beacons' span) or farther: the circles
-             * all but coincide */
-            if (tmag(d) >= (1ul << (31 - sh)))
-                return OPTICAL_E_SINGULAR;
-            d = (int32_t)((uint32_t)d << sh);
-        } else {
-            d = asr(d, (uint8_t)-sh);
-        }
+        /* beacon 2 2^31 lambda (4 to 8 times the beacons' span) or farther: the circles all
+         * but coincide */
+        if (!scale(&d, sh, 31))
+            return OPTICAL_E_SINGULAR;
         /* the vehicle relative to beacon 2: -d / 2^sigma rounded half up */
         uint32_t nd = 0u - (uint32_t)d;
         out->off[i] = asr((int32_t)nd, sigma) + (int32_t)((nd >> (sigma - 1u)) & 1u);

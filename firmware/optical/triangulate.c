@@ -24,59 +24,43 @@
 #include "optical/fastmath.h"
 #include "optical/optical.h"
 
-/** Offsets beyond this (Q16, 2048 m) are refused: the scaling needs them below 2^27. */
-#define SPAN_LIMIT (1l << 27)
-
 /* The work memory (optical_fix's, in a part that is free while it triangulates). */
 #define T (optical_work.u.sv)
-
-static uint32_t mag(int32_t v)
-{
-    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
-}
 
 int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], uint32_t quality_max,
                            optical_tri_t *out)
 {
     out->quality = UINT32_MAX;
-    /* O8: B1 is the beacon from which the other two lie within the shortest turn CCW (the
-     * largest gap then lies between B3 and B1); B2 the nearer of them. */
-    static const uint8_t ring[4] = {1, 2, 0, 1};
-    uint8_t k[3] = {0, 0, 0};
-    fx_angle_t a1 = 0, a3 = UINT32_MAX;
-    for (uint8_t i = 0; i < 3; i++) {
-        uint8_t j = ring[i], l = ring[i + 1];
-        fx_angle_t dj = theta[j] - theta[i], dl = theta[l] - theta[i];
-        if (dj == 0 || dl == 0)
-            return OPTICAL_E_DEGENERATE;
-        if (dj > dl) {
-            fx_angle_t t = dj;
-            dj = dl;
-            dl = t;
-            j = l;
-            l = ring[i];
-        }
-        if (dl < a3) {
-            a3 = dl;
-            a1 = dj;
-            k[0] = i;
-            k[1] = j;
-            k[2] = l;
-        }
+    /* O8: with the sightings in CCW order (0, p, q) and the gaps between them, B1 is the one
+     * after the largest gap (ties: the first in the order 0, p, q), so that the other two lie
+     * within the shortest turn CCW from it; B2 the next. */
+    fx_angle_t d1 = theta[1] - theta[0], d2 = theta[2] - theta[0];
+    if (d1 == 0 || d2 == 0 || d1 == d2)
+        return OPTICAL_E_DEGENERATE;
+    uint8_t p = 1, q = 2;
+    if (d1 > d2) {
+        fx_angle_t t = d1;
+        d1 = d2;
+        d2 = t;
+        p = 2;
+        q = 1;
     }
-    const optical_xy_t *B2 = &b[k[1]];
+    fx_angle_t g[5] = {0u - d2, d1, d2 - d1, 0u - d2, d1}; /* the gaps before 0, p, q */
+    uint8_t k[5] = {0, p, q, 0, p}, i = 0;
+    if (g[1] > g[i])
+        i = 1;
+    if (g[2] > g[i])
+        i = 2;
+    fx_angle_t a1 = g[i + 1], a2 = g[i + 2];
+    const optical_xy_t *B1 = &b[k[i]], *B2 = &b[k[i + 1]], *B3 = &b[k[i + 2]];
 
     int32_t *v = T.v, *sc = T.sc;
-    v[0] = b[k[0]].x - B2->x;
-    v[1] = b[k[0]].y - B2->y;
-    v[2] = b[k[2]].x - B2->x;
-    v[3] = b[k[2]].y - B2->y;
-    if ((mag(v[0]) | mag(v[1]) | mag(v[2]) | mag(v[3])) >= SPAN_LIMIT)
-        return OPTICAL_E_ARG;
-    if ((v[0] | v[1]) == 0 || (v[2] | v[3]) == 0 || (v[0] == v[2] && v[1] == v[3]))
-        return OPTICAL_E_DEGENERATE;
+    v[0] = B1->x - B2->x;
+    v[1] = B1->y - B2->y;
+    v[2] = B3->x - B2->x;
+    v[3] = B3->y - B2->y;
     fx_sincos(a1, &sc[0], &sc[1]);
-    fx_sincos(a3 - a1, &sc[2], &sc[3]);
+    fx_sincos(a2, &sc[2], &sc[3]);
     int8_t st = optical_tri_core(v, sc, &T.ts);
     if (st != OPTICAL_OK)
         return st;
@@ -85,6 +69,6 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     out->pose.y = B2->y + T.ts.off[1];
     /* O10: the bearing from the direction of B2 (finer than the position's Q16) and its
      * sighting angle. */
-    out->pose.heading = fx_atan2(T.ts.w[1], T.ts.w[0]) - theta[k[1]];
+    out->pose.heading = fx_atan2(T.ts.w[1], T.ts.w[0]) - theta[k[i + 1]];
     return out->quality > quality_max ? OPTICAL_E_SINGULAR : OPTICAL_OK;
 }

@@ -24,19 +24,15 @@
     .set FR,    350
     .set F_Z,   FR+0            ; pairs -s2, c2, s2, s1, c1, -s1
     .set F_B,   FR+24           ; b1x, b1y, b3x, b3y (scaled)
-    .set F_W,   FR+40           ; ax, cx, ay, cy
-    .set F_K,   FR+56           ; 4 ax, 4 cx, 4 cy, -4 ay
-    .set F_L1,  FR+72           ; ax, ay, c1
-    .set F_L3,  FR+84           ; cx, cy, c2
-    .set F_U,   FR+96           ; u0, u1 (U^), k (K')
-    .set F_KN,  FR+108          ; K''
-    .set F_R,   FR+112          ; R'
-    .set F_T,   FR+116          ; T'
-    .set F_OUT, FR+120          ; the result pointer
-    .set F_V,   FR+122          ; the offsets' pointer
-    .set F_SIG, FR+124          ; sigma (word)
-    .set F_E,   FR+126          ; e - g (word)
-    .set F_SH,  FR+128          ; 12 - f - g - t (word)
+    .set F_W,   FR+40           ; ax, cx, ay, cy, c1, c2
+    .set F_K,   FR+64           ; 4 ax, 4 cx, 4 cy, -4 ay
+    .set F_U,   FR+80           ; u0, u1 (U^), k (K')
+    .set F_KN,  FR+92           ; K''
+    .set F_R,   FR+96           ; R'
+    .set F_T,   FR+100          ; T'
+    .set F_V,   FR+104          ; the offsets' pointer
+    .set F_SIG, FR+106          ; sigma (word)
+    .set F_SH,  FR+108          ; 12 - f - g - t (word)
 
 /* optical_tsol_t */
     .set S_OFF, 0
@@ -48,7 +44,8 @@
     .section .text.optical_tri_core,"ax",@progbits
 
 /*
- * dot1, dot2, dot3: R5 -> x pairs, R6 -> y pairs -> R13:R12 = dot(x, y, n). Clobbers R14.
+ * dot1, dot2: R5 -> x pairs, R6 -> y pairs -> R13:R12 = dot(x, y, n). dot3s: the same for
+ * three with the x pairs 8 bytes apart. Clobber R14.
  */
 dot1:
     push    r2
@@ -78,15 +75,15 @@ dot2:
     mov     2(r5), &MACS
     mov     @r6, &OP2
     jmp     dot_x2
-dot3:
+dot3s:
     push    r2
     dint
     nop
     mov     @r5, &MPYS
     mov     @r6, &OP2
-    mov     4(r5), &MACS
-    mov     4(r6), &OP2
     mov     8(r5), &MACS
+    mov     4(r6), &OP2
+    mov     16(r5), &MACS
     mov     8(r6), &OP2
     mov     &RESLO, r12
     mov     &RESHI, r13
@@ -94,10 +91,15 @@ dot3:
     mov     2(r6), &OP2
     mov     2(r5), &MACS
     mov     @r6, &OP2
-    mov     8(r5), &MACS
+    mov     16(r5), &MACS
     mov     10(r6), &OP2
-    mov     10(r5), &MACS
+    mov     18(r5), &MACS
     mov     8(r6), &OP2
+    mov     8(r5), &MACS
+    mov     6(r6), &OP2
+    mov     10(r5), &MACS
+    mov     4(r6), &OP2
+    jmp     dot_end
 dot_x2:
     mov     4(r5), &MACS
     mov     6(r6), &OP2
@@ -220,37 +222,32 @@ asr:
 3:  ret
 
 /*
- * R13:R12 2^n, n = R11 (signed): floor when n <= 0; for n > 0 carry set (value unchanged)
- * when |value| >= 2^(R10 - n), else shifted, carry clear. Clobbers R14, R15.
+ * R13:R12 2^n, n = R11 (signed): floor when n <= 0, else doubled n times, carry set (and the
+ * value left half-way) when it leaves [-2^31, 2^31) (scale() of fastmath.c with lim 31).
+ * Clobbers R11, R14, R15.
  */
 scale:
     tst     r11
-    jz      9f
     jge     1f
     mov     r11, r14
     inv     r14
     inc     r14
     call    #asr
-9:  clrc
-    ret
-1:  push    r12
-    push    r13
-    call    #absv
-    mov     r14, r12
-    mov     r15, r13
-    mov     r10, r14
-    sub     r11, r14
-    call    #asr
-    bis     r12, r13                ; (BIS leaves the flags alone)
-    tst     r13
-    pop     r13
-    pop     r12
-    jz      2f
-    setc
-    ret
-2:  mov     r11, r14
-    call    #shl
     clrc
+    ret
+1:  tst     r11
+    jz      3f
+    mov     r13, r15                ; bits 31 and 30 must agree
+    rla     r15
+    xor     r13, r15
+    jn      2f
+    rla     r12
+    rlc     r13
+    dec     r11
+    jmp     1b
+2:  setc
+    ret
+3:  clrc
     ret
 
 /*
@@ -271,8 +268,66 @@ optical_tri_core:
     push    r4
     mov     r14, r9
     mov     r12, &OW+F_V
-    ; the sines: Z = (-s2, c2, s2, s1, c1, -s1); c1, c2 also third in L1, L3
     mov     r13, r8
+    ; |v|: beyond 2^27 OPTICAL_E_ARG; b1 = 0, b3 = 0 or b1 = b3 OPTICAL_E_DEGENERATE
+    mov     r12, r4
+    clr     r6
+    clr     r7
+    mov     #4, r5
+1:  mov     @r4+, r12
+    mov     @r4+, r13
+    call    #absv
+    bis     r14, r6
+    bis     r15, r7
+    dec     r5
+    jnz     1b
+    mov     #1, r12                 ; OPTICAL_E_ARG
+    cmp     #0x0800, r7
+    jhs     tri_ret
+    mov     &OW+F_V, r4
+    mov     #4, r12                 ; OPTICAL_E_DEGENERATE
+    mov     @r4, r13
+    bis     2(r4), r13
+    bis     4(r4), r13
+    bis     6(r4), r13
+    tst     r13
+    jz      tri_ret
+    mov     8(r4), r13
+    bis     10(r4), r13
+    bis     12(r4), r13
+    bis     14(r4), r13
+    tst     r13
+    jz      tri_ret
+    cmp     @r4, 8(r4)
+    jne     2f
+    cmp     2(r4), 10(r4)
+    jne     2f
+    cmp     4(r4), 12(r4)
+    jne     2f
+    cmp     6(r4), 14(r4)
+    jeq     tri_ret
+    ; sigma: the largest |v| to [2^28, 2^29)
+2:  mov     r6, r14
+    mov     r7, r15
+    mov     #0x1000, r13
+    call    #lead
+    mov     r11, &OW+F_SIG
+    ; v 2^sigma, in place and as the pairs B
+    mov     #OW+F_B, r6
+    mov     #4, r5
+3:  mov     @r4, r12
+    mov     2(r4), r13
+    mov     &OW+F_SIG, r14
+    call    #shl
+    mov     r12, 0(r4)
+    mov     r13, 2(r4)
+    add     #4, r4
+    mov     r6, r11
+    call    #put
+    add     #4, r6
+    dec     r5
+    jnz     3b
+    ; the sines: Z = (-s2, c2, s2, s1, c1, -s1); c1, c2 also in W
     mov     @r8+, r12               ; s1
     mov     @r8+, r13
     mov     #OW+F_Z+12, r11
@@ -284,7 +339,7 @@ optical_tri_core:
     mov     @r8+, r13
     mov     #OW+F_Z+16, r11
     call    #put
-    mov     #OW+F_L1+8, r11
+    mov     #OW+F_W+16, r11
     call    #put
     mov     @r8+, r12               ; s2
     mov     @r8+, r13
@@ -297,56 +352,19 @@ optical_tri_core:
     mov     @r8+, r13
     mov     #OW+F_Z+4, r11
     call    #put
-    mov     #OW+F_L3+8, r11
+    mov     #OW+F_W+20, r11
     call    #put
-    ; sigma: the largest |v| to [2^28, 2^29)
-    mov     &OW+F_V, r8
-    clr     r6
-    clr     r7
-    mov     #4, r5
-1:  mov     @r8+, r12
-    mov     @r8+, r13
-    call    #absv
-    bis     r14, r6
-    bis     r15, r7
-    dec     r5
-    jnz     1b
-    mov     r6, r14
-    mov     r7, r15
-    mov     #0x1000, r13
-    call    #lead
-    mov     r11, &OW+F_SIG
-    ; v 2^sigma, in place and as the pairs B
-    mov     &OW+F_V, r8
-    mov     #OW+F_B, r6
-    mov     #4, r5
-2:  mov     @r8, r12
-    mov     2(r8), r13
-    mov     &OW+F_SIG, r14
-    call    #shl
-    mov     r12, 0(r8)
-    mov     r13, 2(r8)
-    add     #4, r8
-    mov     r6, r11
-    call    #put
-    add     #4, r6
-    dec     r5
-    jnz     2b
-    ; A = R(alpha1) b1 / 4, C = R(-alpha2) b3 / 4 into W, L1, L3 and (times 4) K
+    ; A = R(alpha1) b1 / 4, C = R(-alpha2) b3 / 4 into W and (times 4) K
     mov     #OW+F_Z+16, r5          ; ax = (c1, -s1) b1
     mov     #OW+F_B, r6
     call    #dot2
     mov     #OW+F_W, r11
-    call    #put
-    mov     #OW+F_L1, r11
     call    #put
     mov     #OW+F_K, r11
     call    #put4
     mov     #OW+F_Z+12, r5          ; ay = (s1, c1) b1
     call    #dot2
     mov     #OW+F_W+8, r11
-    call    #put
-    mov     #OW+F_L1+4, r11
     call    #put
     call    #neg
     mov     #OW+F_K+12, r11
@@ -356,47 +374,39 @@ optical_tri_core:
     call    #dot2
     mov     #OW+F_W+4, r11
     call    #put
-    mov     #OW+F_L3, r11
-    call    #put
     mov     #OW+F_K+4, r11
     call    #put4
     mov     #OW+F_Z, r5             ; cy = (-s2, c2) b3
     call    #dot2
     mov     #OW+F_W+12, r11
     call    #put
-    mov     #OW+F_L3+4, r11
-    call    #put
     mov     #OW+F_K+8, r11
     call    #put4
-    ; 16 K = (4 ax, 4 cx) (4 cy, -4 ay) into R7:R6 (for now)
+    ; 16 K = (4 ax, 4 cx) (4 cy, -4 ay) into out->l[1] (for now)
     mov     #OW+F_K, r5
     mov     #OW+F_K+8, r6
     call    #dot2
-    mov     r12, r6
-    mov     r13, r7
+    mov     r12, S_L+4(r9)
+    mov     r13, S_L+6(r9)
     ; V = (s2, s1) (ax, cx), (s2, s1) (ay, cy) into out->w (raw)
     mov     #OW+F_Z+8, r5
-    push    r6
     mov     #OW+F_W, r6
     call    #dot2
     mov     r12, S_W(r9)
     mov     r13, S_W+2(r9)
     mov     #OW+F_W+8, r6
     call    #dot2
-    pop     r6
     mov     r12, S_W+4(r9)
     mov     r13, S_W+6(r9)
     ; e: the larger |V| to [2^27, 2^28); U^ = V 2^e into out->w and the pairs U
     call    #absv
-    push    r14
-    push    r15
+    mov     r14, r4
+    mov     r15, r5
     mov     S_W(r9), r12
     mov     S_W+2(r9), r13
     call    #absv
-    pop     r13
-    bis     r13, r15
-    pop     r13
-    bis     r13, r14
+    bis     r4, r14
+    bis     r5, r15
     mov     r14, r13
     bis     r15, r13
     tst     r13
@@ -420,15 +430,18 @@ optical_tri_core:
     mov     r13, S_W+6(r9)
     mov     #OW+F_U+4, r11
     call    #put
-    ; K' = 16 K 2^(e - 4) (refused from 2^28: beacon 2 beyond 2^31 lambda)
-    mov     r6, r12
-    mov     r7, r13
+    ; K' = 16 K 2^(e - 4) within [-2^28, 2^28) (else beacon 2 lies beyond 2^31 lambda)
+    mov     S_L+4(r9), r12
+    mov     S_L+6(r9), r13
     mov     r8, r11
     sub     #4, r11
-    mov     #28, r10
     call    #scale
     jc      singular
-    mov     r13, r7
+    mov     r13, r14
+    add     #0x1000, r14
+    cmp     #0x2000, r14
+    jhs     singular
+    mov     r13, r7                 ; its sign from here
     mov     r12, S_L+4(r9)
     mov     r13, S_L+6(r9)
     mov     #OW+F_U+8, r11
@@ -437,15 +450,15 @@ optical_tri_core:
     tst     r13
     jz      inconsistent            ; K' = 0: the vehicle on beacon 2
     ; l1 = (ax, ay, c1) (U^, K'), l3 = (cx, cy, c2) (U^, K'): both with the sign of K'
-    mov     #OW+F_L1, r5
+    mov     #OW+F_W, r5
     mov     #OW+F_U, r6
-    call    #dot3
+    call    #dot3s
     call    #lsign
     jnz     inconsistent
     mov     r12, S_L(r9)
     mov     r13, S_L+2(r9)
-    mov     #OW+F_L3, r5
-    call    #dot3
+    mov     #OW+F_W+4, r5
+    call    #dot3s
     call    #lsign
     jnz     inconsistent
     mov     r12, S_L+8(r9)
@@ -459,22 +472,22 @@ optical_tri_core:
     clr     r10                     ; the quotient
     clr     r11
     mov     #31, r7
-3:  rla     r14
+4:  rla     r14
     rlc     r15
     rla     r10
     rlc     r11
     sub     r12, r14
     subc    r13, r15
-    jnc     4f
+    jnc     5f
     bis     #1, r10
     dec     r7
-    jnz     3b
-    jmp     5f
-4:  add     r12, r14                ; borrow: restore
+    jnz     4b
+    jmp     6f
+5:  add     r12, r14                ; borrow: restore
     addc    r13, r15
     dec     r7
-    jnz     3b
-5:  pop     r7
+    jnz     4b
+6:  pop     r7
     ; R' = R 2^g in [2^29, 2^30]
     mov     r10, r14
     mov     r11, r15
@@ -499,9 +512,9 @@ optical_tri_core:
     mov     r14, r12
     mov     r15, r13
     tst     r7
-    jge     6f
+    jge     7f
     call    #neg
-6:  mov     #OW+F_KN, r11
+7:  mov     #OW+F_KN, r11
     call    #put
     ; T = K'' R' / 2^32, T' = T 2^t, |T'| in [2^29, 2^30)
     mov     r5, &OW+F_SH
@@ -516,9 +529,9 @@ optical_tri_core:
     mov     r15, r13
     pop     r14
     tst     r14
-    jge     7f
+    jge     8f
     call    #neg
-7:  sub     r11, &OW+F_SH
+8:  sub     r11, &OW+F_SH
     mov     #OW+F_T, r11
     call    #put
     ; d = T' U^ / 2^32 2^(12 - f - g - t): beacon 2 from the vehicle; the vehicle at -d
@@ -533,7 +546,7 @@ optical_tri_core:
     jc      singular
     ; w: U^ with the sign of K' (the direction to beacon 2)
     tst     r7
-    jge     8f
+    jge     9f
     mov     S_W(r9), r12
     mov     S_W+2(r9), r13
     call    #neg
@@ -544,7 +557,7 @@ optical_tri_core:
     call    #neg
     mov     r12, S_W+4(r9)
     mov     r13, S_W+6(r9)
-8:  sub     &OW+F_SIG, r8           ; x = e - g - sigma
+9:  sub     &OW+F_SIG, r8           ; x = e - g - sigma
     mov.b   r8, S_X(r9)
     ; l = (4 l1, K', 4 l3)
     mov     r9, r4
@@ -553,13 +566,13 @@ optical_tri_core:
     add     #8, r4
     call    #l4
     clr     r12                     ; OPTICAL_OK
-    jmp     tri_out
+    jmp     tri_ret
 inconsistent:
     mov     #9, r12                 ; OPTICAL_E_INCONSISTENT
-    jmp     tri_out
+    jmp     tri_ret
 singular:
     mov     #5, r12                 ; OPTICAL_E_SINGULAR
-tri_out:
+tri_ret:
     pop     r4
     pop     r5
     pop     r6
@@ -597,7 +610,6 @@ l4:
 offset:
     call    #dot1
     mov     &OW+F_SH, r11
-    mov     #31, r10
     call    #scale
     jc      1f
     call    #neg

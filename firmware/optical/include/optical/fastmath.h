@@ -103,7 +103,7 @@ typedef struct {
             fx_angle_t ang[OPTICAL_MAX_SIGHTINGS]; /**< the identified, reference frame */
             optical_xy_t b[3];                     /**< the triplet being solved */
             optical_tri_t tri;                     /**< a candidate triplet's solution */
-            uint16_t frame[65]; /**< MSP430: the triangulation kernels' work frame */
+            uint16_t frame[55]; /**< MSP430: the triangulation kernels' work frame */
             int32_t v[4];       /**< optical_triangulate: the offsets (optical_tri_core) */
             int32_t sc[4];      /**< its sines and cosines */
             optical_tsol_t ts;  /**< its solution */
