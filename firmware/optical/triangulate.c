@@ -45,14 +45,28 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
         p = 2;
         q = 1;
     }
-    fx_angle_t g[5] = {0u - d2, d1, d2 - d1, 0u - d2, d1}; /* the gaps before 0, p, q */
-    uint8_t k[5] = {0, p, q, 0, p}, i = 0;
-    if (g[1] > g[i])
-        i = 1;
-    if (g[2] > g[i])
-        i = 2;
-    fx_angle_t a1 = g[i + 1], a2 = g[i + 2];
-    const optical_xy_t *B1 = &b[k[i]], *B2 = &b[k[i + 1]], *B3 = &b[k[i + 2]];
+    /* the gaps before 0, p and q: 0 - d2, d1, d2 - d1 */
+    fx_angle_t g0 = 0u - d2, gq = d2 - d1, a1, a2;
+    const optical_xy_t *B1, *B2, *B3;
+    if (g0 >= d1 && g0 >= gq) {
+        B1 = &b[0];
+        B2 = &b[p];
+        B3 = &b[q];
+        a1 = d1;
+        a2 = gq;
+    } else if (d1 >= gq) {
+        B1 = &b[p];
+        B2 = &b[q];
+        B3 = &b[0];
+        a1 = gq;
+        a2 = g0;
+    } else {
+        B1 = &b[q];
+        B2 = &b[0];
+        B3 = &b[p];
+        a1 = g0;
+        a2 = d1;
+    }
 
     int32_t *v = T.v, *sc = T.sc;
     v[0] = B1->x - B2->x;
@@ -69,6 +83,6 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     out->pose.y = B2->y + T.ts.off[1];
     /* O10: the bearing from the direction of B2 (finer than the position's Q16) and its
      * sighting angle. */
-    out->pose.heading = fx_atan2(T.ts.w[1], T.ts.w[0]) - theta[k[i + 1]];
+    out->pose.heading = fx_atan2(T.ts.w[1], T.ts.w[0]) - theta[B2 - b];
     return out->quality > quality_max ? OPTICAL_E_SINGULAR : OPTICAL_OK;
 }

@@ -18,6 +18,7 @@
     .set OP2,   0x0138
     .set RESLO, 0x013a
     .set RESHI, 0x013c
+    .set SUMEXT, 0x013e
 
 /* frame: optical_work.u.sv.frame (offset asserted in fastmath.c) */
     .set OW,    optical_work
@@ -40,6 +41,16 @@
     .set S_L,   16
     .set S_R,   28
     .set S_X,   32
+
+/* R13:R12 -> the pair at address a (put below, inline): R14 = h. Keeps R12, R13. */
+    .macro  PUT a
+    mov     r12, r14
+    rla     r14
+    mov     r13, r14
+    adc     r14
+    mov     r14, &\a
+    mov     r12, &\a+2
+    .endm
 
     .section .text.optical_tri_core,"ax",@progbits
 
@@ -106,14 +117,10 @@ dot_x2:
     mov     6(r5), &MACS
     mov     4(r6), &OP2
 dot_end:
-    mov     &RESHI, r14             ; floor(chain / 2^16), sign-extended
+    add     &RESHI, r12             ; floor(chain / 2^16), sign-extended (SUMEXT)
+    addc    &SUMEXT, r13
     pop     r2
-    add     r14, r12
-    adc     r13
-    tst     r14
-    jge     1f
-    dec     r13
-1:  ret
+    ret
 
 /* R13:R12 -> the pair at @R11: h = R13 + bit 15 of R12 (R14), l = R12. Keeps R12, R13. */
 put:
@@ -174,10 +181,11 @@ lead:
     jmp     1b
 2:  cmp     r13, r15
     jhs     3f
-    rla     r14
+4:  rla     r14
     rlc     r15
     inc     r11
-    jmp     2b
+    cmp     r13, r15
+    jlo     4b
 3:  ret
 
 /* R13:R12 <<= R14 (below 32), whole bytes first. Clobbers R14, R15. */
@@ -330,56 +338,46 @@ optical_tri_core:
     ; the sines: Z = (-s2, c2, s2, s1, c1, -s1); c1, c2 also in W
     mov     @r8+, r12               ; s1
     mov     @r8+, r13
-    mov     #OW+F_Z+12, r11
-    call    #put
+    PUT     OW+F_Z+12
     call    #neg
-    mov     #OW+F_Z+20, r11
-    call    #put
+    PUT     OW+F_Z+20
     mov     @r8+, r12               ; c1
     mov     @r8+, r13
-    mov     #OW+F_Z+16, r11
-    call    #put
-    mov     #OW+F_W+16, r11
-    call    #put
+    PUT     OW+F_Z+16
+    mov     r14, &OW+F_W+16
+    mov     r12, &OW+F_W+18
     mov     @r8+, r12               ; s2
     mov     @r8+, r13
-    mov     #OW+F_Z+8, r11
-    call    #put
+    PUT     OW+F_Z+8
     call    #neg
-    mov     #OW+F_Z, r11
-    call    #put
+    PUT     OW+F_Z
     mov     @r8+, r12               ; c2
     mov     @r8+, r13
-    mov     #OW+F_Z+4, r11
-    call    #put
-    mov     #OW+F_W+20, r11
-    call    #put
+    PUT     OW+F_Z+4
+    mov     r14, &OW+F_W+20
+    mov     r12, &OW+F_W+22
     ; A = R(alpha1) b1 / 4, C = R(-alpha2) b3 / 4 into W and (times 4) K
     mov     #OW+F_Z+16, r5          ; ax = (c1, -s1) b1
     mov     #OW+F_B, r6
     call    #dot2
-    mov     #OW+F_W, r11
-    call    #put
+    PUT     OW+F_W
     mov     #OW+F_K, r11
     call    #put4
     mov     #OW+F_Z+12, r5          ; ay = (s1, c1) b1
     call    #dot2
-    mov     #OW+F_W+8, r11
-    call    #put
+    PUT     OW+F_W+8
     call    #neg
     mov     #OW+F_K+12, r11
     call    #put4
     mov     #OW+F_Z+4, r5           ; cx = (c2, s2) b3
     mov     #OW+F_B+8, r6
     call    #dot2
-    mov     #OW+F_W+4, r11
-    call    #put
+    PUT     OW+F_W+4
     mov     #OW+F_K+4, r11
     call    #put4
     mov     #OW+F_Z, r5             ; cy = (-s2, c2) b3
     call    #dot2
-    mov     #OW+F_W+12, r11
-    call    #put
+    PUT     OW+F_W+12
     mov     #OW+F_K+8, r11
     call    #put4
     ; 16 K = (4 ax, 4 cx) (4 cy, -4 ay) into out->l[1] (for now)
@@ -420,16 +418,14 @@ optical_tri_core:
     call    #shl
     mov     r12, S_W(r9)
     mov     r13, S_W+2(r9)
-    mov     #OW+F_U, r11
-    call    #put
+    PUT     OW+F_U
     mov     S_W+4(r9), r12
     mov     S_W+6(r9), r13
     mov     r8, r14
     call    #shl
     mov     r12, S_W+4(r9)
     mov     r13, S_W+6(r9)
-    mov     #OW+F_U+4, r11
-    call    #put
+    PUT     OW+F_U+4
     ; K' = 16 K 2^(e - 4) within [-2^28, 2^28) (else beacon 2 lies beyond 2^31 lambda)
     mov     S_L+4(r9), r12
     mov     S_L+6(r9), r13
@@ -444,8 +440,7 @@ optical_tri_core:
     mov     r13, r7                 ; its sign from here
     mov     r12, S_L+4(r9)
     mov     r13, S_L+6(r9)
-    mov     #OW+F_U+8, r11
-    call    #put
+    PUT     OW+F_U+8
     bis     r12, r13
     tst     r13
     jz      inconsistent            ; K' = 0: the vehicle on beacon 2
@@ -466,28 +461,25 @@ optical_tri_core:
     ; Q = |U^|^2 / 2^32 in [2^22, 2^25); R = floor(2^52 / Q): 31 quotient bits
     mov     r6, r5                  ; (R6 = the pairs U as both lists)
     call    #dot2
-    push    r7
     mov     #0x0020, r15            ; the remainder: 2^52 / 2^31 (below Q)
     clr     r14
-    clr     r10                     ; the quotient
+    mov     #2, r10                 ; the quotient, with a marker bit that leaves after 31
     clr     r11
-    mov     #31, r7
 4:  rla     r14
     rlc     r15
-    rla     r10
-    rlc     r11
     sub     r12, r14
     subc    r13, r15
-    jnc     5f
-    bis     #1, r10
-    dec     r7
-    jnz     4b
-    jmp     6f
-5:  add     r12, r14                ; borrow: restore
+    jc      5f
+    add     r12, r14                ; borrow: restore, a 0
     addc    r13, r15
-    dec     r7
-    jnz     4b
-6:  pop     r7
+    rla     r10
+    rlc     r11
+    jnc     4b
+    jmp     6f
+5:  rlc     r10                     ; a 1
+    rlc     r11
+    jnc     4b
+6:
     ; R' = R 2^g in [2^29, 2^30]
     mov     r10, r14
     mov     r11, r15
@@ -500,8 +492,7 @@ optical_tri_core:
     mov     r15, S_R+2(r9)
     mov     r14, r12
     mov     r15, r13
-    mov     #OW+F_R, r11
-    call    #put
+    PUT     OW+F_R
     ; K'' = K' 2^f, |K''| in [2^29, 2^30)
     mov     S_L+4(r9), r12
     mov     S_L+6(r9), r13
@@ -514,8 +505,7 @@ optical_tri_core:
     tst     r7
     jge     7f
     call    #neg
-7:  mov     #OW+F_KN, r11
-    call    #put
+7:  PUT     OW+F_KN
     ; T = K'' R' / 2^32, T' = T 2^t, |T'| in [2^29, 2^30)
     mov     r5, &OW+F_SH
     mov     #OW+F_KN, r5
@@ -532,8 +522,7 @@ optical_tri_core:
     jge     8f
     call    #neg
 8:  sub     r11, &OW+F_SH
-    mov     #OW+F_T, r11
-    call    #put
+    PUT     OW+F_T
     ; d = T' U^ / 2^32 2^(12 - f - g - t): beacon 2 from the vehicle; the vehicle at -d
     mov     #OW+F_T, r5
     mov     #OW+F_U, r6
@@ -658,65 +647,90 @@ optical_tri_quality:
     mov     @r12+, r7
     rla     r14
     rlc     r7
-    ; sr: the ranges' l to 16 bits by a common shift (R10); x = s->x + sr - 19
+    ; the ranges' l to 16 bits by a common shift sr: with ls = 16 - sr the left shifts that
+    ; bring the largest |l| to 2^30 (at most 16), the high words of l 2^ls; x = s->x + sr - 19
     mov     r9, r13
     add     #S_L, r13
-    clr     r10
-    clr     r11
+    clr     r14
+    clr     r15
     mov     #3, r8
-1:  mov     @r13+, r14
-    mov     @r13+, r15
-    tst     r15
+1:  mov     @r13+, r10
+    mov     @r13+, r11
+    tst     r11
     jge     2f
-    inv     r14
-    inv     r15
-    inc     r14
-    adc     r15
-2:  bis     r14, r10
-    bis     r15, r11
+    inv     r10
+    inv     r11
+    inc     r10
+    adc     r11
+2:  bis     r10, r14
+    bis     r11, r15
     dec     r8
     jnz     1b
-    clr     r8
-3:  cmp     #0x0080, r11            ; from 2^23: a byte at once
-    jlo     4f
-    swpb    r10
-    mov.b   r10, r10
-    swpb    r11
-    mov     r11, r15
-    and     #0xff00, r15
-    bis     r15, r10
-    mov.b   r11, r11
-    add     #8, r8
-    jmp     3b
-4:  tst     r11
-    jnz     5f
-    tst     r10
-    jge     6f                      ; below 2^15
-5:  clrc
-    rrc     r11
-    rrc     r10
+    clr     r8                      ; ls: a byte at once below 2^22, then bits
+    cmp     #0x0040, r15
+    jhs     3f
+    mov     #8, r8
+    swpb    r15
+    swpb    r14
+    mov.b   r14, r14
+    bis     r14, r15
+3:  cmp     #0x4000, r15
+    jhs     4f
+    cmp     #16, r8
+    jhs     4f
+    rla     r15
     inc     r8
     jmp     3b
-6:  mov     r8, r10                 ; sr
-    mov.b   S_X(r9), r8
-    sxt     r8
-    add     r10, r8
-    sub     #19, r8
-    ; rl = l / 2^sr into the frame (words)
-    mov     r9, r13
-    add     #S_L, r13
-    mov     #OW+FR, r11
-7:  push    r13
-    mov     @r13+, r12
-    mov     @r13, r13
-    mov     r10, r14
-    call    #asr
-    mov     r12, 0(r11)
-    pop     r13
-    add     #4, r13
-    incd    r11
-    cmp     #OW+FR+6, r11
-    jne     7b
+4:  push    r8                      ; the three l 2^ls: their high words to the frame
+    mov     S_L(r9), r10
+    mov     S_L+2(r9), r11
+    mov     S_L+4(r9), r12
+    mov     S_L+6(r9), r13
+    mov     S_L+8(r9), r14
+    mov     S_L+10(r9), r15
+    push    r9
+    mov     r8, r9
+    cmp     #8, r9
+    jlo     5f
+    swpb    r11                     ; (hi lo) 2^8
+    swpb    r10
+    and     #0xff00, r11
+    mov.b   r10, r8
+    bis     r8, r11
+    and     #0xff00, r10
+    swpb    r13
+    swpb    r12
+    and     #0xff00, r13
+    mov.b   r12, r8
+    bis     r8, r13
+    and     #0xff00, r12
+    swpb    r15
+    swpb    r14
+    and     #0xff00, r15
+    mov.b   r14, r8
+    bis     r8, r15
+    and     #0xff00, r14
+    sub     #8, r9
+5:  tst     r9
+    jz      7f
+6:  rla     r10
+    rlc     r11
+    rla     r12
+    rlc     r13
+    rla     r14
+    rlc     r15
+    dec     r9
+    jnz     6b
+7:  pop     r9
+    pop     r8
+    mov     r11, &OW+FR
+    mov     r13, &OW+FR+2
+    mov     r15, &OW+FR+4
+    mov.b   S_X(r9), r10
+    sxt     r10
+    sub     r8, r10
+    sub     #3, r10
+    mov     r10, r8
     ; M = sum of ((r_k chord) / 2^16)^2: r3 with b1, r1 with b3, r2 with b3 - b1
     push    r2
     dint
