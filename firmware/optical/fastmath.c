@@ -323,20 +323,6 @@ static uint32_t mag2(int32_t a, int32_t b)
     return tmag(a) | tmag(b);
 }
 
-/* *v 2^n when that lies in [-2^lim, 2^lim) (else false, *v unchanged); n <= 0: floor. */
-static bool scale(int32_t *v, int8_t n, uint8_t lim)
-{
-    if (n <= 0) {
-        *v = asr(*v, (uint8_t)-n);
-        return true;
-    }
-    int32_t b = (int32_t)(1ul << (lim - n));
-    if (*v >= b || *v < -b)
-        return false;
-    *v = (int32_t)((uint32_t)*v << n);
-    return true;
-}
-
 int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out)
 {
     uint32_t m = mag2(v[0], v[1]) | mag2(v[2], v[3]);
@@ -368,8 +354,13 @@ int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out)
     uint8_t e = lead(m, 27);
     u[0] = (int32_t)((uint32_t)u[0] << e);
     u[1] = (int32_t)((uint32_t)u[1] << e);
-    if (!scale(&k, (int8_t)(e - 4), 28))
-        return OPTICAL_E_SINGULAR;
+    if (e < 4) {
+        k = asr(k, (uint8_t)(4u - e));
+    } else {
+        if (k >= (1l << (32 - e)) || k < -(1l << (32 - e)))
+            return OPTICAL_E_SINGULAR;
+        k = (int32_t)((uint32_t)k << (e - 4u));
+    }
     u[2] = k;
     /* Each beacon ahead along its sighting: l_i = (a U + c_i kappa) 2^e / 2^38 = +-r_i |U^| /
      * 2^34 (i = 1, 3) with the sign of K' = +-r2 |U^| / 2^32: on the other arc one of them has
@@ -391,15 +382,17 @@ int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out)
     uint8_t tt = lead(tmag(t), 29);
     t = (int32_t)((uint32_t)t << tt);
     int8_t sh = (int8_t)(12 - f - g - tt);
+    int8_t rsh = (int8_t)(sigma - sh);
     for (uint8_t i = 0; i < 2; i++) {
         int32_t d = dot(&t, &u[i], 1); /* |d| < 2^26 */
         /* beacon 2 2^31 lambda (4 to 8 times the beacons' span) or farther: the circles all
          * but coincide */
-        if (!scale(&d, sh, 31))
+        if (sh > 0 && (d >= (1l << (31 - sh)) || d < -(1l << (31 - sh))))
             return OPTICAL_E_SINGULAR;
-        /* the vehicle relative to beacon 2: -d / 2^sigma rounded half up */
+        /* the vehicle relative to beacon 2: -d 2^sh / 2^sigma (Q16 m), rounded half up */
         uint32_t nd = 0u - (uint32_t)d;
-        out->off[i] = asr((int32_t)nd, sigma) + (int32_t)((nd >> (sigma - 1u)) & 1u);
+        out->off[i] = rsh <= 0 ? (int32_t)(nd << (uint8_t)-rsh)
+                               : asr((int32_t)nd, (uint8_t)rsh) + (int32_t)((nd >> (rsh - 1)) & 1u);
         out->w[i] = k < 0 ? -u[i] : u[i];
     }
     out->l[0] = l1 * 4;

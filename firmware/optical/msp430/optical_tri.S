@@ -42,7 +42,7 @@
     .set S_R,   28
     .set S_X,   32
 
-/* R13:R12 -> the pair at address a (put below, inline): R14 = h. Keeps R12, R13. */
+/* R13:R12 -> the pair at address a: h = R13 + bit 15 of R12 (also left in R14), l = R12. */
     .macro  PUT a
     mov     r12, r14
     rla     r14
@@ -50,6 +50,14 @@
     adc     r14
     mov     r14, &\a
     mov     r12, &\a+2
+    .endm
+
+/* R13:R12 = -R13:R12 */
+    .macro  NEG
+    inv     r12
+    inv     r13
+    inc     r12
+    adc     r13
     .endm
 
     .section .text.optical_tri_core,"ax",@progbits
@@ -120,32 +128,6 @@ dot_end:
     add     &RESHI, r12             ; floor(chain / 2^16), sign-extended (SUMEXT)
     addc    &SUMEXT, r13
     pop     r2
-    ret
-
-/* R13:R12 -> the pair at @R11: h = R13 + bit 15 of R12 (R14), l = R12. Keeps R12, R13. */
-put:
-    mov     r12, r14
-    rla     r14
-    mov     r13, r14
-    adc     r14
-    mov     r14, 0(r11)
-    mov     r12, 2(r11)
-    ret
-
-/* R13:R12 <<= 2 (4 A from A), then the pair at @R11. */
-put4:
-    rla     r12
-    rlc     r13
-    rla     r12
-    rlc     r13
-    jmp     put
-
-/* R13:R12 = -R13:R12 */
-neg:
-    inv     r12
-    inv     r13
-    inc     r12
-    adc     r13
     ret
 
 /* R15:R14 = |R13:R12| */
@@ -231,8 +213,7 @@ asr:
 
 /*
  * R13:R12 2^n, n = R11 (signed): floor when n <= 0, else doubled n times, carry set (and the
- * value left half-way) when it leaves [-2^31, 2^31) (scale() of fastmath.c with lim 31).
- * Clobbers R11, R14, R15.
+ * value left half-way) when it leaves [-2^31, 2^31). Clobbers R11, R14, R15.
  */
 scale:
     tst     r11
@@ -291,7 +272,7 @@ optical_tri_core:
     jnz     1b
     mov     #1, r12                 ; OPTICAL_E_ARG
     cmp     #0x0800, r7
-    jhs     tri_ret
+    jhs     1f
     mov     &OW+F_V, r4
     mov     #4, r12                 ; OPTICAL_E_DEGENERATE
     mov     @r4, r13
@@ -299,13 +280,13 @@ optical_tri_core:
     bis     4(r4), r13
     bis     6(r4), r13
     tst     r13
-    jz      tri_ret
+    jz      1f
     mov     8(r4), r13
     bis     10(r4), r13
     bis     12(r4), r13
     bis     14(r4), r13
     tst     r13
-    jz      tri_ret
+    jz      1f
     cmp     @r4, 8(r4)
     jne     2f
     cmp     2(r4), 10(r4)
@@ -313,7 +294,8 @@ optical_tri_core:
     cmp     4(r4), 12(r4)
     jne     2f
     cmp     6(r4), 14(r4)
-    jeq     tri_ret
+    jne     2f
+1:  br      #tri_ret
     ; sigma: the largest |v| to [2^28, 2^29)
 2:  mov     r6, r14
     mov     r7, r15
@@ -330,8 +312,12 @@ optical_tri_core:
     mov     r12, 0(r4)
     mov     r13, 2(r4)
     add     #4, r4
-    mov     r6, r11
-    call    #put
+    mov     r12, r14
+    rla     r14
+    mov     r13, r14
+    adc     r14
+    mov     r14, 0(r6)
+    mov     r12, 2(r6)
     add     #4, r6
     dec     r5
     jnz     3b
@@ -339,7 +325,7 @@ optical_tri_core:
     mov     @r8+, r12               ; s1
     mov     @r8+, r13
     PUT     OW+F_Z+12
-    call    #neg
+    NEG
     PUT     OW+F_Z+20
     mov     @r8+, r12               ; c1
     mov     @r8+, r13
@@ -349,7 +335,7 @@ optical_tri_core:
     mov     @r8+, r12               ; s2
     mov     @r8+, r13
     PUT     OW+F_Z+8
-    call    #neg
+    NEG
     PUT     OW+F_Z
     mov     @r8+, r12               ; c2
     mov     @r8+, r13
@@ -361,25 +347,37 @@ optical_tri_core:
     mov     #OW+F_B, r6
     call    #dot2
     PUT     OW+F_W
-    mov     #OW+F_K, r11
-    call    #put4
+    rla     r12
+    rlc     r13
+    rla     r12
+    rlc     r13
+    PUT     OW+F_K
     mov     #OW+F_Z+12, r5          ; ay = (s1, c1) b1
     call    #dot2
     PUT     OW+F_W+8
-    call    #neg
-    mov     #OW+F_K+12, r11
-    call    #put4
+    NEG
+    rla     r12
+    rlc     r13
+    rla     r12
+    rlc     r13
+    PUT     OW+F_K+12
     mov     #OW+F_Z+4, r5           ; cx = (c2, s2) b3
     mov     #OW+F_B+8, r6
     call    #dot2
     PUT     OW+F_W+4
-    mov     #OW+F_K+4, r11
-    call    #put4
+    rla     r12
+    rlc     r13
+    rla     r12
+    rlc     r13
+    PUT     OW+F_K+4
     mov     #OW+F_Z, r5             ; cy = (-s2, c2) b3
     call    #dot2
     PUT     OW+F_W+12
-    mov     #OW+F_K+8, r11
-    call    #put4
+    rla     r12
+    rlc     r13
+    rla     r12
+    rlc     r13
+    PUT     OW+F_K+8
     ; 16 K = (4 ax, 4 cx) (4 cy, -4 ay) into out->l[1] (for now)
     mov     #OW+F_K, r5
     mov     #OW+F_K+8, r6
@@ -504,7 +502,7 @@ optical_tri_core:
     mov     r15, r13
     tst     r7
     jge     7f
-    call    #neg
+    NEG
 7:  PUT     OW+F_KN
     ; T = K'' R' / 2^32, T' = T 2^t, |T'| in [2^29, 2^30)
     mov     r5, &OW+F_SH
@@ -520,7 +518,7 @@ optical_tri_core:
     pop     r14
     tst     r14
     jge     8f
-    call    #neg
+    NEG
 8:  sub     r11, &OW+F_SH
     PUT     OW+F_T
     ; d = T' U^ / 2^32 2^(12 - f - g - t): beacon 2 from the vehicle; the vehicle at -d
@@ -538,12 +536,12 @@ optical_tri_core:
     jge     9f
     mov     S_W(r9), r12
     mov     S_W+2(r9), r13
-    call    #neg
+    NEG
     mov     r12, S_W(r9)
     mov     r13, S_W+2(r9)
     mov     S_W+4(r9), r12
     mov     S_W+6(r9), r13
-    call    #neg
+    NEG
     mov     r12, S_W+4(r9)
     mov     r13, S_W+6(r9)
 9:  sub     &OW+F_SIG, r8           ; x = e - g - sigma
@@ -593,26 +591,44 @@ l4:
     ret
 
 /*
- * One component: R13:R12 = dot1(@R5, @R6) scaled by F_SH (carry set: beacon 2 2^31 lambda or
- * farther), then the vehicle relative to beacon 2, -d / 2^sigma rounded half up, to @R4.
+ * One component: d' = dot1(@R5, @R6) = d / 2^sh (sh in F_SH; carry set when d = d' 2^sh
+ * lies beyond [-2^31, 2^31)), then the vehicle relative to beacon 2, -d / 2^sigma rounded
+ * half up, to @R4 (one shift by sigma - sh).
  */
 offset:
     call    #dot1
     mov     &OW+F_SH, r11
-    call    #scale
-    jc      1f
-    call    #neg
+    tst     r11
+    jl      3f
+    jz      3f
+    mov     r13, r14                ; sh > 0: the top sh + 1 bits of d' agree, i.e.
+    tst     r14                     ; t (the high word, inverted when negative) stays below
+    jge     1f                      ; 2^(15 - sh): no bit leaves in sh + 1 doublings
+    inv     r14
+1:  inc     r11
+2:  rla     r14
+    jc      4f
+    dec     r11
+    jnz     2b
+3:  NEG
     mov     &OW+F_SIG, r14
+    sub     &OW+F_SH, r14
+    jl      5f
+    jz      6f
     dec     r14
     call    #asr
     rra     r13
     rrc     r12
     adc     r12
     adc     r13
-    mov     r12, S_OFF(r4)
+    jmp     6f
+5:  inv     r14
+    inc     r14
+    call    #shl
+6:  mov     r12, S_OFF(r4)
     mov     r13, S_OFF+2(r4)
     clrc
-1:  ret
+4:  ret
 
 /*
  * uint32_t optical_tri_quality(const int32_t v[4], const optical_tsol_t *s): R12 = v,
