@@ -55,7 +55,7 @@ typedef struct {
     int32_t off[2]; /**< the vehicle relative to beacon 2, Q16 m, rounded */
     int32_t w[2];   /**< the direction from the vehicle to beacon 2 (any scale) */
     int32_t l[3];   /**< the ranges to beacons 1, 2, 3 times |U^| / 2^32 (lambda units) */
-    uint32_t r;     /**< 2^(52 + g) / |U^|^2 2^32 (rounded down), in [2^29, 2^30] */
+    uint32_t r;     /**< R' = floor(2^52 / Q) 2^g, Q = |U^|^2 / 2^32: in [2^29, 2^30 + 2^8] */
     int8_t x;       /**< e - g - sigma: the quality's exponent */
 } optical_tsol_t;
 
@@ -149,16 +149,18 @@ extern const uint16_t optical_ct_tab[64];
 
 /**
  * The triangulation's arithmetic (triangulate.c, docs/optical.md "O9"): @p v = (b1x, b1y,
- * b3x, b3y) the offsets of beacons 1 and 3 from beacon 2, Q16 m, nonzero, |component| <
- * 2^27, scaled in place by 2^sigma (largest component in [2^28, 2^29): lambda units); @p sc =
- * (s1, c1, s2, c2) the sines and cosines of alpha1 and alpha2 (Q1.30). Products are sums of
- * x y / 2^32 of balanced 16-bit halves (x = h 2^16 + l, l the low word, signed; the products l
- * l dropped). With a = R(alpha1) b1, c = R(-alpha2) b3, U = s2 a + s1 c, kappa = cross(a, c)
- * (A = a / 4, C = c / 4, V = U / 16, K = kappa / 2^36 as computed), beacon 2 lies at d =
- * kappa U / |U|^2 from the vehicle; U normalised to U^ = V 2^e (larger component in [2^27,
- * 2^28)). Returns OPTICAL_OK, OPTICAL_E_SINGULAR (U = 0, or beacon 2 2^29 lambda or farther:
- * the circles all but coincide) or OPTICAL_E_INCONSISTENT (a beacon lies behind its sighting:
- * the solution of the other arc of a circle, or the vehicle on beacon 2).
+ * b3x, b3y) the offsets of beacons 1 and 3 from beacon 2, Q16 m, scaled in place by 2^sigma
+ * (largest component in [2^28, 2^29): lambda units); @p sc = (s1, c1, s2, c2) the sines and
+ * cosines of alpha1 and alpha2 (Q1.30). Products are sums of x y / 2^32 of balanced 16-bit
+ * halves (x = h 2^16 + l, l the low word, signed; the products l l dropped). With
+ * a = R(alpha1) b1, c = R(-alpha2) b3, U = s2 a + s1 c, kappa = cross(a, c) (A = a / 4,
+ * C = c / 4, V = U / 16, 16 K = kappa / 2^32 as computed), beacon 2 lies at d = kappa U / |U|^2
+ * from the vehicle; U normalised to U^ = V 2^e (larger component in [2^27, 2^28)),
+ * K' = 16 K 2^(e - 4). Writes @p out on OPTICAL_OK. Returns OPTICAL_OK, OPTICAL_E_ARG (a
+ * component of 2^27 or more: 2048 m), OPTICAL_E_DEGENERATE (b1 = 0, b3 = 0 or b1 = b3),
+ * OPTICAL_E_SINGULAR (U = 0, or beacon 2 2^31 lambda or farther, four to eight times the
+ * span: the circles all but coincide) or OPTICAL_E_INCONSISTENT (a beacon lies behind its
+ * sighting: the solution of the other arc of a circle, or the vehicle on beacon 2).
  */
 int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out);
 
@@ -166,7 +168,8 @@ int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out);
  * The quality of a triangulation from optical_tri_core's @p v (scaled) and @p s: the RMS
  * position error per unit independent bearing error, S = sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2
  * r2^2) / |U| (docs/optical.md), in Q16 m per mrad, rounded down, saturated at UINT32_MAX.
- * Relative error below 2^-11.
+ * Within about 0.2 % of the exact bound (measured; the chords' 15-bit parts limit it where
+ * two beacons are close) plus the output's unit.
  */
 uint32_t optical_tri_quality(const int32_t v[4], const optical_tsol_t *s);
 
