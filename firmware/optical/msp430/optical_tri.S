@@ -241,9 +241,9 @@ scale:
 
 /*
  * int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out):
- * R12 = v, R13 = sc, R14 = out -> R12 = OPTICAL_OK, OPTICAL_E_SINGULAR or
- * OPTICAL_E_INCONSISTENT. R9 = out, R8 = e (then e - g), R7 the high word of 16 K (then of
- * K': its sign), R5 and R6 the dot pointers.
+ * R12 = v, R13 = sc, R14 = out -> R12 = OPTICAL_OK, OPTICAL_E_ARG, OPTICAL_E_DEGENERATE,
+ * OPTICAL_E_SINGULAR or OPTICAL_E_INCONSISTENT. R9 = out, R8 = e (then e - g), R7 the high
+ * word of K' (its sign), R5 and R6 the dot pointers; 16 K waits in out->l[1].
  */
     .global optical_tri_core
     .type optical_tri_core,@function
