@@ -24,6 +24,9 @@ _Static_assert(offsetof(optical_work_t, x) == 2 && offsetof(optical_work_t, head
                    offsetof(optical_work_t, u.id.cand) == 474 &&
                    offsetof(optical_work_t, u.sv.frame) == 350,
                "optical_work_t layout (optical_fast.S, optical_tri.S)");
+_Static_assert(offsetof(optical_tsol_t, l) == 16 && offsetof(optical_tsol_t, r) == 28 &&
+                   offsetof(optical_tsol_t, x) == 32 && sizeof optical_work.u.sv.frame >= 110,
+               "optical_tsol_t layout and frame size (optical_tri.S)");
 #endif
 
 uint16_t optical_win(uint16_t l, uint16_t g)
@@ -278,166 +281,179 @@ bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t 
     return a->flat || hi * w16 >= a->dk;
 }
 
-/* floor(v / 2) */
-static int32_t half32(int32_t v)
-{
-    return (int32_t)(((uint32_t)v >> 1) | ((uint32_t)v & 0x80000000u));
-}
-
-/* floor((v + 2^29) / 2^30) without a signed shift */
-static int32_t rnd30(int64_t v)
-{
-    uint64_t s = (uint64_t)v + (1ull << 29);
-    uint64_t m = (int64_t)s < 0 ? ~0ull : 0ull;
-    return (int32_t)(int64_t)(((s ^ m) >> 30) ^ m);
-}
-
-/*
- * a b without the product of the low words (a mod 2^16)(b mod 2^16) < 2^32: after the
- * rounding to 2^-30 that leaves at most 4 units, far below the sines' own error (fx_sin:
- * 118 units of 2^-30), and saves the MSP430 a quarter of the multiplies.
- */
-static int64_t prod(int32_t a, int32_t b)
-{
-    return (int64_t)a * b - (int64_t)((uint32_t)a & 0xFFFFu) * ((uint32_t)b & 0xFFFFu);
-}
-
-/* The two homogeneous centres of one circle from the products of one offset (a, b) with the
- * sine and cosine (s, c): n0 = (as - bc, bs + ac), n1 = (-as - bc, ac - bs). */
-static void group(int32_t a, int32_t b, int32_t s, int32_t c, int32_t *n0, int32_t *n1)
-{
-    int64_t pa = prod(a, s), pb = prod(b, c), pc = prod(b, s), pd = prod(a, c);
-    n0[0] = rnd30(pa - pb);
-    n0[1] = rnd30(pc + pd);
-    n1[0] = rnd30(-pa - pb);
-    n1[1] = rnd30(pd - pc);
-}
-
-/*
- * One pairwise intersection relative to the common beacon: cross(nY, nX) rot90(W) / |W|^2,
- * W = sX nY - sY nX (triangulate.c). False when the circles (nearly) coincide.
- */
-static bool pair(const int32_t *nX, int32_t sX, const int32_t *nY, int32_t sY, int32_t p[2])
-{
-    int32_t wx = rnd30(prod(nY[0], sX) - prod(nX[0], sY)); /* |W| < 2^30.1 */
-    int32_t wy = rnd30(prod(nY[1], sX) - prod(nX[1], sY));
-    int32_t x = rnd30(prod(nY[0], nX[1]) - prod(nY[1], nX[0])); /* |x| < 2^28 */
-    uint32_t m = umag(wx) | umag(wy);
-    if (m == 0)
-        return false;
-    uint8_t e = 2; /* W~ = W 2^(e - 2), its larger component in [2^28, 2^29) */
-    for (; m < (1ul << 28); m <<= 1) {
-        wx *= 2;
-        wy *= 2;
-        e++;
-    }
-    for (; m >= (1ul << 29); m >>= 1) { /* at most twice */
-        wx = half32(wx);
-        wy = half32(wy);
-        e--;
-    }
-    uint32_t d = (uint32_t)rnd30(prod(wx, wx) + prod(wy, wy)); /* [2^26, 2^29) */
-    /* t = round(x 2^28 / d) < 2^30.1 */
-    uint32_t t = (uint32_t)((((uint64_t)umag(x) << 28) + (d >> 1)) / d);
-    int32_t ts = x < 0 ? -(int32_t)t : (int32_t)t;
-    /* exact products here: the shift by e below would magnify the low words' part */
-    int32_t px = rnd30(-(int64_t)ts * wy), py = rnd30((int64_t)ts * wx);
-    for (; e > 0; e--) { /* P = t rot90(W~) 2^e / 2^30 */
-        /* beyond 2^30 lambda (eight times the beacons' span) the circles all but coincide */
-        if ((umag(px) | umag(py)) >= (1ul << 29))
-            return false;
-        px *= 2;
-        py *= 2;
-    }
-    p[0] = px;
-    p[1] = py;
-    return true;
-}
-
-bool optical_tri_core(const int32_t v[4], const int32_t sc[6], int32_t out[2])
-{
-    /* Doubled homogeneous centres, at the common beacon of each pair (triangulate.c):
-     * A at B2 s1 b1 - c1 rot90(b1), at B1 -s1 b1 - c1 rot90(b1); B at B2 s2 b3 + c2 rot90(b3),
-     * at B3 -s2 b3 + c2 rot90(b3); C at B1 s3 q + c3 rot90(q), at B3 -s3 q + c3 rot90(q). */
-    int32_t n[12];
-    group(v[0], v[1], sc[0], -sc[1], &n[0], &n[4]);
-    group(v[2], v[3], sc[2], sc[3], &n[2], &n[8]);
-    group(v[2] - v[0], v[3] - v[1], sc[4], sc[5], &n[6], &n[10]);
-    int32_t p[2];
-    int64_t sx = 0, sy = 0;
-    if (!pair(&n[0], sc[0], &n[2], sc[2], p)) /* AB at B2 */
-        return false;
-    sx += p[0];
-    sy += p[1];
-    if (!pair(&n[4], sc[0], &n[6], sc[4], p)) /* AC at B1 */
-        return false;
-    sx += (int64_t)p[0] + v[0];
-    sy += (int64_t)p[1] + v[1];
-    if (!pair(&n[8], sc[2], &n[10], sc[4], p)) /* BC at B3 */
-        return false;
-    sx += (int64_t)p[0] + v[2];
-    sy += (int64_t)p[1] + v[3];
-    /* the mean: floor(sum / 2) (2^30 / 3) / 2^30 * 2 (|sum| < 2^32) */
-    out[0] = 2 * rnd30(prod((int32_t)((sx - (sx < 0)) / 2), 357913941));
-    out[1] = 2 * rnd30(prod((int32_t)((sy - (sy < 0)) / 2), 357913941));
-    return true;
-}
-
 #endif
 
 #ifndef OPTICAL_ASM
 
-uint32_t optical_shl32(uint32_t v, uint8_t n)
-{
-    return v << n;
-}
+/* The triangulation kernels (fastmath.h; docs/optical.md "O9" derives them). */
 
-int32_t optical_asr32(int32_t v, uint8_t n)
+/* floor(v / 2^n), n < 32 */
+static int32_t asr(int32_t v, uint8_t n)
 {
     return v < 0 ? (int32_t) ~(~(uint32_t)v >> n) : (int32_t)((uint32_t)v >> n);
 }
 
-/* floor(s / 2^16) */
-static int16_t q14(int32_t s)
+/* x = hi(x) 2^16 + lo(x): lo the low word read as signed, |hi| <= 2^15 for |x| < 2^31 - 2^15 */
+static int32_t lo16(int32_t x)
 {
-    return (int16_t)(uint16_t)((uint32_t)s >> 16);
+    return (int16_t)(uint16_t)(uint32_t)x;
 }
 
-/* Every component shifted right (floor) by the s that brings them all below 2^14: s. */
-static uint8_t to15(int32_t *v)
+static int32_t hi16(int32_t x)
 {
-    uint32_t m = 0;
-    for (uint8_t i = 0; i < 6; i++)
-        m |= umag(v[i]);
-    uint8_t s = 0;
-    for (; m >= 0x4000u; m >>= 1)
-        s++;
-    for (uint8_t i = 0; i < 6; i++)
-        for (uint8_t k = 0; k < s; k++)
-            v[i] = half32(v[i]);
-    return s;
+    return (int16_t)(uint16_t)(((uint32_t)x + 0x8000u) >> 16);
 }
 
-void optical_quality_parts(const int32_t v[4], const int32_t c[2], const int32_t sc[6],
-                           optical_qparts_t *out)
+/*
+ * sum of x[i] y[i] / 2^32 (i < n): sum of hi hi + floor(sum of (hi lo + lo hi) / 2^16), the
+ * products lo lo dropped (each below 2^30: a quarter unit). Every caller keeps both partial
+ * sums below 2^31 (the MSP430 accumulates them in its multiplier).
+ */
+static int32_t dot(const int32_t *x, const int32_t *y, uint8_t n)
 {
-    int32_t ch[6] = {v[0], v[1], v[2], v[3], v[2] - v[0], v[3] - v[1]};
-    int32_t rg[6] = {v[0] - c[0], v[1] - c[1], c[0], c[1], v[2] - c[0], v[3] - c[1]};
-    out->sc = to15(ch);
-    to15(rg);
-    uint32_t sq[6];
-    for (uint8_t i = 0; i < 6; i++) {
-        const int32_t *u = i < 3 ? &ch[2 * i] : &rg[2 * i - 6];
-        sq[i] = (uint32_t)(u[0] * u[0] + u[1] * u[1]); /* < 2^29 */
+    int32_t hh = 0, m = 0;
+    for (uint8_t i = 0; i < n; i++) {
+        hh += hi16(x[i]) * hi16(y[i]);
+        m += hi16(x[i]) * lo16(y[i]) + lo16(x[i]) * hi16(y[i]);
     }
-    /* chords c12, c23, c31 against the ranges r3, r1, r2 */
-    uint32_t num2 = (sq[0] >> 14) * (sq[5] >> 14) + (sq[1] >> 14) * (sq[3] >> 14) +
-                    (sq[2] >> 14) * (sq[4] >> 14);
-    out->num = fx_sqrt32(num2);
-    int32_t r1 = fx_sqrt32(sq[3]), r2 = fx_sqrt32(sq[4]), r3 = fx_sqrt32(sq[5]);
-    /* a31 = 360 - alpha3: sin a31 = -s3; the sines Q14 (their high words) */
-    int32_t den = r3 * q14(sc[0]) + r1 * q14(sc[2]) - r2 * q14(sc[4]);
-    out->den = umag(den);
+    return hh + asr(m, 16);
+}
+
+/* The left shifts that bring m (nonzero) to 2^top or more. */
+static uint8_t lead(uint32_t m, uint8_t top)
+{
+    uint8_t n = 0;
+    for (; m < (1ul << top); m <<= 1)
+        n++;
+    return n;
+}
+
+static uint32_t tmag(int32_t v)
+{
+    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+}
+
+static uint32_t mag2(int32_t a, int32_t b)
+{
+    return tmag(a) | tmag(b);
+}
+
+int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out)
+{
+    uint32_t m = mag2(v[0], v[1]) | mag2(v[2], v[3]);
+    if (m >= (1ul << 27))
+        return OPTICAL_E_ARG;
+    if ((v[0] | v[1]) == 0 || (v[2] | v[3]) == 0 || (v[0] == v[2] && v[1] == v[3]))
+        return OPTICAL_E_DEGENERATE;
+    /* lambda: the largest component to [2^28, 2^29) */
+    uint8_t sigma = lead(m, 28);
+    for (uint8_t i = 0; i < 4; i++)
+        v[i] = (int32_t)((uint32_t)v[i] << sigma);
+    int32_t s1 = sc[0], c1 = sc[1], s2 = sc[2], c2 = sc[3];
+    /* A = R(alpha1) b1 / 4, C = R(-alpha2) b3 / 4 */
+    int32_t r[5][2] = {{c1, -s1}, {s1, c1}, {c2, s2}, {-s2, c2}, {s2, s1}};
+    int32_t ax = dot(r[0], &v[0], 2), ay = dot(r[1], &v[0], 2);
+    int32_t cx = dot(r[2], &v[2], 2), cy = dot(r[3], &v[2], 2);
+    /* V = (s2 a + s1 c) / 16 = U / 16; 16 K = cross(4 A, 4 C) / 2^32 = kappa / 2^32 (the
+     * halves of 4 A and 4 C: the products lo lo dropped stay below a unit) */
+    int32_t xs[2] = {ax, cx}, ys[2] = {ay, cy};
+    int32_t u[3] = {dot(r[4], xs, 2), dot(r[4], ys, 2), 0};
+    int32_t k4[2] = {ax * 4, cx * 4}, kk[2] = {cy * 4, -ay * 4};
+    int32_t k = dot(k4, kk, 2);
+    m = mag2(u[0], u[1]);
+    if (m == 0)
+        return OPTICAL_E_SINGULAR;
+    /* U^ = V 2^e, its larger component in [2^27, 2^28) (V < 2^26.5: e >= 1); K' = 16 K
+     * 2^(e - 4) = r2 |U^| / 2^32: 2^28 or more only when beacon 2 lies beyond 2^31 lambda
+     * (refused below) */
+    uint8_t e = lead(m, 27);
+    u[0] = (int32_t)((uint32_t)u[0] << e);
+    u[1] = (int32_t)((uint32_t)u[1] << e);
+    if (e < 4) {
+        k = asr(k, (uint8_t)(4u - e));
+    } else {
+        if (k >= (1l << (32 - e)) || k < -(1l << (32 - e)))
+            return OPTICAL_E_SINGULAR;
+        k = (int32_t)((uint32_t)k << (e - 4u));
+    }
+    u[2] = k;
+    /* Each beacon ahead along its sighting: l_i = (a U + c_i kappa) 2^e / 2^38 = +-r_i |U^| /
+     * 2^34 (i = 1, 3) with the sign of K' = +-r2 |U^| / 2^32: on the other arc one of them has
+     * the other sign. */
+    int32_t la[3] = {ax, ay, c1}, lc[3] = {cx, cy, c2};
+    int32_t l1 = dot(la, u, 3), l3 = dot(lc, u, 3);
+    if (k == 0 || (l1 ^ k) < 0 || (l3 ^ k) < 0 || l1 == 0 || l3 == 0)
+        return OPTICAL_E_INCONSISTENT;
+    /* 1 / |U^|^2: Q = |U^|^2 / 2^32 in [2^22, 2^25), R = 2^52 / Q in (2^27, 2^30] */
+    uint32_t q = (uint32_t)dot(u, u, 2);
+    uint32_t rq = (uint32_t)((1ull << 52) / q);
+    uint8_t g = lead(rq, 29); /* R' = R 2^g in [2^29, 2^30] (Q rounds down: a little beyond) */
+    rq <<= g;
+    /* d = K' U^ / Q = K' R' U^ / 2^(52 + g): T = K'' R' / 2^32 with K'' = K' 2^f (|K''| in
+     * [2^29, 2^30)), T' = T 2^t likewise, d = T' U^ / 2^32 2^(12 - f - g - t) */
+    uint8_t f = lead(tmag(k), 29);
+    int32_t kn = (int32_t)((uint32_t)k << f), rs = (int32_t)rq;
+    int32_t t = dot(&kn, &rs, 1);
+    uint8_t tt = lead(tmag(t), 29);
+    t = (int32_t)((uint32_t)t << tt);
+    int8_t sh = (int8_t)(12 - f - g - tt);
+    int8_t rsh = (int8_t)(sigma - sh);
+    for (uint8_t i = 0; i < 2; i++) {
+        int32_t d = dot(&t, &u[i], 1); /* |d| < 2^26 */
+        /* beacon 2 2^31 lambda (4 to 8 times the beacons' span) or farther: the circles all
+         * but coincide */
+        if (sh > 0 && (d >= (1l << (31 - sh)) || d < -(1l << (31 - sh))))
+            return OPTICAL_E_SINGULAR;
+        /* the vehicle relative to beacon 2: -d 2^sh / 2^sigma (Q16 m), rounded half up */
+        uint32_t nd = 0u - (uint32_t)d;
+        out->off[i] = rsh <= 0 ? (int32_t)(nd << (uint8_t)-rsh)
+                               : asr((int32_t)nd, (uint8_t)rsh) + (int32_t)((nd >> (rsh - 1)) & 1u);
+        out->w[i] = k < 0 ? -u[i] : u[i];
+    }
+    out->l[0] = l1 * 4;
+    out->l[1] = k;
+    out->l[2] = l3 * 4;
+    out->r = rq;
+    out->x = (int8_t)(e - g - sigma);
+    return OPTICAL_OK;
+}
+
+uint32_t optical_tri_quality(const int32_t v[4], const optical_tsol_t *s)
+{
+    /* ranges: r_i = |l_i| 2^32 / |U^|; 16 bits by a common shift */
+    uint8_t sr = 0;
+    uint32_t m = mag2(s->l[0], s->l[1]) | tmag(s->l[2]);
+    for (; m >= 0x8000u; m >>= 1)
+        sr++;
+    int32_t rl[3];
+    for (uint8_t i = 0; i < 3; i++)
+        rl[i] = asr(s->l[i], sr);
+    /* chords b1, b3, b3 - b1: lambda / 2^15 */
+    int32_t ch[6] = {asr(v[0], 15), asr(v[1], 15), asr(v[2], 15), asr(v[3], 15), 0, 0};
+    ch[4] = ch[2] - ch[0];
+    ch[5] = ch[3] - ch[1];
+    /* M = c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2: each chord times its range, / 2^16, squared */
+    static const uint8_t pair[3] = {2, 0, 1};
+    uint32_t mm = 0;
+    for (uint8_t c = 0; c < 3; c++)
+        for (uint8_t j = 0; j < 2; j++) {
+            int32_t w = asr(rl[pair[c]] * ch[2 * c + j], 16);
+            mm += (uint32_t)(w * w);
+        }
+    if (mm == 0)
+        return UINT32_MAX;
+    /* S = sqrt(M) 2^(sr + 31) R' 2^(e - g - 56) lambda per radian */
+    int8_t x = (int8_t)(s->x + sr - 19);
+    while (mm < (1ul << 30)) {
+        mm <<= 2;
+        x--;
+    }
+    /* Q16 m per mrad: / 2^sigma / 1000 (2^25 / 1000 = 33554.4) */
+    uint32_t p = ((uint32_t)fx_sqrt32(mm) * 33554u) >> 16;
+    p *= s->r >> 15;
+    if (x > 0)
+        return x >= 31 || (p >> (32 - x)) != 0 ? UINT32_MAX : p << x;
+    return x <= -32 ? 0 : p >> (uint8_t)-x;
 }
 
 #endif

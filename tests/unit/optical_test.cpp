@@ -564,6 +564,56 @@ TEST(Triangulate, RefusesOnTheBeaconCircleAndDegenerateInput)
     EXPECT_EQ(tri_fw(far, th).status, OPTICAL_E_ARG);
 }
 
+TEST(Triangulate, WrongArcRefusedFarAwayRefused)
+{
+    // A sighting turned by half a turn leaves every line through the vehicle as it was: the
+    // circles meet at the true position, but that beacon lies behind its sighting. The check
+    // (each beacon ahead along its sighting, from the signs of the same products) must refuse
+    // every such set that the untouched one solves.
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> u(0, 50);
+    long solved = 0, refused = 0, other = 0;
+    for (int t = 0; t < 20000; t++) {
+        std::array<V2, 3> b = {on_grid(V2(u(rng), u(rng))), on_grid(V2(u(rng), u(rng))),
+                               on_grid(V2(u(rng), u(rng)))};
+        V2 p(u(rng), u(rng));
+        double phi = u(rng);
+        std::array<double, 3> th;
+        for (int i = 0; i < 3; i++)
+            th[i] = wrap_2pi(std::atan2(b[i].y() - p.y(), b[i].x() - p.x()) - phi);
+        if (tri_fw(b, th).status != OPTICAL_OK)
+            continue;
+        solved++;
+        th[t % 3] = wrap_2pi(th[t % 3] + M_PI);
+        int st = tri_fw(b, th, UINT32_MAX).status;
+        if (st == OPTICAL_E_INCONSISTENT)
+            refused++;
+        else if (st != OPTICAL_E_DEGENERATE)
+            other++;
+    }
+    std::printf("wrong arc: %ld solved sets with one sighting turned by half a turn: %ld refused as"
+                " inconsistent, %ld otherwise\n",
+                solved, refused, other);
+    EXPECT_GT(solved, 15000);
+    EXPECT_EQ(other, 0);
+    // Three beacons within 2 m: a vehicle 40 m away is beyond the circles' range (4 to 8 times
+    // the span), one 5 m away is solved.
+    std::array<V2, 3> b = {V2(20, 20), V2(21, 21.5), V2(22, 20)};
+    for (double dist : {40.0, 5.0}) {
+        V2 p(21.3, 20 - dist);
+        std::array<double, 3> th;
+        for (int i = 0; i < 3; i++)
+            th[i] = counts_angle(b[i], p, 0.2);
+        TriResult r = tri_fw(b, th, UINT32_MAX);
+        if (dist > 20) {
+            EXPECT_EQ(r.status, OPTICAL_E_SINGULAR);
+        } else {
+            ASSERT_EQ(r.status, OPTICAL_OK);
+            EXPECT_LT((r.pose.p - p).norm(), 0.05);
+        }
+    }
+}
+
 TEST(Angle16, AgainstAtan2)
 {
     std::mt19937 rng(3);

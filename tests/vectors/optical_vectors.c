@@ -23,7 +23,7 @@
 #include "optical_vectors_data.h"
 
 /* The cycles optical_fix may take on the benchmark revolution (a regression bound). */
-#define OPTICAL_FIX_CYCLE_BOUND 52000ul
+#define OPTICAL_FIX_CYCLE_BOUND 36000ul
 
 #ifdef __MSP430__
 #include "f249.h"
@@ -276,13 +276,60 @@ static void scene(uint8_t t)
     }
 }
 
+/* The inscribed angles alpha1, alpha2 at which a vehicle at @p p (relative to beacon 2) sees
+ * the beacons at offsets @p v (fx_atan2). */
+static void seen_from(const int32_t v[4], const int32_t p[2], fx_angle_t *a1, fx_angle_t *a2)
+{
+    fx_angle_t h2 = fx_atan2(-p[1], -p[0]);
+    *a1 = h2 - fx_atan2(v[1] - p[1], v[0] - p[0]);
+    *a2 = fx_atan2(v[3] - p[1], v[2] - p[0]) - h2;
+}
+
+/* The triangulation kernels on one case, printed; timed into @p core, @p qual (or not). */
+static void tri_kernels(uint8_t t, int32_t v[4], fx_angle_t a1, fx_angle_t a2,
+                        cy_bench_stat_t *core, cy_bench_stat_t *qual)
+{
+    int32_t sc[4];
+    fx_sincos(a1, &sc[0], &sc[1]);
+    fx_sincos(a2, &sc[2], &sc[3]);
+    optical_tsol_t ts = {{0, 0}, {0, 0}, {0, 0, 0}, 0, 0};
+    uint16_t t0 = cy_bench_now();
+    int8_t st = optical_tri_core(v, sc, &ts);
+    uint16_t t1 = cy_bench_now();
+    if (core)
+        cy_bench_add(core, (uint16_t)(t1 - t0));
+    cy_print("tri ");
+    cy_print_dec(t);
+    cy_print(" ");
+    cy_print_dec(st);
+    for (uint8_t i = 0; i < 4; i++)
+        field("v", (uint32_t)v[i]);
+    if (st == OPTICAL_OK) {
+        field("o", (uint32_t)ts.off[0]);
+        field("o", (uint32_t)ts.off[1]);
+        field("w", (uint32_t)ts.w[0]);
+        field("w", (uint32_t)ts.w[1]);
+        for (uint8_t i = 0; i < 3; i++)
+            field("l", (uint32_t)ts.l[i]);
+        field("r", ts.r);
+        field("x", (uint32_t)(int32_t)ts.x);
+        t0 = cy_bench_now();
+        uint32_t q = optical_tri_quality(v, &ts);
+        t1 = cy_bench_now();
+        if (qual)
+            cy_bench_add(qual, (uint16_t)(t1 - t0));
+        field("q", q);
+    }
+    cy_println();
+}
+
 /* The identification kernels on random scenes, and the width check. */
 static void kernels(void)
 {
     static cy_bench_stat_t st_exs = {"optical_expect_scan_per_beacon", 0, 0, 0};
     static cy_bench_stat_t st_eval = {"optical_eval_per_pair", 0, 0, 0};
     static cy_bench_stat_t st_core = {"optical_tri_core", 0, 0, 0};
-    static cy_bench_stat_t st_qual = {"optical_quality_parts", 0, 0, 0};
+    static cy_bench_stat_t st_qual = {"optical_tri_quality", 0, 0, 0};
     static cy_bench_stat_t st_a16 = {"optical_angle16", 0, 0, 0};
     for (uint8_t t = 0; t < 60; t++) {
         scene(t);
@@ -339,15 +386,15 @@ static void kernels(void)
     cy_bench_report(&st_exs);
     cy_bench_report(&st_eval);
     /* The coordinate limit's edges: [-2^29, 2^29) is accepted. */
-    static const int32_t lim[] = {-0x20000000l, -0x1FFFFFFFl, 0x1FFFFFFFl, 0x20000000l,
-                                  -0x20000001l};
+    static const int32_t coord_edge[] = {-0x20000000l, -0x1FFFFFFFl, 0x1FFFFFFFl, 0x20000000l,
+                                         -0x20000001l};
     for (uint8_t t = 0; t < 10; t++) {
         kmap[0].x = kmap[0].y = kmap[1].x = 0;
         kmap[1].y = 0x10000;
         if (t & 1)
-            kmap[1].y = lim[t >> 1];
+            kmap[1].y = coord_edge[t >> 1];
         else
-            kmap[1].x = lim[t >> 1];
+            kmap[1].x = coord_edge[t >> 1];
         KW.b = kmap;
         KW.nb = 2;
         KW.n = 0;
@@ -358,49 +405,46 @@ static void kernels(void)
         cy_print_dec(optical_expect_scan(0, 100));
         cy_println();
     }
-    /* The triangulation kernels: offsets scaled as optical_triangulate scales them, the
-     * inscribed angles from random sighting gaps (some near 0 and 180 degrees). */
+    /* The triangulation kernels: beacon offsets from beacon 2 of every span (Q16), the
+     * inscribed angles of a vehicle among them (fx_atan2) or random ones (near 0 and 180
+     * degrees too: most of them inconsistent or beyond the circles' range). */
     for (uint8_t t = 0; t < 120; t++) {
-        int32_t v[4], sc[6], out[2] = {0, 0};
-        uint32_t m = 0;
-        for (uint8_t i = 0; i < 4; i++) {
-            v[i] = rnd_in(t & 1 ? 0x07FFFFFFu : 0x00FFFFFFu);
-            m |= v[i] < 0 ? 0u - (uint32_t)v[i] : (uint32_t)v[i];
-        }
-        if (m == 0)
+        int32_t v[4];
+        static const uint32_t span[4] = {0x07FFFFFFu, 0x00FFFFFFu, 0x0003FFFFu, 0x00000FFFu};
+        uint32_t lim = span[t & 3];
+        for (uint8_t i = 0; i < 4; i++)
+            v[i] = rnd_in(lim);
+        if ((v[0] | v[1]) == 0 || (v[2] | v[3]) == 0 || (v[0] == v[2] && v[1] == v[3]))
             continue;
-        while (m < (1ul << 27)) {
-            m <<= 1;
-            for (uint8_t i = 0; i < 4; i++)
-                v[i] *= 2;
+        fx_angle_t a1, a2;
+        if (t % 3) {
+            int32_t p[2] = {rnd_in(lim), rnd_in(lim)};
+            seen_from(v, p, &a1, &a2);
+        } else {
+            a1 = rnd32();
+            a2 = rnd32();
+            if (t % 5 == 0)
+                a1 = (fx_angle_t)rnd_in(3000) + (t & 8 ? 0x80000000u : 0u);
         }
-        fx_angle_t a1 = rnd32() >> 1, a2 = rnd32() >> 1;
-        if (t % 5 == 0)
-            a1 = (fx_angle_t)rnd_in(3000) + (t & 2 ? 0x80000000u : 0u);
-        fx_sincos(a1, &sc[0], &sc[1]);
-        fx_sincos(a2, &sc[2], &sc[3]);
-        fx_sincos(a1 + a2, &sc[4], &sc[5]);
-        uint16_t t0 = cy_bench_now();
-        bool ok = optical_tri_core(v, sc, out);
-        uint16_t t1 = cy_bench_now();
-        cy_bench_add(&st_core, (uint16_t)(t1 - t0));
-        cy_print("tri ");
-        cy_print_dec(t);
-        cy_print(" ");
-        cy_print_dec(ok);
-        field("x", (uint32_t)out[0]);
-        field("y", (uint32_t)out[1]);
-        if (ok) {
-            optical_qparts_t q;
-            t0 = cy_bench_now();
-            optical_quality_parts(v, out, sc, &q);
-            t1 = cy_bench_now();
-            cy_bench_add(&st_qual, (uint16_t)(t1 - t0));
-            field("n", q.num);
-            field("d", q.den);
-            field("s", q.sc);
-        }
-        cy_println();
+        tri_kernels(t, v, a1, a2, &st_core, &st_qual);
+    }
+    /* And the edges (metres, Q16): a vehicle 20 and 3 times the beacons' span away, one on
+     * their circle, one whose beacon 3 is sighted on the wrong side, offsets beyond 2048 m,
+     * coincident beacons. */
+    static const int32_t edge[6][6] = {
+        {-2 * 65536l, 0, 2 * 65536l, 0, 19661, -40 * 65536l},
+        {-2 * 65536l, 0, 2 * 65536l, 0, 19661, -6 * 65536l},
+        {-5 * 65536l, 5 * 65536l, 5 * 65536l, 5 * 65536l, 3 * 65536l, 9 * 65536l},
+        {-5 * 65536l, 5 * 65536l, 5 * 65536l, 5 * 65536l, 65536l, -3 * 65536l},
+        {1l << 27, 0, 5 * 65536l, 5 * 65536l, 65536l, -3 * 65536l},
+        {-5 * 65536l, 5 * 65536l, -5 * 65536l, 5 * 65536l, 65536l, -3 * 65536l}};
+    for (uint8_t t = 0; t < 6; t++) {
+        int32_t v[4] = {edge[t][0], edge[t][1], edge[t][2], edge[t][3]};
+        fx_angle_t a1, a2;
+        seen_from(v, &edge[t][4], &a1, &a2);
+        if (t == 3)
+            a2 += 0x80000000u;
+        tri_kernels((uint8_t)(200u + t), v, a1, a2, NULL, NULL);
     }
     cy_bench_report(&st_core);
     cy_bench_report(&st_qual);

@@ -47,12 +47,17 @@ extern const uint16_t optical_atan_tab[65];
 /** Most candidate pairs the identification keeps. */
 #define OPTICAL_MAX_CAND 40
 
-/** The parts of a triangulation's quality (optical_quality_parts). */
+/**
+ * A triangulation's solution (optical_tri_core) and what its quality needs
+ * (optical_tri_quality). lambda: the offsets' unit after the scaling (Q16 m times 2^sigma).
+ */
 typedef struct {
-    uint32_t den; /**< |r3 s1 + r1 s2 - r2 s3|, ranges 2^-sr lambda, sines Q14 */
-    uint16_t num; /**< sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2 r2^2) / 2^(14 + sc + sr) */
-    uint8_t sc;   /**< the chords' scale */
-} optical_qparts_t;
+    int32_t off[2]; /**< the vehicle relative to beacon 2, Q16 m, rounded */
+    int32_t w[2];   /**< the direction from the vehicle to beacon 2 (any scale) */
+    int32_t l[3];   /**< the ranges to beacons 1, 2, 3 times |U^| / 2^32 (lambda units) */
+    uint32_t r;     /**< R' = floor(2^52 / Q) 2^g, Q = |U^|^2 / 2^32: in [2^29, 2^30 + 2^8] */
+    int8_t x;       /**< e - g - sigma: the quality's exponent */
+} optical_tsol_t;
 
 /**
  * The work area of optical_fix() and of the identification kernels (static: the MSP430's
@@ -98,11 +103,10 @@ typedef struct {
             fx_angle_t ang[OPTICAL_MAX_SIGHTINGS]; /**< the identified, reference frame */
             optical_xy_t b[3];                     /**< the triplet being solved */
             optical_tri_t tri;                     /**< a candidate triplet's solution */
-            uint16_t frame[47];  /**< MSP430: the triangulation kernels' work frame */
-            int32_t v[4];        /**< optical_triangulate: the offsets (optical_tri_core) */
-            int32_t sc[6];       /**< its sines and cosines */
-            int32_t c[2];        /**< its solution */
-            optical_qparts_t qp; /**< its quality's parts */
+            uint16_t frame[55]; /**< MSP430: the triangulation kernels' work frame */
+            int32_t v[4];       /**< optical_triangulate: the offsets (optical_tri_core) */
+            int32_t sc[4];      /**< its sines and cosines */
+            optical_tsol_t ts;  /**< its solution */
         } sv;
     } u;
 } optical_work_t;
@@ -152,29 +156,30 @@ uint16_t optical_win(uint16_t l, uint16_t g);
 extern const uint16_t optical_ct_tab[64];
 
 /**
- * One pairwise intersection of the triangulation and their average (triangulate.c):
- * @p v = (b1x, b1y, b3x, b3y) the beacon offsets from beacon 2 in lambda units (largest
- * component in [2^27, 2^28)), @p sc = (s1, c1, s2, c2, s3, c3) the sines and cosines of the
- * inscribed angles (Q1.30). Writes the mean of the three intersections relative to beacon 2,
- * lambda units; false when a pair of circles (nearly) coincides.
+ * The triangulation's arithmetic (triangulate.c, docs/optical.md "O9"): @p v = (b1x, b1y,
+ * b3x, b3y) the offsets of beacons 1 and 3 from beacon 2, Q16 m, scaled in place by 2^sigma
+ * (largest component in [2^28, 2^29): lambda units); @p sc = (s1, c1, s2, c2) the sines and
+ * cosines of alpha1 and alpha2 (Q1.30). Products are sums of x y / 2^32 of balanced 16-bit
+ * halves (x = h 2^16 + l, l the low word, signed; the products l l dropped). With
+ * a = R(alpha1) b1, c = R(-alpha2) b3, U = s2 a + s1 c, kappa = cross(a, c) (A = a / 4,
+ * C = c / 4, V = U / 16, 16 K = kappa / 2^32 as computed), beacon 2 lies at d = kappa U / |U|^2
+ * from the vehicle; U normalised to U^ = V 2^e (larger component in [2^27, 2^28)),
+ * K' = 16 K 2^(e - 4). Writes @p out on OPTICAL_OK. Returns OPTICAL_OK, OPTICAL_E_ARG (a
+ * component of 2^27 or more: 2048 m), OPTICAL_E_DEGENERATE (b1 = 0, b3 = 0 or b1 = b3),
+ * OPTICAL_E_SINGULAR (U = 0, or beacon 2 2^31 lambda or farther, four to eight times the
+ * span: the circles all but coincide) or OPTICAL_E_INCONSISTENT (a beacon lies behind its
+ * sighting: the solution of the other arc of a circle, or the vehicle on beacon 2).
  */
-bool optical_tri_core(const int32_t v[4], const int32_t sc[6], int32_t out[2]);
+int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out);
 
 /**
- * Quality of a triangulation (triangulate.c divides the parts): @p v and
- * @p sc as optical_tri_core, @p c the vehicle relative to beacon 2 (lambda units). The chords
- * (b1, b3, b3 - b1) and the ranges (b1 - c, c, b3 - c) are each cut to 15-bit components by a
- * common shift (sc for the chords, sr for the ranges), their squares to 15 bits; the quality
- * is num 2^(28 + sc) / den lambda per radian.
+ * The quality of a triangulation from optical_tri_core's @p v (scaled) and @p s: the RMS
+ * position error per unit independent bearing error, S = sqrt(c12^2 r3^2 + c23^2 r1^2 + c31^2
+ * r2^2) / |U| (docs/optical.md), in Q16 m per mrad, rounded down, saturated at UINT32_MAX.
+ * Within about 0.2 % of the exact bound (measured; the chords' 15-bit parts limit it where
+ * two beacons are close) plus the output's unit.
  */
-void optical_quality_parts(const int32_t v[4], const int32_t c[2], const int32_t sc[6],
-                           optical_qparts_t *out);
-
-/** v 2^n, n < 32 (the MSP430 shifts by whole bytes first: no per-bit helper loop). */
-uint32_t optical_shl32(uint32_t v, uint8_t n);
-
-/** floor(v / 2^n), n < 32 (as optical_shl32). */
-int32_t optical_asr32(int32_t v, uint8_t n);
+uint32_t optical_tri_quality(const int32_t v[4], const optical_tsol_t *s);
 
 /** Arguments of optical_width_ok(). */
 typedef struct {

@@ -13,9 +13,9 @@
  *               (O5);
  *   select      the seed's adjacent-gap elimination down to three beacons (O7), ordered with
  *               their angles alpha1..3 (O8);
- *   triangulate three circles through pairs of beacons and the vehicle, the pairwise
- *               intersections averaged, with the geometric error bound as quality (O9), and
- *               the bearing from all three sightings (O10);
+ *   triangulate circles through pairs of beacons and the vehicle: the two through the middle
+ *               beacon B2 intersected in closed form, with the geometric error bound as
+ *               quality (O9), and the bearing from the direction to B2 (O10);
  *   check       refusal near the beacons' circle, implausible jumps and turns from the
  *               approximate pose, and the other identified sightings that disagree with the
  *               fix (O6).
