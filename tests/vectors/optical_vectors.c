@@ -556,6 +556,48 @@ static void reflectors(void)
     }
 }
 
+/*
+ * O7's selection (select.c; msp430/optical_sel.S on the target) on random sets of 0 to 15
+ * angles: sorted on the 50,000-count grid, on a coarse grid (tied gaps), with high words
+ * tied (gaps within 2^16), unsorted (gaps modulo a turn, some near 2^32), all equal.
+ */
+static void selections(void)
+{
+    static cy_bench_stat_t st_sel = {"optical_select", 0, 0, 0};
+    fx_angle_t a[OPTICAL_MAX_SIGHTINGS];
+    for (uint16_t t = 0; t < 400; t++) {
+        uint8_t n = (uint8_t)(t < 16 ? t : 4u + rnd32() % 12u), kind = (uint8_t)(t % 6u);
+        for (uint8_t i = 0; i < n; i++) {
+            uint32_t r = rnd32();
+            a[i] = kind == 0   ? fx_angle_from_counts(r % 50000u, 50000u)
+                   : kind == 1 ? (r % 24u) << 27
+                   : kind == 2 ? 0x12340000u + (r % 8u) * 0x8000u + (r >> 29)
+                   : kind == 3 ? r
+                   : kind == 4 ? 0x40000000u - (r % 4u)
+                               : (r % 16u) << 28;
+        }
+        if (kind != 3 && kind != 4)
+            for (uint8_t i = 1; i < n; i++) /* ascending */
+                for (uint8_t j = i; j > 0 && a[j] < a[j - 1u]; j--) {
+                    fx_angle_t x = a[j];
+                    a[j] = a[j - 1u];
+                    a[j - 1u] = x;
+                }
+        uint8_t keep[3];
+        CY_BENCH(&st_sel, optical_select(a, n, keep));
+        cy_print("sel ");
+        cy_print_dec(t);
+        cy_print(" ");
+        cy_print_dec(n);
+        for (uint8_t i = 0; i < 3; i++) {
+            cy_print(" ");
+            cy_print_dec(keep[i]);
+        }
+        cy_println();
+    }
+    cy_bench_report(&st_sel);
+}
+
 #ifdef __MSP430__
 extern char __noinit_end[];
 
@@ -742,6 +784,7 @@ int main(void)
     kernels();
     fixes();
     reflectors();
+    selections();
     bench();
     isr_cost();
     cy_test_end();
