@@ -379,29 +379,31 @@ static void gather(const ctx_t *x)
 }
 
 /* Triangulate the triplet at positions t[] of the identified set; when moving, refine the
- * parallax with the ranges of the fix (O11). */
+ * parallax with the ranges of the fix (O11). Standing (no lever among the three): one pass
+ * with the angles as gathered. */
 static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, optical_tri_t *tri)
 {
     optical_xy_t *b = W.u.sv.b;
+    fx_angle_t th[3];
     bool moving = false;
     for (uint8_t i = 0; i < 3; i++) {
         uint8_t j = W.pos[t[i]];
         b[i] = x->map->b[W.sm[j]];
-        moving |= x->latched != NULL && W.c[j] != 0; /* (standing: W.c unset) */
+        th[i] = W.u.sv.ang[t[i]];
+        if (x->latched != NULL && W.c[j] != 0) /* (standing: W.c unset) */
+            moving = true;
     }
-    optical_pose_t p = *x->ap;
     if (!moving)
-        passes = 1;
+        return optical_triangulate(b, th, x->cfg->quality_max, tri);
+    optical_pose_t p = *x->ap;
     int8_t st = OPTICAL_OK;
     for (uint8_t pass = 0; pass < passes; pass++) {
-        fx_angle_t th[3];
+        fx_angle_t tc[3];
         for (uint8_t i = 0; i < 3; i++) {
             uint8_t j = W.pos[t[i]];
-            th[i] = W.u.sv.ang[t[i]];
-            if (moving && W.c[j])
-                th[i] = corrected(th[i], j, fx_hypot(b[i].x - p.x, b[i].y - p.y));
+            tc[i] = W.c[j] ? corrected(th[i], j, fx_hypot(b[i].x - p.x, b[i].y - p.y)) : th[i];
         }
-        st = optical_triangulate(b, th, x->cfg->quality_max, tri);
+        st = optical_triangulate(b, tc, x->cfg->quality_max, tri);
         if (st != OPTICAL_OK)
             return st;
         if (pass + 1u >= passes) /* (the last: no need to know how far it moved) */

@@ -73,8 +73,10 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     v[1] = B1->y - B2->y;
     v[2] = B3->x - B2->x;
     v[3] = B3->y - B2->y;
-    fx_sincos(a1, &sc[0], &sc[1]);
-    fx_sincos(a2, &sc[2], &sc[3]);
+    sc[0] = fx_sin(a1); /* (fx_sincos's values, without its wrapper) */
+    sc[1] = fx_cos(a1);
+    sc[2] = fx_sin(a2);
+    sc[3] = fx_cos(a2);
     int8_t st = optical_tri_core(v, sc, &T.ts);
     if (st != OPTICAL_OK)
         return st;
