@@ -16,7 +16,8 @@
  * Fixed point: the offsets scaled by 2^sigma (largest component in [2^28, 2^29): "lambda"
  * units), sin/cos Q1.30, products of balanced 16-bit halves summed in the multiplier, one
  * reciprocal. The arithmetic is the kernels optical_tri_core() and optical_tri_quality()
- * (fastmath.h: assembly on the MSP430).
+ * (fastmath.h: assembly on the MSP430). On the MSP430 optical_triangulate itself is assembly
+ * too (msp430/optical_tri.S, OPTICAL_ASM), the same steps as the C below.
  */
 #include <stdbool.h>
 #include <stddef.h>
@@ -26,6 +27,17 @@
 
 /* The work memory (optical_fix's, in a part that is free while it triangulates). */
 #define T (optical_work.u.sv)
+
+#ifdef __MSP430__
+/* msp430/optical_tri.S addresses them by these offsets. */
+_Static_assert(offsetof(optical_work_t, u.sv.v) == 460 &&
+                   offsetof(optical_work_t, u.sv.sc) == 476 &&
+                   offsetof(optical_work_t, u.sv.ts) == 492 &&
+                   offsetof(optical_tri_t, quality) == 12,
+               "optical_work_t layout (optical_tri.S)");
+#endif
+
+#ifndef OPTICAL_ASM
 
 int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], uint32_t quality_max,
                            optical_tri_t *out)
@@ -88,3 +100,4 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
     out->pose.heading = fx_atan2(T.ts.w[1], T.ts.w[0]) - theta[B2 - b];
     return out->quality > quality_max ? OPTICAL_E_SINGULAR : OPTICAL_OK;
 }
+#endif

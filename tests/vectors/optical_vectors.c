@@ -598,6 +598,45 @@ static void selections(void)
     cy_bench_report(&st_sel);
 }
 
+/*
+ * optical_triangulate (triangulate.c; msp430/optical_tri.S on the target): random beacons and
+ * vehicles (every O8 ordering and both sides of the circle), random angles (mostly refused),
+ * coincident sightings and beacons, a tight quality limit.
+ */
+static void triangulations(void)
+{
+    for (uint16_t t = 0; t < 200; t++) {
+        optical_xy_t b[3];
+        static const uint32_t span[3] = {0x003FFFFFu, 0x000FFFFFu, 0x0000FFFFu};
+        uint32_t lim = span[t % 3u];
+        for (uint8_t i = 0; i < 3; i++) {
+            b[i].x = rnd_in(lim);
+            b[i].y = rnd_in(lim);
+        }
+        fx_angle_t th[3];
+        int32_t px = rnd_in(lim), py = rnd_in(lim);
+        fx_angle_t head = rnd32();
+        for (uint8_t i = 0; i < 3; i++)
+            th[i] = t % 7u == 6u ? rnd32() : fx_atan2(b[i].y - py, b[i].x - px) - head;
+        if (t % 11u == 3u)
+            th[2] = th[(t >> 4) & 1u];
+        if (t % 13u == 5u)
+            b[1] = b[0];
+        uint32_t qmax = t % 5u == 4u ? 20000u : OPTICAL_QUALITY_LIMIT;
+        optical_tri_t r = {{0, 0, 0}, 0};
+        int8_t st = optical_triangulate(b, th, qmax, &r);
+        cy_print("trg ");
+        cy_print_dec(t);
+        cy_print(" ");
+        cy_print_dec(st);
+        field("x", (uint32_t)r.pose.x);
+        field("y", (uint32_t)r.pose.y);
+        field("h", r.pose.heading);
+        field("q", r.quality);
+        cy_println();
+    }
+}
+
 #ifdef __MSP430__
 extern char __noinit_end[];
 
@@ -785,6 +824,7 @@ int main(void)
     fixes();
     reflectors();
     selections();
+    triangulations();
     bench();
     isr_cost();
     cy_test_end();

@@ -846,3 +846,222 @@ q_out:
     pop     r9
     pop     r10
     ret
+
+/*
+ * int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3],
+ * uint32_t quality_max, optical_tri_t *out): R12 = b, R13 = theta, R15:R14 = quality_max,
+ * out on the stack. The steps of triangulate.c: O8's ordering (d1 = theta1 - theta0,
+ * d2 = theta2 - theta0, the triplet from the one after the largest gap), the offsets from
+ * beacon 2 (u.sv.v), the sines and cosines (fx_sin, fx_cos of alpha1, alpha2 parked in the
+ * cosines' places, u.sv.sc), optical_tri_core, optical_tri_quality, the position, O10's
+ * bearing (fx_atan2 of w) and the quality limit. R4 = B2, R5 = B2's angle, R9 = out,
+ * R7:R6 = the quality; quality_max at 0(R1).
+ */
+    .set T_V,   460                 ; optical_work.u.sv.v, .sc, .ts (triangulate.c asserts)
+    .set T_SC,  476
+    .set T_TS,  492
+
+    .section .text.optical_triangulate,"ax",@progbits
+    .global optical_triangulate
+    .type optical_triangulate,@function
+optical_triangulate:
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    push    r6
+    push    r5
+    push    r4
+    push    r15
+    push    r14
+    mov     20(r1), r9              ; out
+    mov     #-1, 12(r9)             ; quality: none
+    mov     #-1, 14(r9)
+    ; d1 = theta1 - theta0 (R11:R10), d2 = theta2 - theta0 (R15:R14)
+    mov     4(r13), r10
+    mov     6(r13), r11
+    sub     @r13, r10
+    subc    2(r13), r11
+    mov     8(r13), r14
+    mov     10(r13), r15
+    sub     @r13, r14
+    subc    2(r13), r15
+    mov     r10, r8                 ; d1 = 0, d2 = 0 or d1 = d2: OPTICAL_E_DEGENERATE
+    bis     r11, r8
+    jz      .Ltr_degen
+    mov     r14, r8
+    bis     r15, r8
+    jz      .Ltr_degen
+    cmp     r10, r14
+    jne     1f
+    cmp     r11, r15
+    jeq     .Ltr_degen
+1:  mov     #8, r8                  ; p (byte offset of the beacon), q = 24 - p
+    cmp     r11, r15                ; d1 > d2: swapped, p = 2
+    jlo     2f
+    jne     3f
+    cmp     r10, r14
+    jhs     3f
+2:  mov     r10, r6
+    mov     r11, r7
+    mov     r14, r10
+    mov     r15, r11
+    mov     r6, r14
+    mov     r7, r15
+    mov     #16, r8
+3:  clr     r6                      ; g0 = -d2 (R7:R6), gq = d2 - d1 (R5:R4)
+    clr     r7
+    sub     r14, r6
+    subc    r15, r7
+    mov     r14, r4
+    mov     r15, r5
+    sub     r10, r4
+    subc    r11, r5
+    mov     #24, r14                ; q
+    sub     r8, r14
+    ; the cases: R15 = o1, R8 = o2, R14 = o3 (byte offsets), alpha1 and alpha2 parked
+    cmp     r11, r7                 ; g0 >= d1 ...
+    jlo     5f
+    jne     4f
+    cmp     r10, r6
+    jlo     5f
+4:  cmp     r5, r7                  ; ... and g0 >= gq: (0, p, q), alpha1 = d1, alpha2 = gq
+    jlo     5f
+    jne     6f
+    cmp     r4, r6
+    jlo     5f
+6:  clr     r15
+    mov     r10, &OW+T_SC+4
+    mov     r11, &OW+T_SC+6
+    mov     r4, &OW+T_SC+12
+    mov     r5, &OW+T_SC+14
+    jmp     .Ltr_order
+5:  cmp     r5, r11                 ; d1 >= gq: (p, q, 0), alpha1 = gq, alpha2 = g0
+    jlo     7f
+    jne     8f
+    cmp     r4, r10
+    jlo     7f
+8:  mov     r8, r15
+    mov     r14, r8
+    clr     r14
+    mov     r4, &OW+T_SC+4
+    mov     r5, &OW+T_SC+6
+    mov     r6, &OW+T_SC+12
+    mov     r7, &OW+T_SC+14
+    jmp     .Ltr_order
+7:  mov     r14, r15                ; else (q, 0, p), alpha1 = g0, alpha2 = d1
+    mov     r8, r14
+    clr     r8
+    mov     r6, &OW+T_SC+4
+    mov     r7, &OW+T_SC+6
+    mov     r10, &OW+T_SC+12
+    mov     r11, &OW+T_SC+14
+.Ltr_order:
+    mov     r8, r5                  ; B2's angle: theta + o2 / 2
+    rra     r5
+    add     r13, r5
+    add     r12, r15                ; B1, B2, B3
+    mov     r8, r4
+    add     r12, r4
+    add     r12, r14
+    ; v = (B1 - B2, B3 - B2)
+    mov     @r15+, r10
+    mov     @r15+, r11
+    sub     @r4, r10
+    subc    2(r4), r11
+    mov     r10, &OW+T_V
+    mov     r11, &OW+T_V+2
+    mov     @r15+, r10
+    mov     @r15, r11
+    sub     4(r4), r10
+    subc    6(r4), r11
+    mov     r10, &OW+T_V+4
+    mov     r11, &OW+T_V+6
+    mov     @r14+, r10
+    mov     @r14+, r11
+    sub     @r4, r10
+    subc    2(r4), r11
+    mov     r10, &OW+T_V+8
+    mov     r11, &OW+T_V+10
+    mov     @r14+, r10
+    mov     @r14, r11
+    sub     4(r4), r10
+    subc    6(r4), r11
+    mov     r10, &OW+T_V+12
+    mov     r11, &OW+T_V+14
+    ; (s1, c1, s2, c2)
+    mov     &OW+T_SC+4, r12
+    mov     &OW+T_SC+6, r13
+    call    #fx_sin
+    mov     r12, &OW+T_SC
+    mov     r13, &OW+T_SC+2
+    mov     &OW+T_SC+4, r12
+    mov     &OW+T_SC+6, r13
+    call    #fx_cos
+    mov     r12, &OW+T_SC+4
+    mov     r13, &OW+T_SC+6
+    mov     &OW+T_SC+12, r12
+    mov     &OW+T_SC+14, r13
+    call    #fx_sin
+    mov     r12, &OW+T_SC+8
+    mov     r13, &OW+T_SC+10
+    mov     &OW+T_SC+12, r12
+    mov     &OW+T_SC+14, r13
+    call    #fx_cos
+    mov     r12, &OW+T_SC+12
+    mov     r13, &OW+T_SC+14
+    mov     #OW+T_V, r12
+    mov     #OW+T_SC, r13
+    mov     #OW+T_TS, r14
+    call    #optical_tri_core
+    tst     r12
+    jnz     .Ltr_ret
+    mov     #OW+T_V, r12
+    mov     #OW+T_TS, r13
+    call    #optical_tri_quality
+    mov     r12, r6
+    mov     r13, r7
+    mov     r12, 12(r9)
+    mov     r13, 14(r9)
+    mov     @r4+, r12               ; the position: B2 + off
+    mov     @r4+, r13
+    add     &OW+T_TS, r12
+    addc    &OW+T_TS+2, r13
+    mov     r12, 0(r9)
+    mov     r13, 2(r9)
+    mov     @r4+, r12
+    mov     @r4, r13
+    add     &OW+T_TS+4, r12
+    addc    &OW+T_TS+6, r13
+    mov     r12, 4(r9)
+    mov     r13, 6(r9)
+    mov     &OW+T_TS+12, r12        ; O10: atan2(w1, w0) - theta(B2)
+    mov     &OW+T_TS+14, r13
+    mov     &OW+T_TS+8, r14
+    mov     &OW+T_TS+10, r15
+    call    #fx_atan2
+    sub     @r5+, r12
+    subc    @r5, r13
+    mov     r12, 8(r9)
+    mov     r13, 10(r9)
+    clr     r12                     ; quality > quality_max: OPTICAL_E_SINGULAR
+    cmp     r7, 2(r1)
+    jlo     .Ltr_sing
+    jne     .Ltr_ret
+    cmp     r6, 0(r1)
+    jhs     .Ltr_ret
+.Ltr_sing:
+    mov     #5, r12
+    jmp     .Ltr_ret
+.Ltr_degen:
+    mov     #4, r12                 ; OPTICAL_E_DEGENERATE
+.Ltr_ret:
+    add     #4, r1
+    pop     r4
+    pop     r5
+    pop     r6
+    pop     r7
+    pop     r8
+    pop     r9
+    pop     r10
+    ret
