@@ -52,6 +52,26 @@
     mov     r12, &\a+2
     .endm
 
+/* \hi:\lo <<= 8 (R4 the temporary) */
+    .macro  BYTEL lo, hi
+    swpb    \hi
+    swpb    \lo
+    mov.b   \lo, r4
+    xor     r4, \lo
+    and     #0xff00, \hi
+    bis     r4, \hi
+    .endm
+
+/* \hi:\lo -> the pair at address a (as PUT; R4 the temporary) */
+    .macro  PAIR lo, hi, a
+    mov     \lo, r4
+    rla     r4
+    mov     \hi, r4
+    adc     r4
+    mov     r4, &\a
+    mov     \lo, &\a+2
+    .endm
+
 /* R13:R12 = -R13:R12 */
     .macro  NEG
     inv     r12
@@ -265,9 +285,14 @@ optical_tri_core:
     mov     #4, r5
 1:  mov     @r4+, r12
     mov     @r4+, r13
-    call    #absv
-    bis     r14, r6
-    bis     r15, r7
+    tst     r13
+    jge     7f
+    inv     r12
+    inv     r13
+    inc     r12
+    adc     r13
+7:  bis     r12, r6
+    bis     r13, r7
     dec     r5
     jnz     1b
     mov     #1, r12                 ; OPTICAL_E_ARG
@@ -302,25 +327,48 @@ optical_tri_core:
     mov     #0x1000, r13
     call    #lead
     mov     r11, &OW+F_SIG
-    ; v 2^sigma, in place and as the pairs B
-    mov     #OW+F_B, r6
-    mov     #4, r5
-3:  mov     @r4, r12
+    ; v 2^sigma, in place and as the pairs B: the four values in registers, whole bytes
+    ; while sigma >= 8, then bits (R4 the temporary)
+    mov     @r4, r12
     mov     2(r4), r13
-    mov     &OW+F_SIG, r14
-    call    #shl
+    mov     4(r4), r14
+    mov     6(r4), r15
+    mov     8(r4), r5
+    mov     10(r4), r6
+    mov     12(r4), r7
+    mov     14(r4), r10
+3:  cmp     #8, r11
+    jlo     5f
+    BYTEL   r12, r13
+    BYTEL   r14, r15
+    BYTEL   r5, r6
+    BYTEL   r7, r10
+    sub     #8, r11
+    jmp     3b
+4:  rla     r12
+    rlc     r13
+    rla     r14
+    rlc     r15
+    rla     r5
+    rlc     r6
+    rla     r7
+    rlc     r10
+    sub     #1, r11
+5:  tst     r11
+    jnz     4b
+    mov     &OW+F_V, r4
     mov     r12, 0(r4)
     mov     r13, 2(r4)
-    add     #4, r4
-    mov     r12, r14
-    rla     r14
-    mov     r13, r14
-    adc     r14
-    mov     r14, 0(r6)
-    mov     r12, 2(r6)
-    add     #4, r6
-    dec     r5
-    jnz     3b
+    mov     r14, 4(r4)
+    mov     r15, 6(r4)
+    mov     r5, 8(r4)
+    mov     r6, 10(r4)
+    mov     r7, 12(r4)
+    mov     r10, 14(r4)
+    PAIR    r12, r13, OW+F_B
+    PAIR    r14, r15, OW+F_B+4
+    PAIR    r5, r6, OW+F_B+8
+    PAIR    r7, r10, OW+F_B+12
     ; the sines: Z = (-s2, c2, s2, s1, c1, -s1); c1, c2 also in W
     mov     @r8+, r12               ; s1
     mov     @r8+, r13
