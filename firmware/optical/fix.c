@@ -384,15 +384,17 @@ static void gather(const ctx_t *x)
 static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, optical_tri_t *tri)
 {
     optical_xy_t *b = W.u.sv.b;
+    const optical_xy_t *mb = x->map->b;
     fx_angle_t th[3];
     bool moving = false;
     for (uint8_t i = 0; i < 3; i++) {
-        uint8_t j = W.pos[t[i]];
-        b[i] = x->map->b[W.sm[j]];
-        th[i] = W.u.sv.ang[t[i]];
-        if (x->latched != NULL && W.c[j] != 0) /* (standing: W.c unset) */
-            moving = true;
+        uint8_t ti = t[i];
+        b[i] = mb[W.sm[W.pos[ti]]];
+        th[i] = W.u.sv.ang[ti];
     }
+    if (x->latched != NULL) /* (standing: W.c unset) */
+        for (uint8_t i = 0; i < 3; i++)
+            moving |= W.c[W.pos[t[i]]] != 0;
     if (!moving)
         return optical_triangulate(b, th, x->cfg->quality_max, tri);
     optical_pose_t p = *x->ap;

@@ -5,9 +5,10 @@
  * The same rule on a linked ring instead of shifted arrays: entry i (2-byte offset o = 2i)
  * keeps H[i], the high word of its gap angle[nx] - angle[i] (mod 2^32), and a link word
  * (low byte nx, high byte pv, as offsets 2j). The low word of a gap is needed only where
- * high words tie and is then computed from the angles (lo_of). Dropping entry d unlinks it,
- * marks it dead (link 0xFFFF, H 0xFFFF) and recomputes the gap of pv[d], which now reaches
- * nx[d] (the sum of the two merged gaps, mod 2^32). The minimum scan walks all entries: a
+ * high words tie and is then computed from the angles (lo_of). Dropping entry d unlinks it
+ * (a dead d keeps its links, but nx[pv[d]] no longer leads to it), marks it dead (H 0xFFFF)
+ * and recomputes the gap of pv[d], which now reaches nx[d] (the sum of the two merged gaps,
+ * mod 2^32); after the last drop only the ring forward is updated. The minimum scan walks all entries: a
  * dead one never wins (no live gap is 0xFFFFFFFF while four or more live gaps sum to 0 mod
  * 2^32, and a high-word tie with a dead entry goes to the exact path, which skips it); a
  * sentinel 0 after the last entry ends it. R7 keeps the best's low word once a tie needed it
@@ -110,8 +111,12 @@ optical_select:
 .Lsel_tie:                          ; equal high words (or the sentinel, when the best is 0)
     cmp     r6, r15
     jeq     .Lsel_found
-    cmp     #-1, 30(r15)            ; dead: never
-    jeq     3b
+    mov.b   31(r15), r11            ; dead (nx[pv] does not lead to it): never
+    add     r4, r11
+    mov.b   30(r11), r11
+    add     r4, r11
+    cmp     r11, r15
+    jne     3b
     cmp     r8, r10
     jeq     5f
     mov     r8, r11                 ; the best's low word
@@ -145,18 +150,19 @@ optical_select:
 .Lsel_drop:                         ; unlink R8: its pv takes the gap to its nx
     mov.b   30(r8), r10             ; nx (2j)
     mov.b   31(r8), r11             ; pv
-    mov     r10, r14
-    add     r4, r14
-    mov.b   r11, 31(r14)            ; pv[nx] = pv
     mov     r11, r15
     add     r4, r15
     mov.b   r10, 30(r15)            ; nx[pv] = nx
-    mov     #-1, 30(r8)
-    mov     #-1, -2(r8)
+    mov     r10, r14
+    add     r4, r14
     cmp     r8, r5
     jne     7f
     mov     r14, r5                 ; the head went: its nx is the smallest live index now
-7:  rla     r10
+7:  sub     #1, r13
+    jz      .Lsel_finish            ; (the last: only the ring forward is read)
+    mov.b   r11, 31(r14)            ; pv[nx] = pv
+    mov     #-1, -2(r8)             ; dead (its links stay: nx[pv] no longer leads to it)
+    rla     r10
     rla     r11
     add     r12, r10
     add     r12, r11
@@ -165,8 +171,7 @@ optical_select:
     mov     @r10, r9
     subc    @r11, r9
     mov     r9, -2(r15)
-    sub     #1, r13
-    jnz     .Lsel_step
+    jmp     .Lsel_step
 
 .Lsel_finish:                       ; head, its nx and that one's
     mov     r5, r15
