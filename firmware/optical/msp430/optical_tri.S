@@ -730,21 +730,22 @@ optical_tri_quality:
     bis     r11, r15
     dec     r8
     jnz     1b
-    clr     r8                      ; ls: a byte at once below 2^22, then bits
-    cmp     #0x0040, r15
+    clr     r8                      ; ls: a byte at once below 2^22, then bits (at most 8
+    cmp     #0x0040, r15            ; from 2^6 on; still below it after the byte: 16)
     jhs     3f
     mov     #8, r8
     swpb    r15
     swpb    r14
     mov.b   r14, r14
     bis     r14, r15
-3:  cmp     #0x4000, r15
-    jhs     4f
-    cmp     #16, r8
-    jhs     4f
-    rla     r15
+    cmp     #0x0040, r15
+    jhs     3f
+    mov     #16, r8
+    jmp     4f
+5:  rla     r15
     inc     r8
-    jmp     3b
+3:  cmp     #0x4000, r15
+    jlo     5b
 4:  push    r8                      ; the three l 2^ls: their high words to the frame
     mov     S_L(r9), r10
     mov     S_L+2(r9), r11
