@@ -52,23 +52,23 @@
     mov     r12, &\a+2
     .endm
 
-/* \hi:\lo <<= 8 (R4 the temporary) */
-    .macro  BYTEL lo, hi
+/* \hi:\lo <<= 8 (\t the temporary) */
+    .macro  BYTEL lo, hi, t
     swpb    \hi
     swpb    \lo
-    mov.b   \lo, r4
-    xor     r4, \lo
+    mov.b   \lo, \t
+    xor     \t, \lo
     and     #0xff00, \hi
-    bis     r4, \hi
+    bis     \t, \hi
     .endm
 
-/* \hi:\lo -> the pair at address a (as PUT; R4 the temporary) */
-    .macro  PAIR lo, hi, a
-    mov     \lo, r4
-    rla     r4
-    mov     \hi, r4
-    adc     r4
-    mov     r4, &\a
+/* \hi:\lo -> the pair at address a (as PUT; \t the temporary) */
+    .macro  PAIR lo, hi, a, t
+    mov     \lo, \t
+    rla     \t
+    mov     \hi, \t
+    adc     \t
+    mov     \t, &\a
     mov     \lo, &\a+2
     .endm
 
@@ -339,10 +339,10 @@ optical_tri_core:
     mov     14(r4), r10
 3:  cmp     #8, r11
     jlo     5f
-    BYTEL   r12, r13
-    BYTEL   r14, r15
-    BYTEL   r5, r6
-    BYTEL   r7, r10
+    BYTEL   r12, r13, r4
+    BYTEL   r14, r15, r4
+    BYTEL   r5, r6, r4
+    BYTEL   r7, r10, r4
     sub     #8, r11
     jmp     3b
 4:  rla     r12
@@ -365,10 +365,10 @@ optical_tri_core:
     mov     r6, 10(r4)
     mov     r7, 12(r4)
     mov     r10, 14(r4)
-    PAIR    r12, r13, OW+F_B
-    PAIR    r14, r15, OW+F_B+4
-    PAIR    r5, r6, OW+F_B+8
-    PAIR    r7, r10, OW+F_B+12
+    PAIR    r12, r13, OW+F_B, r4
+    PAIR    r14, r15, OW+F_B+4, r4
+    PAIR    r5, r6, OW+F_B+8, r4
+    PAIR    r7, r10, OW+F_B+12, r4
     ; the sines: Z = (-s2, c2, s2, s1, c1, -s1); c1, c2 also in W
     mov     @r8+, r12               ; s1
     mov     @r8+, r13
@@ -432,25 +432,33 @@ optical_tri_core:
     call    #dot2
     mov     r12, S_L+4(r9)
     mov     r13, S_L+6(r9)
-    ; V = (s2, s1) (ax, cx), (s2, s1) (ay, cy) into out->w (raw)
+    ; V = (s2, s1) (ax, cx), (s2, s1) (ay, cy): R7:R4 and R6:R5
     mov     #OW+F_Z+8, r5
     mov     #OW+F_W, r6
     call    #dot2
-    mov     r12, S_W(r9)
-    mov     r13, S_W+2(r9)
+    mov     r12, r4
+    mov     r13, r7
     mov     #OW+F_W+8, r6
     call    #dot2
-    mov     r12, S_W+4(r9)
-    mov     r13, S_W+6(r9)
+    mov     r12, r5
+    mov     r13, r6
     ; e: the larger |V| to [2^27, 2^28); U^ = V 2^e into out->w and the pairs U
-    call    #absv
-    mov     r14, r4
-    mov     r15, r5
-    mov     S_W(r9), r12
-    mov     S_W+2(r9), r13
-    call    #absv
-    bis     r4, r14
-    bis     r5, r15
+    mov     r4, r14
+    mov     r7, r15
+    tst     r15
+    jge     1f
+    inv     r14
+    inv     r15
+    inc     r14
+    adc     r15
+1:  tst     r13
+    jge     2f
+    inv     r12
+    inv     r13
+    inc     r12
+    adc     r13
+2:  bis     r12, r14
+    bis     r13, r15
     mov     r14, r13
     bis     r15, r13
     tst     r13
@@ -458,20 +466,25 @@ optical_tri_core:
     mov     #0x0800, r13
     call    #lead
     mov     r11, r8                 ; e
-    mov     S_W(r9), r12
-    mov     S_W+2(r9), r13
-    mov     r8, r14
-    call    #shl
-    mov     r12, S_W(r9)
-    mov     r13, S_W+2(r9)
-    PUT     OW+F_U
-    mov     S_W+4(r9), r12
-    mov     S_W+6(r9), r13
-    mov     r8, r14
-    call    #shl
-    mov     r12, S_W+4(r9)
-    mov     r13, S_W+6(r9)
-    PUT     OW+F_U+4
+3:  cmp     #8, r11
+    jlo     5f
+    BYTEL   r4, r7, r10
+    BYTEL   r5, r6, r10
+    sub     #8, r11
+    jmp     3b
+4:  rla     r4
+    rlc     r7
+    rla     r5
+    rlc     r6
+    sub     #1, r11
+5:  tst     r11
+    jnz     4b
+    mov     r4, S_W(r9)
+    mov     r7, S_W+2(r9)
+    mov     r5, S_W+4(r9)
+    mov     r6, S_W+6(r9)
+    PAIR    r4, r7, OW+F_U, r10
+    PAIR    r5, r6, OW+F_U+4, r10
     ; K' = 16 K 2^(e - 4) within [-2^28, 2^28) (else beacon 2 lies beyond 2^31 lambda)
     mov     S_L+4(r9), r12
     mov     S_L+6(r9), r13
