@@ -62,6 +62,17 @@
     bis     \t, \hi
     .endm
 
+/* \hi:\lo = floor(\hi:\lo / 2^8) (\t the temporary) */
+    .macro  BYTER lo, hi, t
+    swpb    \lo
+    mov.b   \lo, \lo
+    swpb    \hi
+    mov     \hi, \t
+    and     #0xff00, \t
+    bis     \t, \lo
+    sxt     \hi
+    .endm
+
 /* \hi:\lo -> the pair at address a (as PUT; \t the temporary) */
     .macro  PAIR lo, hi, a, t
     mov     \lo, \t
@@ -769,8 +780,28 @@ optical_tri_quality:
     push    r9
     mov     r8, r9
     cmp     #8, r9
+    jhs     8f
+    cmp     #4, r9
     jlo     5f
-    swpb    r11                     ; (hi lo) 2^8
+    ; 4 <= ls < 8: the same high words as the low words of l / 2^(16 - ls), a byte and at
+    ; most 4 bits to the right
+    BYTER   r10, r11, r8
+    BYTER   r12, r13, r8
+    BYTER   r14, r15, r8
+    sub     #8, r9
+9:  rra     r11
+    rrc     r10
+    rra     r13
+    rrc     r12
+    rra     r15
+    rrc     r14
+    inc     r9
+    jnz     9b
+    mov     r10, r11
+    mov     r12, r13
+    mov     r14, r15
+    jmp     7f
+8:  swpb    r11                     ; (hi lo) 2^8
     swpb    r10
     and     #0xff00, r11
     mov.b   r10, r8
