@@ -945,8 +945,8 @@ q_out:
  * uint32_t quality_max, optical_tri_t *out): R12 = b, R13 = theta, R15:R14 = quality_max,
  * out on the stack. The steps of triangulate.c: O8's ordering (d1 = theta1 - theta0,
  * d2 = theta2 - theta0, the triplet from the one after the largest gap), the offsets from
- * beacon 2 (u.sv.v), the sines and cosines (fx_sin, fx_cos of alpha1, alpha2 parked in the
- * cosines' places, u.sv.sc), optical_tri_core, optical_tri_quality, the position, O10's
+ * beacon 2 (u.sv.v), the sines and cosines (fx_sin, fx_cos of alpha1, alpha2; u.sv.sc),
+ * optical_tri_core, optical_tri_quality, the position, O10's
  * bearing (fx_atan2 of w) and the quality limit. R4 = B2, R5 = B2's angle, R9 = out,
  * R7:R6 = the quality; quality_max at 0(R1).
  */
@@ -1012,7 +1012,8 @@ optical_triangulate:
     subc    r11, r5
     mov     #24, r14                ; q
     sub     r8, r14
-    ; the cases: R15 = o1, R8 = o2, R14 = o3 (byte offsets), alpha1 and alpha2 parked
+    ; the cases: R15 = o1, R11 = o2, R14 = o3 (byte offsets), alpha1 in R7:R6, alpha2 in
+    ; R8:R10 (fx_sin keeps them)
     cmp     r11, r7                 ; g0 >= d1 ...
     jlo     5f
     jne     4f
@@ -1023,11 +1024,12 @@ optical_triangulate:
     jne     6f
     cmp     r4, r6
     jlo     5f
-6:  clr     r15
-    mov     r10, &OW+T_SC+4
-    mov     r11, &OW+T_SC+6
-    mov     r4, &OW+T_SC+12
-    mov     r5, &OW+T_SC+14
+6:  mov     r10, r6
+    mov     r11, r7
+    mov     r4, r10
+    mov     r8, r11
+    mov     r5, r8
+    clr     r15
     jmp     .Ltr_order
 5:  cmp     r5, r11                 ; d1 >= gq: (p, q, 0), alpha1 = gq, alpha2 = g0
     jlo     7f
@@ -1035,71 +1037,68 @@ optical_triangulate:
     cmp     r4, r10
     jlo     7f
 8:  mov     r8, r15
-    mov     r14, r8
+    mov     r14, r11
     clr     r14
-    mov     r4, &OW+T_SC+4
-    mov     r5, &OW+T_SC+6
-    mov     r6, &OW+T_SC+12
-    mov     r7, &OW+T_SC+14
+    mov     r6, r10
+    mov     r7, r8
+    mov     r4, r6
+    mov     r5, r7
     jmp     .Ltr_order
 7:  mov     r14, r15                ; else (q, 0, p), alpha1 = g0, alpha2 = d1
     mov     r8, r14
-    clr     r8
-    mov     r6, &OW+T_SC+4
-    mov     r7, &OW+T_SC+6
-    mov     r10, &OW+T_SC+12
-    mov     r11, &OW+T_SC+14
+    mov     r11, r8
+    clr     r11
 .Ltr_order:
-    mov     r8, r5                  ; B2's angle: theta + o2 / 2
+    mov     r11, r5                 ; B2's angle: theta + o2 / 2
     rra     r5
     add     r13, r5
     add     r12, r15                ; B1, B2, B3
-    mov     r8, r4
+    mov     r11, r4
     add     r12, r4
     add     r12, r14
     ; v = (B1 - B2, B3 - B2)
-    mov     @r15+, r10
-    mov     @r15+, r11
-    sub     @r4, r10
-    subc    2(r4), r11
-    mov     r10, &OW+T_V
-    mov     r11, &OW+T_V+2
-    mov     @r15+, r10
-    mov     @r15, r11
-    sub     4(r4), r10
-    subc    6(r4), r11
-    mov     r10, &OW+T_V+4
-    mov     r11, &OW+T_V+6
-    mov     @r14+, r10
-    mov     @r14+, r11
-    sub     @r4, r10
-    subc    2(r4), r11
-    mov     r10, &OW+T_V+8
-    mov     r11, &OW+T_V+10
-    mov     @r14+, r10
-    mov     @r14, r11
-    sub     4(r4), r10
-    subc    6(r4), r11
-    mov     r10, &OW+T_V+12
-    mov     r11, &OW+T_V+14
+    mov     @r15+, r12
+    mov     @r15+, r13
+    sub     @r4, r12
+    subc    2(r4), r13
+    mov     r12, &OW+T_V
+    mov     r13, &OW+T_V+2
+    mov     @r15+, r12
+    mov     @r15, r13
+    sub     4(r4), r12
+    subc    6(r4), r13
+    mov     r12, &OW+T_V+4
+    mov     r13, &OW+T_V+6
+    mov     @r14+, r12
+    mov     @r14+, r13
+    sub     @r4, r12
+    subc    2(r4), r13
+    mov     r12, &OW+T_V+8
+    mov     r13, &OW+T_V+10
+    mov     @r14+, r12
+    mov     @r14, r13
+    sub     4(r4), r12
+    subc    6(r4), r13
+    mov     r12, &OW+T_V+12
+    mov     r13, &OW+T_V+14
     ; (s1, c1, s2, c2)
-    mov     &OW+T_SC+4, r12
-    mov     &OW+T_SC+6, r13
+    mov     r6, r12
+    mov     r7, r13
     call    #fx_sin
     mov     r12, &OW+T_SC
     mov     r13, &OW+T_SC+2
-    mov     &OW+T_SC+4, r12
-    mov     &OW+T_SC+6, r13
+    mov     r6, r12
+    mov     r7, r13
     call    #fx_cos
     mov     r12, &OW+T_SC+4
     mov     r13, &OW+T_SC+6
-    mov     &OW+T_SC+12, r12
-    mov     &OW+T_SC+14, r13
+    mov     r10, r12
+    mov     r8, r13
     call    #fx_sin
     mov     r12, &OW+T_SC+8
     mov     r13, &OW+T_SC+10
-    mov     &OW+T_SC+12, r12
-    mov     &OW+T_SC+14, r13
+    mov     r10, r12
+    mov     r8, r13
     call    #fx_cos
     mov     r12, &OW+T_SC+12
     mov     r13, &OW+T_SC+14
