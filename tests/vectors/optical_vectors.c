@@ -600,8 +600,8 @@ static void selections(void)
 
 /*
  * optical_triangulate (triangulate.c; msp430/optical_tri.S on the target): random beacons and
- * vehicles (every O8 ordering and both sides of the circle), random angles (mostly refused),
- * coincident sightings and beacons, a tight quality limit.
+ * vehicles (every O8 ordering and both sides of the circle, some 3 to 39 times farther out),
+ * random angles (mostly refused), coincident sightings and beacons, a tight quality limit.
  */
 static void triangulations(void)
 {
@@ -615,6 +615,10 @@ static void triangulations(void)
         }
         fx_angle_t th[3];
         int32_t px = rnd_in(lim), py = rnd_in(lim);
+        if (t % 4u == 1u) { /* far away: near the circles' range limit */
+            px *= (int32_t)(3u + t % 37u);
+            py *= (int32_t)(3u + t % 37u);
+        }
         fx_angle_t head = rnd32();
         for (uint8_t i = 0; i < 3; i++)
             th[i] = t % 7u == 6u ? rnd32() : fx_atan2(b[i].y - py, b[i].x - px) - head;

@@ -26,7 +26,7 @@
     .set F_Z,   FR+0            ; pairs -s2, c2, s2, s1, c1, -s1
     .set F_B,   FR+24           ; b1x, b1y, b3x, b3y (scaled)
     .set F_W,   FR+40           ; ax, cx, ay, cy, c1, c2
-    .set F_K,   FR+64           ; 4 ax, 4 cx, 4 cy, -4 ay
+    .set F_K,   FR+64           ; 4 ax, 4 cx, 4 cy, -4 ay; later the offsets' bound
     .set F_U,   FR+80           ; u0, u1 (U^), k (K')
     .set F_KN,  FR+92           ; K''
     .set F_R,   FR+96           ; R'
@@ -593,6 +593,19 @@ optical_tri_core:
     NEG
 8:  sub     r11, &OW+F_SH
     PUT     OW+F_T
+    ; the offsets' range (offset): d = d' 2^sh within [-2^31, 2^31) when the high word of d'
+    ; (inverted when negative) lies below 2^(15 - sh) (sh <= 12); none for sh <= 0: 0xFFFF
+    mov     #-1, r12
+    mov     &OW+F_SH, r11
+    tst     r11
+    jl      2f
+    jz      2f
+    mov     #0x4000, r12
+    jmp     3f
+1:  rra     r12
+3:  sub     #1, r11
+    jnz     1b
+2:  mov     r12, &OW+F_K            ; (the products K are done with)
     ; d = T' U^ / 2^32 2^(12 - f - g - t): beacon 2 from the vehicle; the vehicle at -d
     mov     #OW+F_T, r5
     mov     #OW+F_U, r6
@@ -664,25 +677,18 @@ l4:
 
 /*
  * One component: d' = dot1(@R5, @R6) = d / 2^sh (sh in F_SH; carry set when d = d' 2^sh
- * lies beyond [-2^31, 2^31)), then the vehicle relative to beacon 2, -d / 2^sigma rounded
+ * lies beyond [-2^31, 2^31), by the bound the core left in F_K), then the vehicle relative to beacon 2, -d / 2^sigma rounded
  * half up, to @R4 (one shift by sigma - sh).
  */
 offset:
     call    #dot1
-    mov     &OW+F_SH, r11
-    tst     r11
-    jl      3f
-    jz      3f
-    mov     r13, r14                ; sh > 0: the top sh + 1 bits of d' agree, i.e.
-    tst     r14                     ; t (the high word, inverted when negative) stays below
-    jge     1f                      ; 2^(15 - sh): no bit leaves in sh + 1 doublings
+    mov     r13, r14                ; the high word of d', inverted when negative, below
+    tst     r14                     ; the bound in F_K (carry set when not)
+    jge     1f
     inv     r14
-1:  inc     r11
-2:  rla     r14
-    jc      4f
-    dec     r11
-    jnz     2b
-3:  NEG
+1:  cmp     &OW+F_K, r14
+    jhs     4f
+    NEG
     mov     &OW+F_SIG, r14
     sub     &OW+F_SH, r14
     jl      5f
