@@ -194,9 +194,10 @@ lead:
     jmp     1b
 2:  cmp     r13, r15
     jhs     3f
+    mov     #1, r12                 ; (INC costs a constant's fetch; a register does not)
 4:  rla     r14
     rlc     r15
-    inc     r11
+    add     r12, r11
     cmp     r13, r15
     jlo     4b
 3:  ret
@@ -236,9 +237,10 @@ asr:
     jmp     1b
 2:  tst     r14
     jz      3f
+    mov     #1, r15
 4:  rra     r13
     rrc     r12
-    dec     r14
+    sub     r15, r14
     jnz     4b
 3:  ret
 
