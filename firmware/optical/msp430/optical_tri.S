@@ -634,11 +634,22 @@ optical_tri_core:
 9:  sub     &OW+F_SIG, r8           ; x = e - g - sigma
     mov.b   r8, S_X(r9)
     ; l = (4 l1, K', 4 l3)
-    mov     r9, r4
-    add     #S_L, r4
-    call    #l4
-    add     #8, r4
-    call    #l4
+    mov     S_L(r9), r12
+    mov     S_L+2(r9), r13
+    rla     r12
+    rlc     r13
+    rla     r12
+    rlc     r13
+    mov     r12, S_L(r9)
+    mov     r13, S_L+2(r9)
+    mov     S_L+8(r9), r12
+    mov     S_L+10(r9), r13
+    rla     r12
+    rlc     r13
+    rla     r12
+    rlc     r13
+    mov     r12, S_L+8(r9)
+    mov     r13, S_L+10(r9)
     clr     r12                     ; OPTICAL_OK
     jmp     tri_ret
 inconsistent:
@@ -667,14 +678,6 @@ lsign:
     and     #0x8000, r14
     ret
 1:  inc     r14                     ; zero: Z clear
-    ret
-
-/* @R4 (32 bits) *= 4 */
-l4:
-    rla     0(r4)
-    rlc     2(r4)
-    rla     0(r4)
-    rlc     2(r4)
     ret
 
 /*
