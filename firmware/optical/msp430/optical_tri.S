@@ -83,6 +83,17 @@
     mov     \lo, &\a+2
     .endm
 
+/* To inconsistent unless R13:R12 is nonzero with the sign of K' (R7). Clobbers R14. */
+    .macro  LSIGN
+    mov     r12, r14
+    bis     r13, r14
+    tst     r14
+    jz      inconsistent
+    mov     r13, r14
+    xor     r7, r14
+    jn      inconsistent
+    .endm
+
 /* R13:R12 = -R13:R12 */
     .macro  NEG
     inv     r12
@@ -520,14 +531,12 @@ optical_tri_core:
     mov     #OW+F_W, r5
     mov     #OW+F_U, r6
     call    #dot3s
-    call    #lsign
-    jnz     inconsistent
+    LSIGN
     mov     r12, S_L(r9)
     mov     r13, S_L+2(r9)
     mov     #OW+F_W+4, r5
     call    #dot3s
-    call    #lsign
-    jnz     inconsistent
+    LSIGN
     mov     r12, S_L+8(r9)
     mov     r13, S_L+10(r9)
     ; Q = |U^|^2 / 2^32 in [2^22, 2^25); R = floor(2^52 / Q): 31 quotient bits
@@ -665,19 +674,6 @@ tri_ret:
     pop     r8
     pop     r9
     pop     r10
-    ret
-
-/* Z set when R13:R12 is nonzero with the sign of K' (R7). Clobbers R14. */
-lsign:
-    mov     r12, r14
-    bis     r13, r14
-    tst     r14
-    jz      1f
-    mov     r13, r14
-    xor     r7, r14
-    and     #0x8000, r14
-    ret
-1:  inc     r14                     ; zero: Z clear
     ret
 
 /*
