@@ -299,6 +299,18 @@ optical_tri_core:
     push    r6
     push    r5
     push    r4
+    call    #tri_core_body
+    pop     r4
+    pop     r5
+    pop     r6
+    pop     r7
+    pop     r8
+    pop     r9
+    pop     r10
+    ret
+
+/* The body: R4..R10 not kept (optical_triangulate calls it directly). */
+tri_core_body:
     mov     r14, r9
     mov     r12, &OW+F_V
     mov     r13, r8
@@ -667,13 +679,6 @@ inconsistent:
 singular:
     mov     #5, r12                 ; OPTICAL_E_SINGULAR
 tri_ret:
-    pop     r4
-    pop     r5
-    pop     r6
-    pop     r7
-    pop     r8
-    pop     r9
-    pop     r10
     ret
 
 /*
@@ -724,6 +729,18 @@ optical_tri_quality:
     push    r6
     push    r5
     push    r4
+    call    #tri_quality_body
+    pop     r4
+    pop     r5
+    pop     r6
+    pop     r7
+    pop     r8
+    pop     r9
+    pop     r10
+    ret
+
+/* The body: R4..R10 not kept (optical_triangulate calls it directly). */
+tri_quality_body:
     mov     r13, r9
     ; the chords b1, b3 / 2^15 (floor; the high word after one left shift)
     mov     @r12+, r14
@@ -938,13 +955,6 @@ sat:
     mov     #-1, r12
     mov     #-1, r13
 q_out:
-    pop     r4
-    pop     r5
-    pop     r6
-    pop     r7
-    pop     r8
-    pop     r9
-    pop     r10
     ret
 
 /*
@@ -1112,12 +1122,18 @@ optical_triangulate:
     mov     #OW+T_V, r12
     mov     #OW+T_SC, r13
     mov     #OW+T_TS, r14
-    call    #optical_tri_core
+    push    r9                      ; (the kernels' bodies keep no register)
+    push    r5
+    push    r4
+    call    #tri_core_body
     tst     r12
-    jnz     .Ltr_ret
+    jnz     .Ltr_pop
     mov     #OW+T_V, r12
     mov     #OW+T_TS, r13
-    call    #optical_tri_quality
+    call    #tri_quality_body
+    pop     r4
+    pop     r5
+    pop     r9
     mov     r12, r6
     mov     r13, r7
     mov     r12, 12(r9)
@@ -1151,6 +1167,9 @@ optical_triangulate:
     jhs     .Ltr_ret
 .Ltr_sing:
     mov     #5, r12
+    jmp     .Ltr_ret
+.Ltr_pop:
+    add     #6, r1
     jmp     .Ltr_ret
 .Ltr_degen:
     mov     #4, r12                 ; OPTICAL_E_DEGENERATE
