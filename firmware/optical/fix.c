@@ -383,15 +383,16 @@ static void gather(const ctx_t *x)
  * with the angles as gathered. */
 static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, optical_tri_t *tri)
 {
-    optical_xy_t *b = W.u.sv.b;
+    optical_xy_t *b = W.u.sv.b, *bp = b;
     const optical_xy_t *mb = x->map->b;
-    fx_angle_t th[3];
+    fx_angle_t th[3], *hp = th;
+    const uint8_t *tp = t;
     bool moving = false;
-    for (uint8_t i = 0; i < 3; i++) {
-        uint8_t ti = t[i];
-        b[i] = mb[W.sm[W.pos[ti]]];
-        th[i] = W.u.sv.ang[ti];
-    }
+    do {
+        uint8_t ti = *tp++;
+        *bp++ = mb[W.sm[W.pos[ti]]];
+        *hp++ = W.u.sv.ang[ti];
+    } while (bp != b + 3);
     if (x->latched != NULL) /* (standing: W.c unset) */
         for (uint8_t i = 0; i < 3; i++)
             moving |= W.c[W.pos[t[i]]] != 0;
