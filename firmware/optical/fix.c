@@ -401,12 +401,13 @@ static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, 
     optical_pose_t p = *x->ap;
     int8_t st = OPTICAL_OK;
     for (uint8_t pass = 0; pass < passes; pass++) {
-        fx_angle_t tc[3];
         for (uint8_t i = 0; i < 3; i++) {
             uint8_t j = W.pos[t[i]];
-            tc[i] = W.c[j] ? corrected(th[i], j, fx_hypot(b[i].x - p.x, b[i].y - p.y)) : th[i];
+            th[i] = W.u.sv.ang[t[i]];
+            if (W.c[j])
+                th[i] = corrected(th[i], j, fx_hypot(b[i].x - p.x, b[i].y - p.y));
         }
-        st = optical_triangulate(b, tc, x->cfg->quality_max, tri);
+        st = optical_triangulate(b, th, x->cfg->quality_max, tri);
         if (st != OPTICAL_OK)
             return st;
         if (pass + 1u >= passes) /* (the last: no need to know how far it moved) */
