@@ -172,18 +172,6 @@ dot_end:
     pop     r2
     ret
 
-/* R15:R14 = |R13:R12| */
-absv:
-    mov     r12, r14
-    mov     r13, r15
-    tst     r15
-    jge     1f
-    inv     r14
-    inv     r15
-    inc     r14
-    adc     r15
-1:  ret
-
 /*
  * R15:R14 (nonzero, below 2^31), R13 = 2^k (a power of two) -> R11 = the left shifts that
  * bring it to 2^(16 + k) or more (lead() in fastmath.c), R15:R14 shifted. Whole bytes while
@@ -587,10 +575,15 @@ tri_core_body:
     mov     r15, r13
     PUT     OW+F_R
     ; K'' = K' 2^f, |K''| in [2^29, 2^30)
-    mov     S_L+4(r9), r12
-    mov     S_L+6(r9), r13
-    call    #absv
-    mov     #0x2000, r13
+    mov     S_L+4(r9), r14
+    mov     S_L+6(r9), r15
+    tst     r15
+    jge     7f
+    inv     r14
+    inv     r15
+    inc     r14
+    adc     r15
+7:  mov     #0x2000, r13
     call    #lead
     sub     r11, r5
     mov     r14, r12
@@ -604,14 +597,20 @@ tri_core_body:
     mov     #OW+F_KN, r5
     mov     #OW+F_R, r6
     call    #dot1
-    push    r13
-    call    #absv
-    mov     #0x2000, r13
+    mov     r13, r6                 ; (its sign)
+    mov     r12, r14
+    mov     r13, r15
+    tst     r15
+    jge     8f
+    inv     r14
+    inv     r15
+    inc     r14
+    adc     r15
+8:  mov     #0x2000, r13
     call    #lead
     mov     r14, r12
     mov     r15, r13
-    pop     r14
-    tst     r14
+    tst     r6
     jge     8f
     NEG
 8:  sub     r11, &OW+F_SH
