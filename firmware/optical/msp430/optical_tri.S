@@ -546,20 +546,26 @@ tri_core_body:
     clr     r14
     mov     #2, r10                 ; the quotient, with a marker bit that leaves after 31
     clr     r11
-4:  rla     r14
-    rlc     r15
+4:  rla     r14                     ; non-restoring (the same bits): remainder >= 0,
+    rlc     r15                     ; doubled minus Q
     sub     r12, r14
     subc    r13, r15
-    jc      5f
-    add     r12, r14                ; borrow: restore, a 0
-    addc    r13, r15
-    rla     r10
-    rlc     r11
-    jnc     4b
-    jmp     6f
+    jnc     7f
 5:  rlc     r10                     ; a 1
     rlc     r11
     jnc     4b
+    jmp     6f
+7:  rla     r10                     ; a 0, the remainder negative
+    rlc     r11
+    jc      6f
+8:  rla     r14                     ; remainder < 0: doubled plus Q
+    rlc     r15
+    add     r12, r14
+    addc    r13, r15
+    jc      5b                      ; (carry: no longer negative)
+    rla     r10                     ; a 0
+    rlc     r11
+    jnc     8b
 6:
     ; R' = R 2^g in [2^29, 2^30]
     mov     r10, r14
