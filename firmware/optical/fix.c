@@ -383,21 +383,16 @@ static void gather(const ctx_t *x)
  * with the angles as gathered. */
 static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, optical_tri_t *tri)
 {
-    optical_xy_t *b = W.u.sv.b, *bp = b;
-    const optical_xy_t *mb = x->map->b;
-    fx_angle_t th[3], *hp = th;
-    const uint8_t *tp = t;
     bool moving = false;
-    do {
-        uint8_t ti = *tp++;
-        *bp++ = mb[W.sm[W.pos[ti]]];
-        *hp++ = W.u.sv.ang[ti];
-    } while (bp != b + 3);
     if (x->latched != NULL) /* (standing: W.c unset) */
         for (uint8_t i = 0; i < 3; i++)
             moving |= W.c[W.pos[t[i]]] != 0;
     if (!moving)
-        return optical_triangulate(b, th, x->cfg->quality_max, tri);
+        return optical_tri_take(x->map->b, t, x->cfg->quality_max, tri);
+    optical_xy_t *b = W.u.sv.b;
+    fx_angle_t th[3];
+    for (uint8_t i = 0; i < 3; i++)
+        b[i] = x->map->b[W.sm[W.pos[t[i]]]];
     optical_pose_t p = *x->ap;
     int8_t st = OPTICAL_OK;
     for (uint8_t pass = 0; pass < passes; pass++) {

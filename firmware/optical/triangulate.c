@@ -35,6 +35,9 @@ _Static_assert(offsetof(optical_work_t, u.sv.v) == 460 &&
                    offsetof(optical_work_t, u.sv.ts) == 492 &&
                    offsetof(optical_tri_t, quality) == 12,
                "optical_work_t layout (optical_tri.S)");
+_Static_assert(offsetof(optical_work_t, sm) == 174 && offsetof(optical_work_t, pos) == 235 &&
+                   offsetof(optical_work_t, u.sv.ang) == 250 && sizeof(optical_xy_t) == 8,
+               "optical_work_t layout (optical_tri.S: optical_tri_take)");
 #endif
 
 #ifndef OPTICAL_ASM
@@ -99,5 +102,16 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
      * sighting angle. */
     out->pose.heading = fx_atan2(T.ts.w[1], T.ts.w[0]) - theta[B2 - b];
     return out->quality > quality_max ? OPTICAL_E_SINGULAR : OPTICAL_OK;
+}
+
+int8_t optical_tri_take(const optical_xy_t *map, const uint8_t t[3], uint32_t quality_max,
+                        optical_tri_t *out)
+{
+    fx_angle_t th[3];
+    for (uint8_t i = 0; i < 3; i++) {
+        T.b[i] = map[optical_work.sm[optical_work.pos[t[i]]]];
+        th[i] = T.ang[t[i]];
+    }
+    return optical_triangulate(T.b, th, quality_max, out);
 }
 #endif

@@ -975,6 +975,11 @@ q_out:
     .set T_V,   460                 ; optical_work.u.sv.v, .sc, .ts (triangulate.c asserts)
     .set T_SC,  476
     .set T_TS,  492
+    .set T_PB,  FR                  ; (in the kernels' frame until they run) the beacons'
+    .set T_PT,  FR+6                ; pointers in the given order, the angles' pointers
+    .set W_SM,  174                 ; optical_work.sm, .pos, .u.sv.ang
+    .set W_POS, 235
+    .set U_ANG, 250
 
     .section .text.optical_triangulate,"ax",@progbits
     .global optical_triangulate
@@ -989,18 +994,34 @@ optical_triangulate:
     push    r4
     push    r15
     push    r14
+    mov     r12, &OW+T_PB           ; the beacons' and the angles' pointers
+    add     #8, r12
+    mov     r12, &OW+T_PB+2
+    add     #8, r12
+    mov     r12, &OW+T_PB+4
+    mov     r13, &OW+T_PT
+    add     #4, r13
+    mov     r13, &OW+T_PT+2
+    add     #4, r13
+    mov     r13, &OW+T_PT+4
+.Ltr_body:
     mov     20(r1), r9              ; out
     mov     #-1, 12(r9)             ; quality: none
     mov     #-1, 14(r9)
     ; d1 = theta1 - theta0 (R11:R10), d2 = theta2 - theta0 (R15:R14)
-    mov     4(r13), r10
-    mov     6(r13), r11
-    sub     @r13, r10
-    subc    2(r13), r11
-    mov     8(r13), r14
-    mov     10(r13), r15
-    sub     @r13, r14
-    subc    2(r13), r15
+    mov     &OW+T_PT, r15
+    mov     @r15+, r6
+    mov     @r15, r7
+    mov     &OW+T_PT+2, r15
+    mov     @r15+, r10
+    mov     @r15, r11
+    sub     r6, r10
+    subc    r7, r11
+    mov     &OW+T_PT+4, r15
+    mov     @r15+, r14
+    mov     @r15, r15
+    sub     r6, r14
+    subc    r7, r15
     mov     r10, r8                 ; d1 = 0, d2 = 0 or d1 = d2: OPTICAL_E_DEGENERATE
     bis     r11, r8
     jz      .Ltr_degen
@@ -1011,7 +1032,7 @@ optical_triangulate:
     jne     1f
     cmp     r11, r15
     jeq     .Ltr_degen
-1:  mov     #8, r8                  ; p (byte offset of the beacon), q = 24 - p
+1:  mov     #2, r8                  ; p (offset of its pointer), q = 6 - p
     cmp     r11, r15                ; d1 > d2: swapped, p = 2
     jlo     2f
     jne     3f
@@ -1023,7 +1044,7 @@ optical_triangulate:
     mov     r15, r11
     mov     r6, r14
     mov     r7, r15
-    mov     #16, r8
+    mov     #4, r8
 3:  clr     r6                      ; g0 = -d2 (R7:R6), gq = d2 - d1 (R5:R4)
     clr     r7
     sub     r14, r6
@@ -1032,9 +1053,9 @@ optical_triangulate:
     mov     r15, r5
     sub     r10, r4
     subc    r11, r5
-    mov     #24, r14                ; q
+    mov     #6, r14                 ; q
     sub     r8, r14
-    ; the cases: R15 = o1, R11 = o2, R14 = o3 (byte offsets), alpha1 in R7:R6, alpha2 in
+    ; the cases: R15 = o1, R11 = o2, R14 = o3 (pointer offsets), alpha1 in R7:R6, alpha2 in
     ; R8:R10 (fx_sin keeps them)
     cmp     r11, r7                 ; g0 >= d1 ...
     jlo     5f
@@ -1071,13 +1092,10 @@ optical_triangulate:
     mov     r11, r8
     clr     r11
 .Ltr_order:
-    mov     r11, r5                 ; B2's angle: theta + o2 / 2
-    rra     r5
-    add     r13, r5
-    add     r12, r15                ; B1, B2, B3
-    mov     r11, r4
-    add     r12, r4
-    add     r12, r14
+    mov     OW+T_PT(r11), r5        ; B2's angle
+    mov     OW+T_PB(r15), r15       ; B1, B2, B3
+    mov     OW+T_PB(r11), r4
+    mov     OW+T_PB(r14), r14
     ; v = (B1 - B2, B3 - B2)
     mov     @r15+, r12
     mov     @r15+, r13
@@ -1188,3 +1206,40 @@ optical_triangulate:
     pop     r9
     pop     r10
     ret
+
+/*
+ * int8_t optical_tri_take(const optical_xy_t *map, const uint8_t t[3], uint32_t quality_max,
+ * optical_tri_t *out): R12 = map, R13 = t, R15:R14 = quality_max, out on the stack.
+ * optical_triangulate's body on pointers to the identified triplet's beacons
+ * (map[sm[pos[t[i]]]]) and angles (u.sv.ang[t[i]]), nothing copied.
+ */
+    .global optical_tri_take
+    .type optical_tri_take,@function
+optical_tri_take:
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    push    r6
+    push    r5
+    push    r4
+    push    r15
+    push    r14
+    mov     #OW+T_PB, r15
+1:  mov.b   @r13+, r11              ; t[i]
+    mov     r11, r10
+    rla     r10
+    rla     r10
+    add     #OW+U_ANG, r10
+    mov     r10, 6(r15)
+    mov.b   OW+W_POS(r11), r11
+    mov.b   OW+W_SM(r11), r11
+    rla     r11
+    rla     r11
+    rla     r11
+    add     r12, r11
+    mov     r11, 0(r15)
+    add     #2, r15
+    cmp     #OW+T_PT, r15
+    jne     1b
+    jmp     .Ltr_body

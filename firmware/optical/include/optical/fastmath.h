@@ -181,6 +181,14 @@ int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out);
  */
 uint32_t optical_tri_quality(const int32_t v[4], const optical_tsol_t *s);
 
+/**
+ * optical_triangulate() of the identified triplet at positions @p t[3] of fix.c's identified
+ * set: the beacons map[sm[pos[t[i]]]] and the angles u.sv.ang[t[i]] of the work area (the C
+ * copies them into u.sv.b; the MSP430 reads them in place).
+ */
+int8_t optical_tri_take(const optical_xy_t *map, const uint8_t t[3], uint32_t quality_max,
+                        optical_tri_t *out);
+
 /** Arguments of optical_width_ok(). */
 typedef struct {
     uint32_t dk;    /**< D 2^8 2^16 / (2 pi), D the post diameter in m */
