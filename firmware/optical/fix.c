@@ -365,17 +365,21 @@ static int8_t finish(optical_fix_t *out, int8_t status)
 static void gather(const ctx_t *x)
 {
     fx_angle_t *ang = W.u.sv.ang;
-    uint8_t m = 0;
+    uint8_t *pos = W.pos;
+    const optical_pose_t *lat = x->latched;
     for (uint8_t j = 0; j < W.n; j++) {
         if (W.sm[j] >= DROPPED)
             continue;
-        fx_angle_t d = SIGHTING(x, j)->angle;
-        if (x->latched != NULL)
-            d += x->latched[W.ord[j]].heading - x->ap->heading;
+        uint8_t i = W.ord[j];
+        fx_angle_t d =
+            ((const optical_sighting_t *)(const void *)((const uint8_t *)x->s + sight_off[i]))
+                ->angle;
+        if (lat != NULL)
+            d += lat[i].heading - x->ap->heading;
         *ang++ = d;
-        W.pos[m++] = j;
+        *pos++ = j;
     }
-    W.m = m;
+    W.m = (uint8_t)(pos - W.pos);
 }
 
 /* Triangulate the triplet at positions t[] of the identified set; when moving, refine the
@@ -461,11 +465,27 @@ static bool prepare(ctx_t *x)
     const optical_sighting_t *si = x->s; /* (pointers: no index multiplies on the MSP430) */
     uint16_t lever8 = 0;
     uint8_t n = W.n;
-    for (uint8_t i = 0; i < n; i++, si++) {
-        fx_angle_t d = si->angle;
-        int32_t c = 0;
-        uint16_t l = 0;
-        if (lat != NULL) {
+    if (lat == NULL) {
+        /* Standing: insertion by angle (the input is sorted: at most the last one, wrapped
+         * to 0 by the rounding, moves). */
+        for (uint8_t i = 0; i < n; i++, si++) {
+            uint16_t t = a16(si->angle);
+            uint8_t j = i;
+            while (j > 0 && W.th[j - 1] > t) {
+                W.th[j] = W.th[j - 1];
+                W.ord[j] = W.ord[j - 1];
+                W.we[j] = W.we[j - 1];
+                j--;
+            }
+            W.th[j] = t;
+            W.ord[j] = i;
+            W.we[j] = si->width; /* until the first scan: the width, for threshold() */
+        }
+    } else {
+        for (uint8_t i = 0; i < n; i++, si++, lat++) {
+            fx_angle_t d = si->angle;
+            int32_t c = 0;
+            uint16_t l = 0;
             if (!coords_ok(lat->x, lat->y))
                 return false;
             int32_t ex = lat->x - ap->x, ey = lat->y - ap->y;
@@ -482,20 +502,8 @@ static bool prepare(ctx_t *x)
                 }
             }
             d += lat->heading - ap->heading;
-            lat++;
-        }
-        uint16_t t = (uint16_t)((d + 0x8000ul) >> 16); /* a16(d), without the call */
-        /* Insertion by angle (standing, the input is sorted: at most the last one, wrapped to
-         * 0 by the rounding, moves). */
-        uint8_t j = i;
-        if (lat == NULL) {
-            while (j > 0 && W.th[j - 1] > t) {
-                W.th[j] = W.th[j - 1];
-                W.ord[j] = W.ord[j - 1];
-                W.we[j] = W.we[j - 1];
-                j--;
-            }
-        } else {
+            uint16_t t = a16(d);
+            uint8_t j = i;
             while (j > 0 && W.th[j - 1] > t) {
                 W.th[j] = W.th[j - 1];
                 W.c[j] = W.c[j - 1];
@@ -506,10 +514,10 @@ static bool prepare(ctx_t *x)
             }
             W.c[j] = c;
             W.lev[j] = l;
+            W.th[j] = t;
+            W.ord[j] = i;
+            W.we[j] = si->width;
         }
-        W.th[j] = t;
-        W.ord[j] = i;
-        W.we[j] = si->width; /* until the first scan: the width, for threshold() */
     }
     W.lever8 = lever8;
     W.amax8 = sat16((uint32_t)W.eps8 + lever8);
@@ -577,12 +585,19 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *approx, const optical_sighting_t *s, uint8_t n,
                    const optical_pose_t *latched, optical_fix_t *out)
 {
-    for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++)
-        out->ident[i] = -1;
+    /* (by pointer, three a step; the pose field by field: no loop counters, no memcpy) */
+    _Static_assert(OPTICAL_MAX_SIGHTINGS % 3 == 0, "ident: three a step");
+    for (int8_t *id = out->ident; id != out->ident + OPTICAL_MAX_SIGHTINGS; id += 3) {
+        id[0] = -1;
+        id[1] = -1;
+        id[2] = -1;
+    }
     out->n_ident = 0;
     out->widened = 0;
     out->quality = UINT32_MAX;
-    out->pose = *approx;
+    out->pose.x = approx->x;
+    out->pose.y = approx->y;
+    out->pose.heading = approx->heading;
     if (map == NULL || map->n < 3 || map->n > OPTICAL_MAX_BEACONS || n > OPTICAL_MAX_SIGHTINGS ||
         !coords_ok(approx->x, approx->y))
         return finish(out, OPTICAL_E_ARG);
@@ -662,8 +677,8 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         gather(&x);
         st = solve(&x, passes, t3, &tri);
     }
-    for (uint8_t i = 0; i < W.m; i++)
-        out->ident[W.ord[W.pos[i]]] = (int8_t)W.sm[W.pos[i]];
+    for (const uint8_t *pp = W.pos; pp != W.pos + W.m; pp++)
+        out->ident[W.ord[*pp]] = (int8_t)W.sm[*pp];
     out->n_ident = W.m;
     if (st == OPTICAL_OK || st == OPTICAL_E_SINGULAR) {
         out->pose = tri.pose;
