@@ -28,6 +28,7 @@
 #include <stddef.h>
 
 #include "optical/fastmath.h"
+#include "optical/glue.h"
 #include "optical/optical.h"
 
 #define NONE    OPTICAL_NONE
@@ -97,18 +98,6 @@ static bool coords_ok(fx_q16_t x, fx_q16_t y)
     return (uint32_t)x + (l - 1u) < 2u * l - 1u && (uint32_t)y + (l - 1u) < 2u * l - 1u;
 }
 
-/* Byte offset of input sighting i: a table, since the MSP430 would multiply the index through
- * a helper. */
-#define SZ_S sizeof(optical_sighting_t)
-static const uint8_t sight_off[OPTICAL_MAX_SIGHTINGS] = {
-    0,        SZ_S,     2 * SZ_S,  3 * SZ_S,  4 * SZ_S,  5 * SZ_S,  6 * SZ_S, 7 * SZ_S,
-    8 * SZ_S, 9 * SZ_S, 10 * SZ_S, 11 * SZ_S, 12 * SZ_S, 13 * SZ_S, 14 * SZ_S};
-_Static_assert(14 * sizeof(optical_sighting_t) <= 255, "sight_off: offsets in a byte");
-
-/* Input sighting of sorted sighting j. */
-#define SIGHTING(x, j)                                                                             \
-    ((const optical_sighting_t *)(const void *)((const uint8_t *)(x)->s + sight_off[W.ord[j]]))
-
 /* ------------------------------------------------------------------ revolution */
 
 int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
@@ -151,6 +140,93 @@ int8_t optical_rev_order(const optical_rev_t *rev, uint16_t counts_per_turn,
     return (int8_t)n;
 }
 
+/* ------------------------------------------------------------------ glue kernels */
+
+#ifdef __MSP430__
+/* msp430/optical_glue.S addresses the work area and the sightings by these offsets. */
+_Static_assert(offsetof(optical_work_t, n) == 21 && offsetof(optical_work_t, m) == 23 &&
+                   offsetof(optical_work_t, ord) == 205 && offsetof(optical_work_t, pos) == 235 &&
+                   offsetof(optical_work_t, u.id.psi) == 250 &&
+                   offsetof(optical_work_t, u.sv.ang) == 250 &&
+                   offsetof(optical_work_t, u.id.bm) == 442 && sizeof(optical_sighting_t) == 6 &&
+                   offsetof(optical_sighting_t, width) == 4 && sizeof(optical_xy_t) == 8,
+               "optical_work_t layout (optical_glue.S)");
+#endif
+
+#ifndef OPTICAL_ASM
+void optical_sort(const optical_sighting_t *s)
+{
+    for (uint8_t i = 0; i < W.n; i++, s++) {
+        uint16_t t = a16(s->angle);
+        uint8_t j = i;
+        while (j > 0 && W.th[j - 1] > t) {
+            W.th[j] = W.th[j - 1];
+            W.ord[j] = W.ord[j - 1];
+            W.we[j] = W.we[j - 1];
+            j--;
+        }
+        W.th[j] = t;
+        W.ord[j] = i;
+        W.we[j] = s->width;
+    }
+}
+
+void optical_buckets(void)
+{
+    uint8_t b = 0;
+    for (uint8_t j = 0; j < W.n; j++) /* the buckets up to th[j]'s start at j */
+        for (uint8_t bj = (uint8_t)(W.th[j] >> 12); b <= bj; b++)
+            W.bstart[b] = j;
+    for (; b < 16; b++)
+        W.bstart[b] = 0;
+}
+
+int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, int16_t *lohi)
+{
+    int8_t found = 0;
+    for (uint8_t j = 0; j < W.n; j++) {
+        uint8_t k = W.sm[j];
+        if (k >= DROPPED)
+            continue;
+        if (W.u.id.bm[k] == j) {
+            /* O5, once per (sighting, beacon): bit 7 of wchk marks a misfit. */
+            uint8_t c = W.wchk[j];
+            if ((c & 0x7Fu) != k) {
+                c = k;
+                if (!optical_width_ok(wd, &W.b[k], s[W.ord[j]].width))
+                    c |= 0x80u;
+                W.wchk[j] = c;
+            }
+            if (!(c & 0x80u)) {
+                found++;
+                if (lohi) { /* lo = max(lo, off - e), hi = min(hi, off + e), in 16 bits */
+                    uint16_t off = (uint16_t)(W.th[j] - W.u.id.psi[k]), e = W.we[j];
+                    if ((int16_t)off > lohi[0] && (uint16_t)(off - (uint16_t)lohi[0]) > e)
+                        lohi[0] = (int16_t)(off - e);
+                    if ((int16_t)off < lohi[1] && (uint16_t)((uint16_t)lohi[1] - off) > e)
+                        lohi[1] = (int16_t)(off + e);
+                }
+                continue;
+            }
+        }
+        W.sm[j] = NONE;
+    }
+    return found;
+}
+
+void optical_gather(const optical_sighting_t *s)
+{
+    uint8_t m = 0;
+    for (uint8_t j = 0; j < W.n; j++) {
+        if (W.sm[j] >= DROPPED)
+            continue;
+        W.u.sv.ang[m] = s[W.ord[j]].angle;
+        W.pos[m++] = j;
+    }
+    W.m = m;
+}
+#endif
+
 /* ------------------------------------------------------------------ identification */
 
 typedef struct {
@@ -188,40 +264,19 @@ __attribute__((noinline)) static bool overlaps(uint8_t k, uint16_t half)
 
 /*
  * Keep in W.sm only the matches unique both ways (and, when asked, clear of overlapping
- * windows) whose width fits the map distance (O5); count them. With @p lo, narrow [*lo, *hi]
- * (heading offsets within +-half0, 2^-16 turn) to the offsets every kept match allows.
+ * windows) whose width fits the map distance (O5); count them. With @p lohi, narrow [lohi[0],
+ * lohi[1]] (heading offsets within +-half0, 2^-16 turn) to the offsets every kept match
+ * allows. (The rule first: a match it rejects is neither width-checked nor counted.)
  */
-static int8_t unique(const ctx_t *x, bool overlap_rule, uint16_t half, int16_t *lo, int16_t *hi)
+static int8_t unique(const ctx_t *x, bool overlap_rule, uint16_t half, int16_t *lohi)
 {
-    int8_t found = 0;
-    for (uint8_t j = 0; j < W.n; j++) {
-        uint8_t k = W.sm[j];
-        if (k >= DROPPED)
-            continue;
-        if (W.u.id.bm[k] == j && !(overlap_rule && overlaps(k, half))) {
-            /* O5, once per (sighting, beacon): bit 7 of wchk marks a misfit. */
-            uint8_t c = W.wchk[j];
-            if ((c & 0x7Fu) != k) {
-                c = k;
-                if (!optical_width_ok(&x->wd, &x->map->b[k], SIGHTING(x, j)->width))
-                    c |= 0x80u;
-                W.wchk[j] = c;
-            }
-            if (!(c & 0x80u)) {
-                found++;
-                if (lo) { /* *lo = max(*lo, off - e), *hi = min(*hi, off + e), in 16 bits */
-                    uint16_t off = (uint16_t)(W.th[j] - W.u.id.psi[k]), e = W.we[j];
-                    if ((int16_t)off > *lo && (uint16_t)(off - (uint16_t)*lo) > e)
-                        *lo = (int16_t)(off - e);
-                    if ((int16_t)off < *hi && (uint16_t)((uint16_t)*hi - off) > e)
-                        *hi = (int16_t)(off + e);
-                }
-                continue;
-            }
+    if (overlap_rule)
+        for (uint8_t j = 0; j < W.n; j++) {
+            uint8_t k = W.sm[j];
+            if (k < DROPPED && W.u.id.bm[k] == j && overlaps(k, half))
+                W.sm[j] = NONE;
         }
-        W.sm[j] = NONE;
-    }
-    return found;
+    return optical_unique(&x->wd, x->s, lohi);
 }
 
 enum { IDENT_SAFE = 0, IDENT_GUESS = 1, IDENT_WIDENED = 2 };
@@ -261,7 +316,7 @@ static int8_t guess(ctx_t *x, uint8_t nc)
     if (best_n < 3)
         return 0;
     optical_eval(best_h, best_e);
-    return unique(x, false, best_e, NULL, NULL);
+    return unique(x, false, best_e, NULL);
 }
 
 /* The half-width of the first pass's windows (optical_fix scans them). */
@@ -298,8 +353,9 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
             else
                 optical_expect_scan(mid, half);
         }
-        int16_t nlo = lo, nhi = hi;
-        found = unique(x, cfg->reject_overlap, (uint16_t)((d >> 1) + (d & 1u)), &nlo, &nhi);
+        int16_t lohi[2] = {lo, hi};
+        found = unique(x, cfg->reject_overlap, (uint16_t)((d >> 1) + (d & 1u)), lohi);
+        int16_t nlo = lohi[0], nhi = lohi[1];
         if (nlo > nhi)
             return -1;
         uint32_t nd = (uint16_t)((uint16_t)nhi - (uint16_t)nlo);
@@ -330,7 +386,7 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
         int16_t mid = (int16_t)((uint32_t)(wlo + whi) >> 1); /* floor((lo + hi) / 2) */
         uint16_t half = (uint16_t)((uint32_t)(whi - wlo + 1) >> 1);
         optical_expect_scan(mid, half);
-        found = unique(x, true, half, NULL, NULL);
+        found = unique(x, true, half, NULL);
         *widened = w;
         if (found >= 3) {
             *mode = IDENT_WIDENED;
@@ -364,22 +420,11 @@ static int8_t finish(optical_fix_t *out, int8_t status)
  * angle turned by its latched heading's change to the reference instant). */
 static void gather(const ctx_t *x)
 {
-    fx_angle_t *ang = W.u.sv.ang;
-    uint8_t *pos = W.pos;
+    optical_gather(x->s);
     const optical_pose_t *lat = x->latched;
-    for (uint8_t j = 0; j < W.n; j++) {
-        if (W.sm[j] >= DROPPED)
-            continue;
-        uint8_t i = W.ord[j];
-        fx_angle_t d =
-            ((const optical_sighting_t *)(const void *)((const uint8_t *)x->s + sight_off[i]))
-                ->angle;
-        if (lat != NULL)
-            d += lat[i].heading - x->ap->heading;
-        *ang++ = d;
-        *pos++ = j;
-    }
-    W.m = (uint8_t)(pos - W.pos);
+    if (lat != NULL)
+        for (uint8_t i = 0; i < W.m; i++)
+            W.u.sv.ang[i] += lat[W.ord[W.pos[i]]].heading - x->ap->heading;
 }
 
 /* Triangulate the triplet at positions t[] of the identified set; when moving, refine the
@@ -466,21 +511,7 @@ static bool prepare(ctx_t *x)
     uint16_t lever8 = 0;
     uint8_t n = W.n;
     if (lat == NULL) {
-        /* Standing: insertion by angle (the input is sorted: at most the last one, wrapped
-         * to 0 by the rounding, moves). */
-        for (uint8_t i = 0; i < n; i++, si++) {
-            uint16_t t = a16(si->angle);
-            uint8_t j = i;
-            while (j > 0 && W.th[j - 1] > t) {
-                W.th[j] = W.th[j - 1];
-                W.ord[j] = W.ord[j - 1];
-                W.we[j] = W.we[j - 1];
-                j--;
-            }
-            W.th[j] = t;
-            W.ord[j] = i;
-            W.we[j] = si->width; /* until the first scan: the width, for threshold() */
-        }
+        optical_sort(si); /* (until the first scan, we holds the widths: threshold()) */
     } else {
         for (uint8_t i = 0; i < n; i++, si++, lat++) {
             fx_angle_t d = si->angle;
@@ -521,13 +552,7 @@ static bool prepare(ctx_t *x)
     }
     W.lever8 = lever8;
     W.amax8 = sat16((uint32_t)W.eps8 + lever8);
-    /* Bucket index: first sorted sighting at or after each 1/16 turn (0 when none: wraps). */
-    uint8_t b = 0;
-    for (uint8_t j = 0; j < n; j++) /* the buckets up to th[j]'s start at j */
-        for (uint8_t bj = (uint8_t)(W.th[j] >> 12); b <= bj; b++)
-            W.bstart[b] = j;
-    for (; b < 16; b++)
-        W.bstart[b] = 0;
+    optical_buckets();
     return true;
 }
 
@@ -666,7 +691,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         for (uint8_t j = 0; j < n; j++)
             W.wchk[j] = 0x7Fu;
         optical_expect_scan(0, rmax);
-        if (unique(&x, false, rmax, NULL, NULL) < 5) {
+        if (unique(&x, false, rmax, NULL) < 5) {
             for (uint8_t j = 0; j < n; j++)
                 if (W.sm[j] < DROPPED)
                     W.sm[j] = NONE;

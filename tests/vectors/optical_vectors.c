@@ -18,6 +18,7 @@
 #include "fx/fx.h"
 #include "optical/capture.h"
 #include "optical/fastmath.h"
+#include "optical/glue.h"
 #include "optical/optical.h"
 #include "optical/reflectors3.h"
 #include "optical_vectors_data.h"
@@ -509,6 +510,114 @@ static void kernels(void)
     }
 }
 
+/* fix.c's glue kernels (optical/glue.h) on random work areas: the standing preparation and
+ * its buckets, the both-ways uniqueness with its O5 checks and narrowing, the gather. */
+static void print_work(uint8_t n)
+{
+    for (uint8_t j = 0; j < n; j++) {
+        cy_print(" ");
+        cy_print_dec(KW.sm[j]);
+        cy_print(":");
+        cy_print_dec(KW.wchk[j]);
+    }
+}
+
+static void glue_kernels(void)
+{
+    for (uint8_t t = 0; t < 40; t++) {
+        KW.n = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
+        for (uint8_t i = 0; i < KW.n; i++) {
+            /* ascending with ties, some near the wrap, some out of order */
+            uint32_t a = (t & 1) ? (uint32_t)i << 28 : rnd32();
+            if (t % 5 == 2)
+                a = 0xFFFF7000u + (rnd32() & 0x1FFFu);
+            else if (t % 5 == 3)
+                a = (rnd32() & 3u) << 16 | 0x7FFFu;
+            sight[i].angle = a;
+            sight[i].width = (uint16_t)rnd32();
+        }
+        optical_sort(sight);
+        optical_buckets();
+        cy_print("sort ");
+        cy_print_dec(t);
+        for (uint8_t j = 0; j < KW.n; j++) {
+            cy_print(" ");
+            cy_print_dec(KW.th[j]);
+            cy_print(":");
+            cy_print_dec(KW.ord[j]);
+            cy_print(":");
+            cy_print_dec(KW.we[j]);
+        }
+        cy_print(" b");
+        for (uint8_t b = 0; b < 16; b++) {
+            cy_print(" ");
+            cy_print_dec(KW.bstart[b]);
+        }
+        cy_println();
+    }
+    for (uint8_t t = 0; t < 100; t++) {
+        optical_width_t wd;
+        wd.dk = 213000u + rnd32() % 1000000u;
+        wd.x = rnd_in(0x00800000u);
+        wd.y = rnd_in(0x00800000u);
+        wd.eps8 = (uint16_t)(rnd32() % 300u);
+        wd.tol8 = (uint16_t)(rnd32() % 300u);
+        wd.rel16 = (uint16_t)rnd32();
+        wd.flat = (uint8_t)(rnd32() & 1u);
+        KW.nb = (uint8_t)(1u + rnd32() % OPTICAL_MAX_BEACONS);
+        for (uint8_t k = 0; k < KW.nb; k++) {
+            kmap[k].x = wd.x + rnd_in(0x01000000u);
+            kmap[k].y = wd.y + rnd_in(0x01000000u);
+            KW.u.id.psi[k] = (uint16_t)rnd32();
+            uint8_t r = (uint8_t)(rnd32() % 8u);
+            KW.u.id.bm[k] = r < 2 ? (uint8_t)(0xFEu + r) : (uint8_t)(rnd32() % 16u);
+        }
+        KW.b = kmap;
+        KW.n = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
+        for (uint8_t j = 0; j < KW.n; j++) {
+            uint8_t r = (uint8_t)(rnd32() % 8u), k = (uint8_t)(rnd32() % KW.nb);
+            KW.sm[j] = r < 3 ? (uint8_t)(0xFDu + r) : k;
+            if (r >= 5) /* unique both ways */
+                KW.u.id.bm[k] = j;
+            r = (uint8_t)(rnd32() % 4u);
+            KW.wchk[j] = r == 0   ? 0x7Fu
+                         : r == 1 ? k
+                         : r == 2 ? (uint8_t)(k | 0x80u)
+                                  : (uint8_t)rnd32();
+            KW.th[j] = (uint16_t)rnd32();
+            KW.we[j] = (uint16_t)(rnd32() >> (rnd32() & 15u));
+            KW.ord[j] = (uint8_t)(rnd32() % KW.n);
+            sight[j].angle = rnd32();
+            sight[j].width = (uint16_t)(rnd32() % ((t & 3) ? 400u : 9000u));
+        }
+        int16_t lohi[2] = {(int16_t)rnd32(), (int16_t)rnd32()};
+        if (t & 4) { /* an interval around 0, as identify() passes */
+            lohi[1] = (int16_t)(rnd32() & 0x3FFFu);
+            lohi[0] = (int16_t)-lohi[1];
+        }
+        int8_t found = optical_unique(&wd, sight, (t % 3) ? lohi : NULL);
+        cy_print("uniq ");
+        cy_print_dec(t);
+        cy_print(" ");
+        cy_print_dec(found);
+        cy_print(" ");
+        cy_print_dec(lohi[0]);
+        cy_print(" ");
+        cy_print_dec(lohi[1]);
+        print_work(KW.n);
+        optical_gather(sight);
+        cy_print(" g ");
+        cy_print_dec(KW.m);
+        for (uint8_t i = 0; i < KW.m; i++) {
+            cy_print(" ");
+            cy_print_dec(KW.pos[i]);
+            cy_print(":");
+            cy_print_hex32(KW.u.sv.ang[i]);
+        }
+        cy_println();
+    }
+}
+
 static void reflectors(void)
 {
     /* Seed 004: A(0,21), B(13,21), C(13,0) ft; reflections 1.0556, 2.3628, 2.8508 s after the
@@ -740,6 +849,7 @@ int main(void)
     cy_print("# optical vectors\n");
     helpers();
     kernels();
+    glue_kernels();
     fixes();
     reflectors();
     bench();

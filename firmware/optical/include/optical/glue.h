@@ -1,0 +1,57 @@
+/*
+ * optical/glue.h - the loops of optical_fix()'s C glue (fix.c) that run once per sighting on
+ * every fix: the standing preparation, the bucket index, the identification's both-ways
+ * uniqueness with its O5 width checks, and the gather of the identified. On the MSP430 they
+ * are assembly (msp430/optical_glue.S, OPTICAL_ASM); fix.c holds the portable C that defines
+ * every result, and tests/vectors/optical_vectors.c compares both worlds bit for bit.
+ *
+ * They work on optical_work (optical/fastmath.h), whose fields fix.c describes.
+ */
+#ifndef OPTICAL_GLUE_H
+#define OPTICAL_GLUE_H
+
+#include <stdint.h>
+
+#include "optical/fastmath.h"
+#include "optical/optical.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/**
+ * The standing preparation (no latched poses): sightings @p s[0..n) (n = optical_work.n) by
+ * rounded 16-bit angle t = (angle + 2^15) >> 16 into th[], ascending (insertion: equal angles
+ * keep their input order), ord[j] the input index of th[j], we[j] its width.
+ */
+void optical_sort(const optical_sighting_t *s);
+
+/**
+ * The bucket index of the sorted th[0..n): bstart[b] = the first j with th[j] >> 12 >= b, 0
+ * when there is none (b = 0..15).
+ */
+void optical_buckets(void);
+
+/**
+ * The both-ways uniqueness of fix.c's unique() without the overlapping-window rule: every
+ * sorted sighting j whose match k = sm[j] is a beacon (below OPTICAL_DROPPED) is kept when
+ * bm[k] = j and its width fits (O5: optical_width_ok(@p wd, &b[k], s[ord[j]].width), asked
+ * once per (j, k): wchk[j] caches k, bit 7 set for a misfit); otherwise sm[j] becomes
+ * OPTICAL_NONE. With @p lohi non-NULL, every kept match narrows [lohi[0], lohi[1]] (heading
+ * offsets, 2^-16 turn, signed): off = th[j] - psi[k], e = we[j]; lohi[0] = off - e when
+ * off > lohi[0] and off - lohi[0] > e (16 bits, unsigned), lohi[1] = off + e when
+ * off < lohi[1] and lohi[1] - off > e. Returns the kept.
+ */
+int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, int16_t *lohi);
+
+/**
+ * The identified: every sorted sighting j with sm[j] below OPTICAL_DROPPED, in order, into
+ * pos[0..m) and its angle s[ord[j]].angle into u.sv.ang[0..m); m into optical_work.m.
+ */
+void optical_gather(const optical_sighting_t *s);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

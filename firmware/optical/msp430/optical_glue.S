@@ -1,0 +1,246 @@
+/*
+ * optical_glue.S - MSP430 versions of the per-sighting loops of optical_fix()'s glue
+ * (optical/glue.h): optical_sort, optical_buckets, optical_unique, optical_gather. fix.c holds
+ * the portable C that defines the results; these perform the very same integer steps, and
+ * tests/vectors/optical_vectors.c checks them bit for bit on both worlds.
+ *
+ * Registers as clang emits calls (TI EABI): arguments in R12..R15, results in R12; R11..R15
+ * may be clobbered, R4..R10 are preserved. optical_sighting_t is 6 bytes (angle 0, width 4),
+ * optical_xy_t 8; the work area's offsets are static-asserted in fix.c and fastmath.c.
+ */
+
+/* optical_work_t (fastmath.h) */
+    .set OW,        optical_work
+    .set OW_B,      0
+    .set OW_N,      21
+    .set OW_M,      23
+    .set OW_TH,     24
+    .set OW_WE,     84
+    .set OW_SM,     174
+    .set OW_BSTART, 189
+    .set OW_ORD,    205
+    .set OW_WCHK,   220
+    .set OW_POS,    235
+    .set OW_PSI,    250
+    .set OW_ANG,    250
+    .set OW_BM,     442
+
+    .set NONE,     0xff
+    .set DROPPED,  0xfd
+
+/*
+ * void optical_sort(const optical_sighting_t *s): R12 = s. R13 = i, R14 = 2 i, R15 = t,
+ * R10 = width, R9 = j, R11 = 2 j.
+ */
+    .section .text.optical_sort,"ax",@progbits
+    .global optical_sort
+    .type optical_sort,@function
+optical_sort:
+    push    r10
+    push    r9
+    clr     r13
+    clr     r14
+1:  cmp.b   &OW+OW_N, r13           ; i < n
+    jhs     9f
+    mov     @r12+, r11              ; t = (angle + 2^15) >> 16
+    mov     @r12+, r15
+    add     #0x8000, r11
+    adc     r15
+    mov     @r12+, r10
+    mov     r13, r9
+    mov     r14, r11
+2:  tst     r9                      ; while j > 0 and th[j - 1] > t: move up
+    jz      3f
+    cmp     OW+OW_TH-2(r11), r15
+    jhs     3f
+    mov     OW+OW_TH-2(r11), OW+OW_TH(r11)
+    mov     OW+OW_WE-2(r11), OW+OW_WE(r11)
+    mov.b   OW+OW_ORD-1(r9), OW+OW_ORD(r9)
+    decd    r11
+    add     #-1, r9
+    jmp     2b
+3:  mov     r15, OW+OW_TH(r11)
+    mov     r10, OW+OW_WE(r11)
+    mov.b   r13, OW+OW_ORD(r9)
+    inc     r13
+    incd    r14
+    jmp     1b
+9:  pop     r9
+    pop     r10
+    ret
+
+/*
+ * void optical_buckets(void): R15 = n, R14 = j, R11 = &th[j] + 1 (its high byte), R10 = that
+ * byte, R12 = 16 b (the high byte where bucket b starts; 0 after the last), R13 = &bstart[b].
+ */
+    .section .text.optical_buckets,"ax",@progbits
+    .global optical_buckets
+    .type optical_buckets,@function
+optical_buckets:
+    push    r10
+    mov.b   &OW+OW_N, r15
+    clr     r14
+    mov     #OW+OW_TH+1, r11
+    clr     r12
+    mov     #OW+OW_BSTART, r13
+1:  cmp     r15, r14                ; j < n
+    jhs     5f
+    mov.b   @r11, r10
+    incd    r11
+2:  cmp     r12, r10                ; the buckets up to th[j]'s start at j
+    jlo     3f
+    mov.b   r14, 0(r13)
+    inc     r13
+    add.b   #16, r12
+    jnz     2b
+    pop     r10                     ; all 16 set
+    ret
+3:  inc     r14
+    jmp     1b
+5:  cmp     #OW+OW_BSTART+16, r13   ; the rest: 0
+    jhs     6f
+    clr.b   0(r13)
+    inc     r13
+    jmp     5b
+6:  pop     r10
+    ret
+
+/*
+ * int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, int16_t *lohi):
+ * R12 = wd, R13 = s, R14 = lohi -> R12 = the kept. R4 = wd, R5 = s, R6 = lohi, R7 = kept,
+ * R8 = j, R9 = lo, R10 = hi, R11 = k.
+ */
+    .section .text.optical_unique,"ax",@progbits
+    .global optical_unique
+    .type optical_unique,@function
+optical_unique:
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    push    r6
+    push    r5
+    push    r4
+    mov     r12, r4
+    mov     r13, r5
+    mov     r14, r6
+    clr     r7
+    clr     r8
+    tst     r6
+    jz      1f
+    mov     0(r6), r9
+    mov     2(r6), r10
+1:  cmp.b   &OW+OW_N, r8            ; j < n
+    jhs     9f
+    mov.b   OW+OW_SM(r8), r11       ; k
+    cmp.b   #DROPPED, r11
+    jhs     8f
+    cmp.b   OW+OW_BM(r11), r8       ; bm[k] = j
+    jne     7f
+    mov.b   OW+OW_WCHK(r8), r12     ; c: the cached verdict when it is k's
+    mov.b   r12, r13
+    and.b   #0x7f, r13
+    cmp.b   r11, r13
+    jeq     3f
+    mov     r11, r13                ; O5: &b[k], the width of s[ord[j]]
+    rla     r13
+    rla     r13
+    rla     r13
+    add     &OW+OW_B, r13
+    mov.b   OW+OW_ORD(r8), r14
+    mov     r14, r15
+    rla     r14
+    add     r15, r14
+    rla     r14
+    add     r5, r14
+    mov     4(r14), r14
+    mov     r4, r12
+    push    r11
+    call    #optical_width_ok
+    pop     r11
+    tst.b   r12
+    mov.b   r11, r12
+    jnz     2f
+    bis.b   #0x80, r12              ; a misfit
+2:  mov.b   r12, OW+OW_WCHK(r8)
+3:  tst.b   r12                     ; bit 7: a misfit
+    jn      7f
+    inc     r7
+    tst     r6
+    jz      8f
+    mov     r8, r13                 ; off = th[j] - psi[k], e = we[j]
+    rla     r13
+    rla     r11
+    mov     OW+OW_TH(r13), r15
+    sub     OW+OW_PSI(r11), r15
+    mov     OW+OW_WE(r13), r14
+    cmp     r15, r9                 ; off > lo and off - lo > e: lo = off - e
+    jge     4f
+    mov     r15, r13
+    sub     r9, r13
+    cmp     r13, r14
+    jhs     4f
+    mov     r15, r9
+    sub     r14, r9
+4:  cmp     r10, r15                ; off < hi and hi - off > e: hi = off + e
+    jge     8f
+    mov     r10, r13
+    sub     r15, r13
+    cmp     r13, r14
+    jhs     8f
+    mov     r15, r10
+    add     r14, r10
+    jmp     8f
+7:  mov.b   #NONE, OW+OW_SM(r8)
+8:  inc     r8
+    jmp     1b
+9:  tst     r6
+    jz      1f
+    mov     r9, 0(r6)
+    mov     r10, 2(r6)
+1:  mov     r7, r12
+    pop     r4
+    pop     r5
+    pop     r6
+    pop     r7
+    pop     r8
+    pop     r9
+    pop     r10
+    ret
+
+/*
+ * void optical_gather(const optical_sighting_t *s): R12 = s. R13 = j, R10 = n, R14 = &pos[m],
+ * R15 = &ang[m], R11 and R9 the sighting's address.
+ */
+    .section .text.optical_gather,"ax",@progbits
+    .global optical_gather
+    .type optical_gather,@function
+optical_gather:
+    push    r10
+    push    r9
+    mov.b   &OW+OW_N, r10
+    clr     r13
+    mov     #OW+OW_POS, r14
+    mov     #OW+OW_ANG, r15
+1:  cmp     r10, r13                ; j < n
+    jhs     9f
+    cmp.b   #DROPPED, OW+OW_SM(r13)
+    jhs     2f
+    mov.b   OW+OW_ORD(r13), r11     ; s + 6 ord[j]
+    rla     r11
+    mov     r11, r9
+    rla     r11
+    add     r9, r11
+    add     r12, r11
+    mov     0(r11), 0(r15)
+    mov     2(r11), 2(r15)
+    add     #4, r15
+    mov.b   r13, 0(r14)
+    inc     r14
+2:  inc     r13
+    jmp     1b
+9:  sub     #OW+OW_POS, r14
+    mov.b   r14, &OW+OW_M
+    pop     r9
+    pop     r10
+    ret
