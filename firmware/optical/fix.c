@@ -54,7 +54,7 @@ void optical_config_default(optical_config_t *cfg)
 
 /* ------------------------------------------------------------------ small helpers */
 
-static uint32_t umag(int32_t v)
+static inline __attribute__((always_inline)) uint32_t umag(int32_t v)
 {
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
 }
@@ -224,6 +224,23 @@ void optical_gather(const optical_sighting_t *s)
         W.pos[m++] = j;
     }
     W.m = m;
+}
+
+uint8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol)
+{
+    uint16_t h16 = a16(p->heading);
+    uint8_t left = CHECK_MAX;
+    for (uint8_t i = 0; i < W.m && left; i++) {
+        if (i == t3[0] || i == t3[1] || i == t3[2])
+            continue;
+        left--;
+        const optical_xy_t *bk = &W.b[W.sm[W.pos[i]]];
+        uint16_t res =
+            (uint16_t)(optical_angle16(bk->x - p->x, bk->y - p->y) - h16 - a16(W.u.sv.ang[i]));
+        if (abs16(res) > tol)
+            return 1;
+    }
+    return 0;
 }
 #endif
 
@@ -575,7 +592,8 @@ static fx_q16_t threshold(const ctx_t *x)
     }
 }
 
-/* O6: implausible jumps and turns, then the other identified sightings must agree. */
+/* O6: implausible jumps and turns, then the other identified sightings must agree (when
+ * moving, their angles in W.u.sv.ang corrected for the parallax first: the fix's last use). */
 static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3])
 {
     const optical_config_t *cfg = x->cfg;
@@ -586,24 +604,21 @@ static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3]
     fx_angle_t dh = p->heading - x->ap->heading;
     if (umag((int32_t)dh) > cfg->turn_max)
         return OPTICAL_E_TURN;
-    uint16_t tol = (uint16_t)(a16(cfg->resid_max) + 3u), h16 = a16(p->heading);
-    const optical_xy_t *mb = x->map->b;
-    uint8_t left = CHECK_MAX;
-    for (uint8_t i = 0; i < W.m && left; i++) {
-        if (i == t3[0] || i == t3[1] || i == t3[2])
-            continue;
-        left--;
-        uint8_t j = W.pos[i];
-        const optical_xy_t *bk = &mb[W.sm[j]];
-        int32_t dx = bk->x - p->x, dy = bk->y - p->y;
-        fx_angle_t th = W.u.sv.ang[i];
-        if (x->latched != NULL && W.c[j])
-            th = corrected(th, j, fx_hypot(dx, dy));
-        uint16_t res = (uint16_t)(optical_angle16(dx, dy) - h16 - a16(th));
-        if (abs16(res) > tol)
-            return OPTICAL_E_DISAGREE;
+    if (x->latched != NULL) {
+        uint8_t left = CHECK_MAX;
+        for (uint8_t i = 0; i < W.m && left; i++) {
+            if (i == t3[0] || i == t3[1] || i == t3[2])
+                continue;
+            left--;
+            uint8_t j = W.pos[i];
+            if (W.c[j]) {
+                const optical_xy_t *bk = &W.b[W.sm[j]];
+                W.u.sv.ang[i] = corrected(W.u.sv.ang[i], j, fx_hypot(bk->x - p->x, bk->y - p->y));
+            }
+        }
     }
-    return OPTICAL_OK;
+    return optical_resid(p, t3, (uint16_t)(a16(cfg->resid_max) + 3u)) ? OPTICAL_E_DISAGREE
+                                                                      : OPTICAL_OK;
 }
 
 int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
@@ -706,10 +721,13 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         out->ident[W.ord[*pp]] = (int8_t)W.sm[*pp];
     out->n_ident = W.m;
     if (st == OPTICAL_OK || st == OPTICAL_E_SINGULAR) {
-        out->pose = tri.pose;
+        out->pose.x = tri.pose.x; /* (field by field, unrolled: no memcpy, no counter) */
+        out->pose.y = tri.pose.y;
+        out->pose.heading = tri.pose.heading;
         out->quality = tri.quality;
-        for (uint8_t i = 0; i < 3; i++)
-            out->used[i] = W.sm[W.pos[t3[i]]];
+        out->used[0] = W.sm[W.pos[t3[0]]];
+        out->used[1] = W.sm[W.pos[t3[1]]];
+        out->used[2] = W.sm[W.pos[t3[2]]];
     }
     if (st == OPTICAL_OK)
         st = check(&x, &tri.pose, t3);

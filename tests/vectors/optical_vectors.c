@@ -616,6 +616,38 @@ static void glue_kernels(void)
         }
         cy_println();
     }
+    /* O6's residuals: a fix near the beacons' true bearings, tolerances around them, the
+     * triplet anywhere among the identified. */
+    for (uint8_t t = 0; t < 60; t++) {
+        optical_pose_t p = {rnd_in(0x00800000u), rnd_in(0x00800000u), rnd32()};
+        KW.nb = OPTICAL_MAX_BEACONS;
+        KW.n = OPTICAL_MAX_SIGHTINGS;
+        KW.m = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
+        KW.b = kmap;
+        for (uint8_t k = 0; k < KW.nb; k++) {
+            kmap[k].x = p.x + rnd_in((t & 1) ? 0x00080000u : 0x02000000u);
+            kmap[k].y = p.y + rnd_in((t & 1) ? 0x00080000u : 0x02000000u);
+        }
+        for (uint8_t i = 0; i < KW.m; i++) {
+            uint8_t j = (uint8_t)(rnd32() % OPTICAL_MAX_SIGHTINGS), k = (uint8_t)(rnd32() % KW.nb);
+            KW.pos[i] = j;
+            KW.sm[j] = k;
+            /* the bearing the fix sees, off by up to about 3 tolerances */
+            uint16_t a = optical_angle16(kmap[k].x - p.x, kmap[k].y - p.y);
+            KW.u.sv.ang[i] = ((uint32_t)a << 16) - p.heading + (uint32_t)rnd_in(0x01000000u);
+        }
+        uint8_t t3[3];
+        for (uint8_t q = 0; q < 3; q++)
+            t3[q] = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
+        uint16_t tol = (uint16_t)(rnd32() % 400u);
+        if (t % 7 == 3)
+            tol = (uint16_t)rnd32();
+        cy_print("resid ");
+        cy_print_dec(t);
+        cy_print(" ");
+        cy_print_dec(optical_resid(&p, t3, tol));
+        cy_println();
+    }
 }
 
 static void reflectors(void)

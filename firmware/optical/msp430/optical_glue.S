@@ -244,3 +244,82 @@ optical_gather:
     pop     r9
     pop     r10
     ret
+
+/*
+ * uint8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol): R12 = p,
+ * R13 = t3, R14 = tol -> R12. R4 = p, R5 = t3, R6 = tol, R7 = i, R8 = left, R9 = a16(heading),
+ * R10 scratch (optical_angle16 preserves R4..R10).
+ */
+    .section .text.optical_resid,"ax",@progbits
+    .global optical_resid
+    .type optical_resid,@function
+optical_resid:
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    push    r6
+    push    r5
+    push    r4
+    mov     r12, r4
+    mov     r13, r5
+    mov     r14, r6
+    mov     8(r4), r10              ; a16(heading)
+    mov     10(r4), r9
+    add     #0x8000, r10
+    adc     r9
+    clr     r7
+    mov     #4, r8                  ; CHECK_MAX
+1:  cmp.b   &OW+OW_M, r7            ; i < m
+    jhs     8f
+    cmp.b   @r5, r7                 ; not one of the triplet
+    jeq     7f
+    cmp.b   1(r5), r7
+    jeq     7f
+    cmp.b   2(r5), r7
+    jeq     7f
+    mov.b   OW+OW_POS(r7), r10      ; &b[sm[pos[i]]]
+    mov.b   OW+OW_SM(r10), r10
+    rla     r10
+    rla     r10
+    rla     r10
+    add     &OW+OW_B, r10
+    mov     0(r10), r12             ; b - p
+    mov     2(r10), r13
+    sub     0(r4), r12
+    subc    2(r4), r13
+    mov     4(r10), r14
+    mov     6(r10), r15
+    sub     4(r4), r14
+    subc    6(r4), r15
+    call    #optical_angle16
+    sub     r9, r12
+    mov     r7, r10                 ; - a16(ang[i])
+    rla     r10
+    rla     r10
+    mov     OW+OW_ANG(r10), r11
+    mov     OW+OW_ANG+2(r10), r13
+    add     #0x8000, r11
+    adc     r13
+    sub     r13, r12
+    jn      3f
+2:  cmp     r12, r6                 ; |res| > tol: disagree
+    jlo     9f
+    add     #-1, r8
+    jz      8f
+7:  inc     r7
+    jmp     1b
+3:  inv     r12
+    inc     r12
+    jmp     2b
+8:  clr     r12
+    jmp     4f
+9:  mov     #1, r12
+4:  pop     r4
+    pop     r5
+    pop     r6
+    pop     r7
+    pop     r8
+    pop     r9
+    pop     r10
+    ret

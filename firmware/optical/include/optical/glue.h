@@ -50,6 +50,14 @@ int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, in
  */
 void optical_gather(const optical_sighting_t *s);
 
+/**
+ * O6's residuals: of the identified positions i = 0..m-1 other than @p t3[0..2], the first
+ * CHECK_MAX (4) in order: beacon k = sm[pos[i]] seen from the fix @p p, res =
+ * optical_angle16(b[k] - p) - a16(p->heading) - a16(u.sv.ang[i]) (16 bits; a16(a) = (a +
+ * 2^15) >> 16). Returns 1 at the first with |res| > @p tol (2^-16 turn), else 0.
+ */
+uint8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol);
+
 #ifdef __cplusplus
 }
 #endif
