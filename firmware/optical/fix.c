@@ -151,9 +151,24 @@ _Static_assert(offsetof(optical_work_t, n) == 21 && offsetof(optical_work_t, m) 
                    offsetof(optical_work_t, u.id.bm) == 442 && sizeof(optical_sighting_t) == 6 &&
                    offsetof(optical_sighting_t, width) == 4 && sizeof(optical_xy_t) == 8,
                "optical_work_t layout (optical_glue.S)");
+_Static_assert(offsetof(optical_fix_t, quality) == 12 && offsetof(optical_fix_t, ident) == 16 &&
+                   offsetof(optical_fix_t, n_ident) == 34 &&
+                   offsetof(optical_fix_t, widened) == 35 && sizeof(optical_pose_t) == 12 &&
+                   OPTICAL_MAX_SIGHTINGS == 15,
+               "optical_fix_t layout (optical_glue.S)");
 #endif
 
 #ifndef OPTICAL_ASM
+void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx)
+{
+    for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++)
+        out->ident[i] = -1;
+    out->n_ident = 0;
+    out->widened = 0;
+    out->quality = UINT32_MAX;
+    out->pose = *approx;
+}
+
 void optical_sort(const optical_sighting_t *s)
 {
     for (uint8_t i = 0; i < W.n; i++, s++) {
@@ -224,6 +239,12 @@ void optical_gather(const optical_sighting_t *s)
         W.pos[m++] = j;
     }
     W.m = m;
+}
+
+void optical_ident(int8_t *ident)
+{
+    for (uint8_t i = 0; i < W.m; i++)
+        ident[W.ord[W.pos[i]]] = (int8_t)W.sm[W.pos[i]];
 }
 
 uint8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol)
@@ -625,19 +646,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *approx, const optical_sighting_t *s, uint8_t n,
                    const optical_pose_t *latched, optical_fix_t *out)
 {
-    /* (by pointer, three a step; the pose field by field: no loop counters, no memcpy) */
-    _Static_assert(OPTICAL_MAX_SIGHTINGS % 3 == 0, "ident: three a step");
-    for (int8_t *id = out->ident; id != out->ident + OPTICAL_MAX_SIGHTINGS; id += 3) {
-        id[0] = -1;
-        id[1] = -1;
-        id[2] = -1;
-    }
-    out->n_ident = 0;
-    out->widened = 0;
-    out->quality = UINT32_MAX;
-    out->pose.x = approx->x;
-    out->pose.y = approx->y;
-    out->pose.heading = approx->heading;
+    optical_fix_init(out, approx);
     if (map == NULL || map->n < 3 || map->n > OPTICAL_MAX_BEACONS || n > OPTICAL_MAX_SIGHTINGS ||
         !coords_ok(approx->x, approx->y))
         return finish(out, OPTICAL_E_ARG);
@@ -717,8 +726,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         gather(&x);
         st = solve(&x, passes, t3, &tri);
     }
-    for (const uint8_t *pp = W.pos; pp != W.pos + W.m; pp++)
-        out->ident[W.ord[*pp]] = (int8_t)W.sm[*pp];
+    optical_ident(out->ident);
     out->n_ident = W.m;
     if (st == OPTICAL_OK || st == OPTICAL_E_SINGULAR) {
         out->pose.x = tri.pose.x; /* (field by field, unrolled: no memcpy, no counter) */

@@ -646,6 +646,27 @@ static void glue_kernels(void)
         cy_print_dec(t);
         cy_print(" ");
         cy_print_dec(optical_resid(&p, t3, tol));
+        int8_t id[OPTICAL_MAX_SIGHTINGS];
+        for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++) {
+            id[i] = -1;
+            KW.ord[i] = (uint8_t)(rnd32() % OPTICAL_MAX_SIGHTINGS);
+        }
+        optical_ident(id);
+        if (t % 10 == 0) { /* the result's initial state (over whatever was there) */
+            optical_fix_t f;
+            for (uint8_t i = 0; i <= offsetof(optical_fix_t, status); i++)
+                ((uint8_t *)&f)[i] = (uint8_t)rnd32();
+            optical_fix_init(&f, &p);
+            cy_print(" f");
+            for (uint8_t i = 0; i <= offsetof(optical_fix_t, status); i++) {
+                cy_print(" ");
+                cy_print_dec(((const uint8_t *)&f)[i]);
+            }
+        }
+        for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++) {
+            cy_print(" ");
+            cy_print_dec(id[i]);
+        }
         cy_println();
     }
 }

@@ -29,6 +29,34 @@
     .set DROPPED,  0xfd
 
 /*
+ * void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx): R12 = out,
+ * R13 = approx. optical_fix_t: pose 0, quality 12, ident 16..30, n_ident 34, widened 35.
+ */
+    .section .text.optical_fix_init,"ax",@progbits
+    .global optical_fix_init
+    .type optical_fix_init,@function
+optical_fix_init:
+    mov     0(r13), 0(r12)
+    mov     2(r13), 2(r12)
+    mov     4(r13), 4(r12)
+    mov     6(r13), 6(r12)
+    mov     8(r13), 8(r12)
+    mov     10(r13), 10(r12)
+    mov     #-1, r14
+    mov     r14, 12(r12)
+    mov     r14, 14(r12)
+    mov     r14, 16(r12)
+    mov     r14, 18(r12)
+    mov     r14, 20(r12)
+    mov     r14, 22(r12)
+    mov     r14, 24(r12)
+    mov     r14, 26(r12)
+    mov     r14, 28(r12)
+    mov.b   r14, 30(r12)
+    clr     34(r12)
+    ret
+
+/*
  * void optical_sort(const optical_sighting_t *s): R12 = s. R13 = i, R14 = 2 i, R15 = t,
  * R10 = width, R9 = j, R11 = 2 j.
  */
@@ -244,6 +272,25 @@ optical_gather:
     pop     r9
     pop     r10
     ret
+
+/*
+ * void optical_ident(int8_t *ident): R12 = ident. R14 = &pos[i], R15 = &pos[m], R13 = j.
+ */
+    .section .text.optical_ident,"ax",@progbits
+    .global optical_ident
+    .type optical_ident,@function
+optical_ident:
+    mov.b   &OW+OW_M, r15
+    add     #OW+OW_POS, r15
+    mov     #OW+OW_POS, r14
+1:  cmp     r15, r14
+    jhs     9f
+    mov.b   @r14+, r13
+    mov.b   OW+OW_ORD(r13), r11
+    add     r12, r11
+    mov.b   OW+OW_SM(r13), 0(r11)
+    jmp     1b
+9:  ret
 
 /*
  * uint8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol): R12 = p,

@@ -20,6 +20,12 @@ extern "C" {
 #endif
 
 /**
+ * optical_fix()'s result before any check: ident all -1, n_ident = widened = 0, quality =
+ * UINT32_MAX, pose = *@p approx.
+ */
+void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx);
+
+/**
  * The standing preparation (no latched poses): sightings @p s[0..n) (n = optical_work.n) by
  * rounded 16-bit angle t = (angle + 2^15) >> 16 into th[], ascending (insertion: equal angles
  * keep their input order), ord[j] the input index of th[j], we[j] its width.
@@ -49,6 +55,9 @@ int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, in
  * pos[0..m) and its angle s[ord[j]].angle into u.sv.ang[0..m); m into optical_work.m.
  */
 void optical_gather(const optical_sighting_t *s);
+
+/** The identified into @p ident (input order): ident[ord[pos[i]]] = sm[pos[i]], i < m. */
+void optical_ident(int8_t *ident);
 
 /**
  * O6's residuals: of the identified positions i = 0..m-1 other than @p t3[0..2], the first
