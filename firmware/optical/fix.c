@@ -156,6 +156,10 @@ _Static_assert(offsetof(optical_fix_t, quality) == 12 && offsetof(optical_fix_t,
                    offsetof(optical_fix_t, widened) == 35 && sizeof(optical_pose_t) == 12 &&
                    OPTICAL_MAX_SIGHTINGS == 15,
                "optical_fix_t layout (optical_glue.S)");
+_Static_assert(offsetof(optical_config_t, jump_max) == 38 &&
+                   offsetof(optical_config_t, turn_max) == 42 && OPTICAL_E_JUMP == 6 &&
+                   OPTICAL_E_TURN == 7 && OPTICAL_E_DISAGREE == 8,
+               "optical_config_t layout, status codes (optical_glue.S)");
 #endif
 
 #ifndef OPTICAL_ASM
@@ -247,7 +251,18 @@ void optical_ident(int8_t *ident)
         ident[W.ord[W.pos[i]]] = (int8_t)W.sm[W.pos[i]];
 }
 
-uint8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol)
+int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap, const optical_config_t *cfg)
+{
+    /* (|jx| + |jy| <= jump_max bounds the distance without the root) */
+    uint32_t jx = umag(p->x - ap->x), jy = umag(p->y - ap->y), jm = (uint32_t)cfg->jump_max;
+    if ((jx > jm || jy > jm - jx) && fx_hypot((int32_t)jx, (int32_t)jy) > jm)
+        return OPTICAL_E_JUMP;
+    if (umag((int32_t)(p->heading - ap->heading)) > cfg->turn_max)
+        return OPTICAL_E_TURN;
+    return OPTICAL_OK;
+}
+
+int8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol)
 {
     uint16_t h16 = a16(p->heading);
     uint8_t left = CHECK_MAX;
@@ -259,9 +274,9 @@ uint8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol
         uint16_t res =
             (uint16_t)(optical_angle16(bk->x - p->x, bk->y - p->y) - h16 - a16(W.u.sv.ang[i]));
         if (abs16(res) > tol)
-            return 1;
+            return OPTICAL_E_DISAGREE;
     }
-    return 0;
+    return OPTICAL_OK;
 }
 #endif
 
@@ -617,14 +632,9 @@ static fx_q16_t threshold(const ctx_t *x)
  * moving, their angles in W.u.sv.ang corrected for the parallax first: the fix's last use). */
 static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3])
 {
-    const optical_config_t *cfg = x->cfg;
-    /* (|jx| + |jy| <= jump_max bounds the distance without the root) */
-    uint32_t jx = umag(p->x - x->ap->x), jy = umag(p->y - x->ap->y), jm = (uint32_t)cfg->jump_max;
-    if ((jx > jm || jy > jm - jx) && fx_hypot((int32_t)jx, (int32_t)jy) > jm)
-        return OPTICAL_E_JUMP;
-    fx_angle_t dh = p->heading - x->ap->heading;
-    if (umag((int32_t)dh) > cfg->turn_max)
-        return OPTICAL_E_TURN;
+    int8_t st = optical_jump(p, x->ap, x->cfg);
+    if (st != OPTICAL_OK)
+        return st;
     if (x->latched != NULL) {
         uint8_t left = CHECK_MAX;
         for (uint8_t i = 0; i < W.m && left; i++) {
@@ -638,8 +648,7 @@ static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3]
             }
         }
     }
-    return optical_resid(p, t3, (uint16_t)(a16(cfg->resid_max) + 3u)) ? OPTICAL_E_DISAGREE
-                                                                      : OPTICAL_OK;
+    return optical_resid(p, t3, (uint16_t)(a16(x->cfg->resid_max) + 3u));
 }
 
 int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,

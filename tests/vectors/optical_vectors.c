@@ -646,6 +646,17 @@ static void glue_kernels(void)
         cy_print_dec(t);
         cy_print(" ");
         cy_print_dec(optical_resid(&p, t3, tol));
+        { /* O6's jump and turn: around the limits, and far beyond */
+            optical_config_t c;
+            optical_config_default(&c);
+            c.jump_max = (fx_q16_t)(rnd32() >> (rnd32() % 20u));
+            c.turn_max = rnd32() >> (rnd32() % 16u);
+            optical_pose_t ap = {p.x + rnd_in((uint32_t)c.jump_max), p.y, p.heading};
+            ap.y += (t & 2) ? rnd_in((uint32_t)c.jump_max) : rnd_in(0x7FFFFFFFu - 0x00800000u);
+            ap.heading += (t & 4) ? (uint32_t)rnd_in(c.turn_max | 1u) : rnd32();
+            cy_print(" j ");
+            cy_print_dec(optical_jump(&p, &ap, &c));
+        }
         int8_t id[OPTICAL_MAX_SIGHTINGS];
         for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++) {
             id[i] = -1;

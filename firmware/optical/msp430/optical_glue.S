@@ -293,7 +293,7 @@ optical_ident:
 9:  ret
 
 /*
- * uint8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol): R12 = p,
+ * int8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol): R12 = p,
  * R13 = t3, R14 = tol -> R12. R4 = p, R5 = t3, R6 = tol, R7 = i, R8 = left, R9 = a16(heading),
  * R10 scratch (optical_angle16 preserves R4..R10).
  */
@@ -359,12 +359,98 @@ optical_resid:
 3:  inv     r12
     inc     r12
     jmp     2b
-8:  clr     r12
+8:  clr     r12                     ; OPTICAL_OK
     jmp     4f
-9:  mov     #1, r12
+9:  mov     #8, r12                 ; OPTICAL_E_DISAGREE
 4:  pop     r4
     pop     r5
     pop     r6
+    pop     r7
+    pop     r8
+    pop     r9
+    pop     r10
+    ret
+
+/*
+ * int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap,
+ * const optical_config_t *cfg): R12 = p, R13 = ap, R14 = cfg -> R12. R11:R10 = jx (then |dh|),
+ * R9:R8 = jy, R7:R6 = jump_max - jx - jy (then turn_max - |dh|). optical_config_t: jump_max
+ * 38, turn_max 42.
+ */
+    .section .text.optical_jump,"ax",@progbits
+    .global optical_jump
+    .type optical_jump,@function
+optical_jump:
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    push    r6
+    mov     0(r12), r10             ; jx = |p.x - ap.x|
+    mov     2(r12), r11
+    sub     0(r13), r10
+    subc    2(r13), r11
+    tst     r11
+    jge     1f
+    inv     r10
+    inv     r11
+    inc     r10
+    adc     r11
+1:  mov     4(r12), r8              ; jy = |p.y - ap.y|
+    mov     6(r12), r9
+    sub     4(r13), r8
+    subc    6(r13), r9
+    tst     r9
+    jge     2f
+    inv     r8
+    inv     r9
+    inc     r8
+    adc     r9
+2:  mov     38(r14), r6             ; jx > jump_max or jy > jump_max - jx: the root decides
+    mov     40(r14), r7
+    sub     r10, r6
+    subc    r11, r7
+    jlo     3f
+    sub     r8, r6
+    subc    r9, r7
+    jhs     4f
+3:  push    r12
+    push    r13
+    push    r14
+    mov     r10, r12
+    mov     r11, r13
+    mov     r8, r14
+    mov     r9, r15
+    call    #fx_hypot
+    pop     r14
+    mov     38(r14), r6             ; hypot > jump_max: a jump
+    mov     40(r14), r7
+    sub     r12, r6
+    subc    r13, r7
+    pop     r13
+    pop     r12
+    jlo     8f
+4:  mov     8(r12), r10             ; |heading - ap heading|
+    mov     10(r12), r11
+    sub     8(r13), r10
+    subc    10(r13), r11
+    tst     r11
+    jge     5f
+    inv     r10
+    inv     r11
+    inc     r10
+    adc     r11
+5:  mov     42(r14), r6             ; > turn_max: a turn
+    mov     44(r14), r7
+    sub     r10, r6
+    subc    r11, r7
+    jlo     9f
+    clr     r12                     ; OPTICAL_OK
+    jmp     6f
+8:  mov     #6, r12                 ; OPTICAL_E_JUMP
+    jmp     6f
+9:  mov     #7, r12                 ; OPTICAL_E_TURN
+6:  pop     r6
     pop     r7
     pop     r8
     pop     r9

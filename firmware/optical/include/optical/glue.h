@@ -60,12 +60,21 @@ void optical_gather(const optical_sighting_t *s);
 void optical_ident(int8_t *ident);
 
 /**
+ * O6's plausibility of the fix @p p against the approximate pose @p ap: OPTICAL_E_JUMP when
+ * the distance exceeds cfg->jump_max (jx = |dx|, jy = |dy| unsigned 32-bit: jx > jump_max or
+ * jy > jump_max - jx, and fx_hypot(jx, jy) > jump_max), else OPTICAL_E_TURN when
+ * |heading - ap heading| (as int32, magnitude unsigned) exceeds cfg->turn_max, else OPTICAL_OK.
+ */
+int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap, const optical_config_t *cfg);
+
+/**
  * O6's residuals: of the identified positions i = 0..m-1 other than @p t3[0..2], the first
  * CHECK_MAX (4) in order: beacon k = sm[pos[i]] seen from the fix @p p, res =
  * optical_angle16(b[k] - p) - a16(p->heading) - a16(u.sv.ang[i]) (16 bits; a16(a) = (a +
- * 2^15) >> 16). Returns 1 at the first with |res| > @p tol (2^-16 turn), else 0.
+ * 2^15) >> 16). Returns OPTICAL_E_DISAGREE at the first with |res| > @p tol (2^-16 turn),
+ * else OPTICAL_OK.
  */
-uint8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol);
+int8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol);
 
 #ifdef __cplusplus
 }
