@@ -156,6 +156,14 @@ _Static_assert(offsetof(optical_fix_t, quality) == 12 && offsetof(optical_fix_t,
                    offsetof(optical_fix_t, widened) == 35 && sizeof(optical_pose_t) == 12 &&
                    OPTICAL_MAX_SIGHTINGS == 15,
                "optical_fix_t layout (optical_glue.S)");
+_Static_assert(offsetof(optical_config_t, beacon_flat) == 4 &&
+                   offsetof(optical_config_t, window_pos) == 10 &&
+                   offsetof(optical_config_t, dist_tol) == 30 &&
+                   offsetof(optical_config_t, dist_rel) == 34 &&
+                   offsetof(optical_width_t, eps8) == 12 && offsetof(optical_width_t, flat) == 18 &&
+                   offsetof(optical_work_t, eps8) == 12 && offsetof(optical_work_t, nb) == 20 &&
+                   offsetof(optical_map_t, n) == 2,
+               "optical_config_t, optical_width_t, optical_map_t layout (optical_glue.S)");
 _Static_assert(offsetof(optical_config_t, jump_max) == 38 &&
                    offsetof(optical_config_t, turn_max) == 42 && OPTICAL_E_JUMP == 6 &&
                    OPTICAL_E_TURN == 7 && OPTICAL_E_DISAGREE == 8,
@@ -163,6 +171,26 @@ _Static_assert(offsetof(optical_config_t, jump_max) == 38 &&
 #endif
 
 #ifndef OPTICAL_ASM
+void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
+                   const optical_pose_t *approx, optical_width_t *wd)
+{
+    W.b = map->b;
+    W.nb = map->n;
+    W.x = wd->x = approx->x;
+    W.y = wd->y = approx->y;
+    W.head = a16(approx->heading);
+    /* the expected angles come from offsets floored to 2^-8 m: that adds up to sqrt 2 units
+     * to the position uncertainty */
+    uint16_t e8 = m8((uint32_t)cfg->window_pos);
+    W.eps8 = sat16((uint32_t)e8 + 2u);
+    /* D (m) * 2^8 * 2^16 / (2 pi) = D (Q16) * 10430.378 / 2^8 */
+    wd->dk = ((uint32_t)cfg->beacon_diameter * 10430u) >> 8;
+    wd->eps8 = e8;
+    wd->tol8 = sat16((uint32_t)cfg->dist_tol >> 8);
+    wd->rel16 = sat16((uint32_t)cfg->dist_rel);
+    wd->flat = cfg->beacon_flat;
+}
+
 void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx)
 {
     for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++)
@@ -666,23 +694,8 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     x.ap = approx;
     x.s = s;
     x.latched = latched;
-    W.b = map->b;
-    W.x = approx->x;
-    W.y = approx->y;
-    W.head = a16(approx->heading);
-    /* the expected angles come from offsets floored to 2^-8 m: that adds up to sqrt 2 units
-     * to the position uncertainty */
-    W.eps8 = sat16(m8((uint32_t)cfg->window_pos) + 2u);
-    W.nb = map->n;
     W.n = n;
-    /* D (m) * 2^8 * 2^16 / (2 pi) = D (Q16) * 10430.378 / 2^8 */
-    x.wd.dk = ((uint32_t)cfg->beacon_diameter * 10430u) >> 8;
-    x.wd.x = approx->x;
-    x.wd.y = approx->y;
-    x.wd.eps8 = m8((uint32_t)cfg->window_pos);
-    x.wd.tol8 = sat16((uint32_t)cfg->dist_tol >> 8);
-    x.wd.rel16 = sat16((uint32_t)cfg->dist_rel);
-    x.wd.flat = cfg->beacon_flat;
+    optical_setup(map, cfg, approx, &x.wd);
 
     if (!prepare(&x))
         return finish(out, OPTICAL_E_ARG);

@@ -646,6 +646,30 @@ static void glue_kernels(void)
         cy_print_dec(t);
         cy_print(" ");
         cy_print_dec(optical_resid(&p, t3, tol));
+        if (t % 3 == 0) { /* the work area's and O5's arguments: ordinary, then saturating */
+            optical_config_t c;
+            optical_config_default(&c);
+            optical_map_t mp = {kmap, (uint8_t)(3u + t % 30u)};
+            c.beacon_diameter = (fx_q16_t)(rnd32() >> (rnd32() % 32u));
+            c.beacon_flat = (uint8_t)(t & 1u);
+            c.window_pos = (fx_q16_t)(rnd32() >> (t < 30 ? 12u + rnd32() % 8u : rnd32() % 8u));
+            if (t % 9 == 3)
+                c.window_pos = (fx_q16_t)(0xFFFE00l + rnd32() % 0x300u);
+            c.dist_tol = (fx_q16_t)(rnd32() >> (rnd32() % 16u));
+            c.dist_rel = (fx_q16_t)(rnd32() >> (rnd32() % 20u));
+            optical_width_t w;
+            optical_setup(&mp, &c, &p, &w);
+            cy_print(" s ");
+            cy_print_hex32(w.dk);
+            field("", (uint32_t)w.x);
+            field("", (uint32_t)w.y);
+            field("", ((uint32_t)w.eps8 << 16) | w.tol8);
+            field("", ((uint32_t)w.rel16 << 16) | w.flat);
+            field("", (uint32_t)KW.x);
+            field("", (uint32_t)KW.y);
+            field("", ((uint32_t)KW.head << 16) | KW.eps8);
+            field("", ((uint32_t)KW.nb << 16) | (KW.b == kmap));
+        }
         { /* O6's jump and turn: around the limits, and far beyond */
             optical_config_t c;
             optical_config_default(&c);

@@ -9,9 +9,19 @@
  * optical_xy_t 8; the work area's offsets are static-asserted in fix.c and fastmath.c.
  */
 
+    .set MPY,   0x0130
+    .set OP2,   0x0138
+    .set RESLO, 0x013a
+    .set RESHI, 0x013c
+
 /* optical_work_t (fastmath.h) */
     .set OW,        optical_work
     .set OW_B,      0
+    .set OW_X,      2
+    .set OW_Y,      6
+    .set OW_HEAD,   10
+    .set OW_EPS8,   12
+    .set OW_NB,     20
     .set OW_N,      21
     .set OW_M,      23
     .set OW_TH,     24
@@ -27,6 +37,93 @@
 
     .set NONE,     0xff
     .set DROPPED,  0xfd
+
+/*
+ * void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
+ * const optical_pose_t *approx, optical_width_t *wd): R12 = map, R13 = cfg, R14 = approx,
+ * R15 = wd. optical_config_t: beacon_diameter 0, beacon_flat 4, window_pos 10, dist_tol 30,
+ * dist_rel 34; optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18. The
+ * product with interrupts held off (as fx's multiply helpers).
+ */
+    .section .text.optical_setup,"ax",@progbits
+    .global optical_setup
+    .type optical_setup,@function
+optical_setup:
+    mov     0(r12), &OW+OW_B
+    mov.b   2(r12), &OW+OW_NB
+    mov     0(r14), r12             ; x, y
+    mov     r12, &OW+OW_X
+    mov     r12, 4(r15)
+    mov     2(r14), r12
+    mov     r12, &OW+OW_X+2
+    mov     r12, 6(r15)
+    mov     4(r14), r12
+    mov     r12, &OW+OW_Y
+    mov     r12, 8(r15)
+    mov     6(r14), r12
+    mov     r12, &OW+OW_Y+2
+    mov     r12, 10(r15)
+    mov     8(r14), r12             ; head
+    mov     10(r14), r11
+    add     #0x8000, r12
+    adc     r11
+    mov     r11, &OW+OW_HEAD
+    mov     10(r13), r12            ; m8 = ceil(window_pos / 2^8), saturated
+    mov     12(r13), r11
+    mov     #-1, r14
+    cmp     #0x0100, r11
+    jhs     1f
+    swpb    r12
+    swpb    r11
+    mov.b   r12, r14
+    bis     r11, r14
+    and     #0xff00, r12
+    jz      1f
+    inc     r14
+    jnz     1f
+    mov     #-1, r14
+1:  mov     r14, 12(r15)
+    add     #2, r14                 ; eps8 = m8 + 2, saturated
+    jnc     2f
+    mov     #-1, r14
+2:  mov     r14, &OW+OW_EPS8
+    mov     30(r13), r12            ; tol8 = dist_tol >> 8, saturated
+    mov     32(r13), r11
+    mov     #-1, r14
+    cmp     #0x0100, r11
+    jhs     3f
+    swpb    r12
+    swpb    r11
+    mov.b   r12, r14
+    bis     r11, r14
+3:  mov     r14, 14(r15)
+    mov     34(r13), r14            ; rel16 = dist_rel, saturated
+    tst     36(r13)
+    jz      4f
+    mov     #-1, r14
+4:  mov     r14, 16(r15)
+    mov.b   4(r13), 18(r15)         ; flat
+    push    r2                      ; dk = (D 10430 mod 2^32) >> 8
+    dint
+    nop
+    mov     0(r13), &MPY
+    mov     #10430, &OP2
+    mov     &RESLO, r12
+    mov     &RESHI, r11
+    mov     2(r13), &MPY
+    mov     #10430, &OP2
+    add     &RESLO, r11
+    pop     r2
+    swpb    r12
+    mov.b   r12, r12
+    swpb    r11
+    mov     r11, r14
+    and     #0xff00, r14
+    bis     r14, r12
+    mov.b   r11, r11
+    mov     r12, 0(r15)
+    mov     r11, 2(r15)
+    ret
 
 /*
  * void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx): R12 = out,

@@ -20,6 +20,16 @@ extern "C" {
 #endif
 
 /**
+ * optical_fix()'s work area and O5 arguments from its inputs: b, nb from @p map; x, y and
+ * head = (heading + 2^15) >> 16 from @p approx; eps8 = min(m8 + 2, 0xFFFF) with m8 =
+ * min(ceil(window_pos / 2^8), 0xFFFF) (2^-8 m); @p wd: dk = (beacon_diameter 10430 mod 2^32)
+ * >> 8, x, y as approx, eps8 = m8, tol8 = min(dist_tol >> 8, 0xFFFF), rel16 = min(dist_rel,
+ * 0xFFFF) (both as uint32), flat = beacon_flat.
+ */
+void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
+                   const optical_pose_t *approx, optical_width_t *wd);
+
+/**
  * optical_fix()'s result before any check: ident all -1, n_ident = widened = 0, quality =
  * UINT32_MAX, pose = *@p approx.
  */
