@@ -216,6 +216,7 @@ void optical_sort(const optical_sighting_t *s)
         W.ord[j] = i;
         W.we[j] = s->width;
     }
+    optical_buckets();
 }
 
 void optical_buckets(void)
@@ -592,7 +593,7 @@ static bool prepare(ctx_t *x)
     uint16_t lever8 = 0;
     uint8_t n = W.n;
     if (lat == NULL) {
-        optical_sort(si); /* (until the first scan, we holds the widths: threshold()) */
+        optical_sort(si); /* and the buckets (until the first scan, we holds the widths) */
     } else {
         for (uint8_t i = 0; i < n; i++, si++, lat++) {
             fx_angle_t d = si->angle;
@@ -630,10 +631,10 @@ static bool prepare(ctx_t *x)
             W.ord[j] = i;
             W.we[j] = si->width;
         }
+        optical_buckets();
     }
     W.lever8 = lever8;
     W.amax8 = sat16((uint32_t)W.eps8 + lever8);
-    optical_buckets();
     return true;
 }
 

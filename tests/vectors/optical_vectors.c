@@ -533,13 +533,20 @@ static void glue_kernels(void)
                 a = 0xFFFF7000u + (rnd32() & 0x1FFFu);
             else if (t % 5 == 3)
                 a = (rnd32() & 3u) << 16 | 0x7FFFu;
+            else if (t % 5 == 4) /* ascending (ties too), to the end of the turn or not */
+                a = (i ? sight[i - 1].angle : 0u) + (rnd32() >> (t & 8 ? 4 : 8)) * (rnd32() & 1u);
             sight[i].angle = a;
             sight[i].width = (uint16_t)rnd32();
         }
         optical_sort(sight);
-        optical_buckets();
         cy_print("sort ");
         cy_print_dec(t);
+        for (uint8_t b = 0; b < 16; b++) {
+            cy_print(" ");
+            cy_print_dec(KW.bstart[b]);
+            KW.bstart[b] = 0xAA;
+        }
+        optical_buckets();
         for (uint8_t j = 0; j < KW.n; j++) {
             cy_print(" ");
             cy_print_dec(KW.th[j]);

@@ -155,7 +155,9 @@ optical_fix_init:
 
 /*
  * void optical_sort(const optical_sighting_t *s): R12 = s. R13 = i, R14 = 2 i, R15 = t,
- * R10 = width, R9 = j, R11 = 2 j.
+ * R10 = width, R9 = j, R11 = 2 j. While no sighting has moved, the buckets up to each one's
+ * start are filled as it is placed (R8 = 2^12 b, the start of the next bucket b, R7 =
+ * &bstart[b], 0 when all 16 are set); after a move R8 = 1 and optical_buckets does them.
  */
     .section .text.optical_sort,"ax",@progbits
     .global optical_sort
@@ -163,8 +165,12 @@ optical_fix_init:
 optical_sort:
     push    r10
     push    r9
+    push    r8
+    push    r7
     clr     r13
     clr     r14
+    clr     r8
+    mov     #OW+OW_BSTART, r7
 1:  cmp.b   &OW+OW_N, r13           ; i < n
     jhs     9f
     mov     @r12+, r11              ; t = (angle + 2^15) >> 16
@@ -183,14 +189,37 @@ optical_sort:
     mov.b   OW+OW_ORD-1(r9), OW+OW_ORD(r9)
     decd    r11
     add     #-1, r9
+    mov     #1, r8                  ; (moved: the buckets afterwards)
+    clr     r7
     jmp     2b
 3:  mov     r15, OW+OW_TH(r11)
     mov     r10, OW+OW_WE(r11)
     mov.b   r13, OW+OW_ORD(r9)
-    inc     r13
+    tst     r7                      ; the buckets up to t's start at i
+    jz      5f
+4:  cmp     r8, r15
+    jlo     5f
+    mov.b   r13, 0(r7)
+    inc     r7
+    add     #0x1000, r8
+    jnz     4b
+    clr     r7                      ; all 16 set
+5:  inc     r13
     incd    r14
     jmp     1b
-9:  pop     r9
+9:  cmp     #1, r8
+    jeq     7f
+    tst     r7                      ; the rest: 0
+    jz      8f
+6:  cmp     #OW+OW_BSTART+16, r7
+    jhs     8f
+    clr.b   0(r7)
+    inc     r7
+    jmp     6b
+7:  call    #optical_buckets
+8:  pop     r7
+    pop     r8
+    pop     r9
     pop     r10
     ret
 
@@ -232,8 +261,9 @@ optical_buckets:
 
 /*
  * int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, int16_t *lohi):
- * R12 = wd, R13 = s, R14 = lohi -> R12 = the kept. R4 = wd, R5 = s, R6 = lohi, R7 = kept,
- * R8 = j, R9 = lo, R10 = hi, R11 = k.
+ * R12 = wd, R13 = s, R14 = lohi (kept on the stack) -> R12 = the kept. R4 = wd, R5 = s,
+ * R6 = n, R7 = kept, R8 = j, R9 = lo, R10 = hi (without lohi: narrowed all the same, and
+ * dropped), R11 = k.
  */
     .section .text.optical_unique,"ax",@progbits
     .global optical_unique
@@ -246,16 +276,19 @@ optical_unique:
     push    r6
     push    r5
     push    r4
+    push    r14
     mov     r12, r4
     mov     r13, r5
-    mov     r14, r6
+    mov.b   &OW+OW_N, r6
     clr     r7
     clr     r8
-    tst     r6
+    clr     r9
+    clr     r10
+    tst     r14
     jz      1f
-    mov     0(r6), r9
-    mov     2(r6), r10
-1:  cmp.b   &OW+OW_N, r8            ; j < n
+    mov     0(r14), r9
+    mov     2(r14), r10
+1:  cmp     r6, r8                  ; j < n
     jhs     9f
     mov.b   OW+OW_SM(r8), r11       ; k
     cmp.b   #DROPPED, r11
@@ -291,8 +324,6 @@ optical_unique:
 3:  tst.b   r12                     ; bit 7: a misfit
     jn      7f
     inc     r7
-    tst     r6
-    jz      8f
     mov     r8, r13                 ; off = th[j] - psi[k], e = we[j]
     rla     r13
     rla     r11
@@ -319,10 +350,11 @@ optical_unique:
 7:  mov.b   #NONE, OW+OW_SM(r8)
 8:  inc     r8
     jmp     1b
-9:  tst     r6
+9:  pop     r14
+    tst     r14
     jz      1f
-    mov     r9, 0(r6)
-    mov     r10, 2(r6)
+    mov     r9, 0(r14)
+    mov     r10, 2(r14)
 1:  mov     r7, r12
     pop     r4
     pop     r5

@@ -38,7 +38,8 @@ void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx);
 /**
  * The standing preparation (no latched poses): sightings @p s[0..n) (n = optical_work.n) by
  * rounded 16-bit angle t = (angle + 2^15) >> 16 into th[], ascending (insertion: equal angles
- * keep their input order), ord[j] the input index of th[j], we[j] its width.
+ * keep their input order), ord[j] the input index of th[j], we[j] its width; then the bucket
+ * index (optical_buckets).
  */
 void optical_sort(const optical_sighting_t *s);
 
