@@ -345,20 +345,17 @@ __attribute__((noinline)) static bool overlaps(uint8_t k, uint16_t half)
 }
 
 /*
- * Keep in W.sm only the matches unique both ways (and, when asked, clear of overlapping
- * windows) whose width fits the map distance (O5); count them. With @p lohi, narrow [lohi[0],
- * lohi[1]] (heading offsets within +-half0, 2^-16 turn) to the offsets every kept match
- * allows. (The rule first: a match it rejects is neither width-checked nor counted.)
+ * The seed's overlapping-window rule before the both-ways uniqueness (optical_unique): a
+ * unique match whose window meets another beacon's is dropped (W.sm = NONE), neither
+ * width-checked nor counted.
  */
-static int8_t unique(const ctx_t *x, bool overlap_rule, uint16_t half, int16_t *lohi)
+__attribute__((noinline)) static void drop_overlapping(uint16_t half)
 {
-    if (overlap_rule)
-        for (uint8_t j = 0; j < W.n; j++) {
-            uint8_t k = W.sm[j];
-            if (k < DROPPED && W.u.id.bm[k] == j && overlaps(k, half))
-                W.sm[j] = NONE;
-        }
-    return optical_unique(&x->wd, x->s, lohi);
+    for (uint8_t j = 0; j < W.n; j++) {
+        uint8_t k = W.sm[j];
+        if (k < DROPPED && W.u.id.bm[k] == j && overlaps(k, half))
+            W.sm[j] = NONE;
+    }
 }
 
 enum { IDENT_SAFE = 0, IDENT_GUESS = 1, IDENT_WIDENED = 2 };
@@ -398,7 +395,7 @@ static int8_t guess(ctx_t *x, uint8_t nc)
     if (best_n < 3)
         return 0;
     optical_eval(best_h, best_e);
-    return unique(x, false, best_e, NULL);
+    return optical_unique(&x->wd, x->s, NULL);
 }
 
 /* The half-width of the first pass's windows (optical_fix scans them). */
@@ -436,7 +433,12 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
                 optical_expect_scan(mid, half);
         }
         int16_t lohi[2] = {lo, hi};
-        found = unique(x, cfg->reject_overlap, (uint16_t)((d >> 1) + (d & 1u)), lohi);
+        /* Keep in W.sm only the matches unique both ways (and, when asked, clear of
+         * overlapping windows) whose width fits the map distance (O5); narrow the interval to
+         * the offsets every kept match allows. */
+        if (cfg->reject_overlap)
+            drop_overlapping((uint16_t)((d >> 1) + (d & 1u)));
+        found = optical_unique(&x->wd, x->s, lohi);
         int16_t nlo = lohi[0], nhi = lohi[1];
         if (nlo > nhi)
             return -1;
@@ -468,7 +470,8 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
         int16_t mid = (int16_t)((uint32_t)(wlo + whi) >> 1); /* floor((lo + hi) / 2) */
         uint16_t half = (uint16_t)((uint32_t)(whi - wlo + 1) >> 1);
         optical_expect_scan(mid, half);
-        found = unique(x, true, half, NULL);
+        drop_overlapping(half);
+        found = optical_unique(&x->wd, x->s, NULL);
         *widened = w;
         if (found >= 3) {
             *mode = IDENT_WIDENED;
@@ -738,7 +741,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         for (uint8_t j = 0; j < n; j++)
             W.wchk[j] = 0x7Fu;
         optical_expect_scan(0, rmax);
-        if (unique(&x, false, rmax, NULL) < 5) {
+        if (optical_unique(&x.wd, x.s, NULL) < 5) {
             for (uint8_t j = 0; j < n; j++)
                 if (W.sm[j] < DROPPED)
                     W.sm[j] = NONE;

@@ -680,11 +680,11 @@ static void glue_kernels(void)
         { /* O6's jump and turn: around the limits, and far beyond */
             optical_config_t c;
             optical_config_default(&c);
-            c.jump_max = (fx_q16_t)(rnd32() >> (rnd32() % 20u));
+            c.jump_max = (fx_q16_t)(rnd32() >> (8u + rnd32() % 20u));
             c.turn_max = rnd32() >> (rnd32() % 16u);
             optical_pose_t ap = {p.x + rnd_in((uint32_t)c.jump_max), p.y, p.heading};
-            ap.y += (t & 2) ? rnd_in((uint32_t)c.jump_max) : rnd_in(0x7FFFFFFFu - 0x00800000u);
-            ap.heading += (t & 4) ? (uint32_t)rnd_in(c.turn_max | 1u) : rnd32();
+            ap.y += (t & 2) ? rnd_in((uint32_t)c.jump_max) : rnd_in(0x3FFFFFFFu);
+            ap.heading += (t & 4) ? (uint32_t)rnd_in((c.turn_max >> 2) | 1u) : rnd32();
             cy_print(" j ");
             cy_print_dec(optical_jump(&p, &ap, &c));
         }
