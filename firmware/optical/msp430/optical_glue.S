@@ -154,10 +154,12 @@ optical_fix_init:
     ret
 
 /*
- * void optical_sort(const optical_sighting_t *s): R12 = s. R13 = i, R14 = 2 i, R15 = t,
- * R10 = width, R9 = j, R11 = 2 j. While no sighting has moved, the buckets up to each one's
- * start are filled as it is placed (R8 = 2^12 b, the start of the next bucket b, R7 =
- * &bstart[b], 0 when all 16 are set); after a move R8 = 1 and optical_buckets does them.
+ * void optical_sort(const optical_sighting_t *s): R12 = s. R13 = i, R14 = &th[i], R9 = n,
+ * R10 = t, R15 = th[i - 1] (0 for i = 0: the largest so far). A sighting not below it is
+ * placed at i; otherwise it is inserted (R11 = &th[j], R6 = j). While none has moved, the
+ * buckets up to each one's start are filled as it is placed (R8 = 2^12 b, the start of the
+ * next bucket b, R7 = &bstart[b], 0 when all 16 are set); after a move R8 = 1 and
+ * optical_buckets does them.
  */
     .section .text.optical_sort,"ax",@progbits
     .global optical_sort
@@ -167,37 +169,29 @@ optical_sort:
     push    r9
     push    r8
     push    r7
+    push    r6
+    mov.b   &OW+OW_N, r9
     clr     r13
-    clr     r14
+    mov     #OW+OW_TH, r14
+    clr     r15
     clr     r8
     mov     #OW+OW_BSTART, r7
-1:  cmp.b   &OW+OW_N, r13           ; i < n
+1:  cmp     r9, r13                 ; i < n
     jhs     9f
     mov     @r12+, r11              ; t = (angle + 2^15) >> 16
-    mov     @r12+, r15
-    add     #0x8000, r11
-    adc     r15
     mov     @r12+, r10
-    mov     r13, r9
-    mov     r14, r11
-2:  tst     r9                      ; while j > 0 and th[j - 1] > t: move up
-    jz      3f
-    cmp     OW+OW_TH-2(r11), r15
-    jhs     3f
-    mov     OW+OW_TH-2(r11), OW+OW_TH(r11)
-    mov     OW+OW_WE-2(r11), OW+OW_WE(r11)
-    mov.b   OW+OW_ORD-1(r9), OW+OW_ORD(r9)
-    decd    r11
-    add     #-1, r9
-    mov     #1, r8                  ; (moved: the buckets afterwards)
-    clr     r7
-    jmp     2b
-3:  mov     r15, OW+OW_TH(r11)
-    mov     r10, OW+OW_WE(r11)
-    mov.b   r13, OW+OW_ORD(r9)
+    add     #0x8000, r11
+    adc     r10
+    cmp     r15, r10                ; below th[i - 1]: inserted
+    jlo     20f
+    mov     r10, 0(r14)
+    mov     @r12+, r11
+    mov     r11, OW_WE-OW_TH(r14)
+    mov.b   r13, OW+OW_ORD(r13)
+    mov     r10, r15
     tst     r7                      ; the buckets up to t's start at i
     jz      5f
-4:  cmp     r8, r15
+4:  cmp     r8, r10
     jlo     5f
     mov.b   r13, 0(r7)
     inc     r7
@@ -207,6 +201,25 @@ optical_sort:
 5:  inc     r13
     incd    r14
     jmp     1b
+20: mov     r14, r11                ; j = i; while j > 0 and th[j - 1] > t: move up
+    mov     r13, r6
+21: tst     r6
+    jz      22f
+    cmp     -2(r11), r10
+    jhs     22f
+    mov     -2(r11), 0(r11)
+    mov     OW_WE-OW_TH-2(r11), OW_WE-OW_TH(r11)
+    mov.b   OW+OW_ORD-1(r6), OW+OW_ORD(r6)
+    decd    r11
+    add     #-1, r6
+    jmp     21b
+22: mov     r10, 0(r11)
+    mov     @r12+, r10
+    mov     r10, OW_WE-OW_TH(r11)
+    mov.b   r13, OW+OW_ORD(r6)
+    mov     #1, r8                  ; (moved: the buckets afterwards)
+    clr     r7
+    jmp     5b
 9:  cmp     #1, r8
     jeq     7f
     tst     r7                      ; the rest: 0
@@ -217,7 +230,8 @@ optical_sort:
     inc     r7
     jmp     6b
 7:  call    #optical_buckets
-8:  pop     r7
+8:  pop     r6
+    pop     r7
     pop     r8
     pop     r9
     pop     r10
