@@ -406,16 +406,16 @@ static uint16_t half0(const optical_config_t *cfg)
 }
 
 /*
- * Identify (O3-O5), after optical_fix's first scan (mid 0, half0): leaves in W.sm[j] the
+ * Identify (O3-O5), after optical_fix's first scan (mid 0, @p h0 = half0): leaves in W.sm[j] the
  * beacon of each identified sorted sighting (NONE, MULTI or DROPPED otherwise) and returns
  * how many, or -1 when the matches contradict the stated uncertainty. *mode: IDENT_SAFE
  * (within the bounds), IDENT_GUESS or IDENT_WIDENED (the fix must be confirmed by the other
  * sightings). *widened: widenings used.
  */
-static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
+static int8_t identify(ctx_t *x, uint16_t h0, uint8_t *mode, uint8_t *widened)
 {
     const optical_config_t *cfg = x->cfg;
-    int16_t hi = (int16_t)half0(cfg), lo = (int16_t)-hi;
+    int16_t hi = (int16_t)h0, lo = (int16_t)-hi;
     uint8_t nc = W.nc; /* the first pass's candidates (0xFF: too many to keep) */
     int8_t found;
     *mode = IDENT_SAFE;
@@ -706,14 +706,15 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     /* O4, then O2: expected angles of the beacons within T (+ the position uncertainty),
      * and the first identification pass (O3). */
     W.gate8 = sat15(((uint32_t)threshold(&x) + (uint32_t)cfg->window_pos) >> 8);
-    if (optical_expect_scan(0, half0(cfg)))
+    uint16_t h0 = half0(cfg);
+    if (optical_expect_scan(0, h0))
         return finish(out, OPTICAL_E_ARG);
     if (n < 3)
         return finish(out, OPTICAL_E_FEW);
 
     /* O3-O5 */
     uint8_t mode, widened;
-    int8_t found = identify(&x, &mode, &widened);
+    int8_t found = identify(&x, h0, &mode, &widened);
     out->widened = widened;
     if (found < 0)
         return finish(out, OPTICAL_E_INCONSISTENT);

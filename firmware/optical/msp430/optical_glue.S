@@ -380,8 +380,8 @@ optical_unique:
     ret
 
 /*
- * void optical_gather(const optical_sighting_t *s): R12 = s. R13 = j, R10 = n, R14 = &pos[m],
- * R15 = &ang[m], R11 and R9 the sighting's address.
+ * void optical_gather(const optical_sighting_t *s): R12 = s. R13 = &sm[j + 1] (walked),
+ * R10 = &sm[n], R14 = &pos[m], R15 = &ang[m], R11 and R9 the sighting's address, then j.
  */
     .section .text.optical_gather,"ax",@progbits
     .global optical_gather
@@ -389,15 +389,17 @@ optical_unique:
 optical_gather:
     push    r10
     push    r9
+    mov     #OW+OW_SM, r13
     mov.b   &OW+OW_N, r10
-    clr     r13
+    add     r13, r10
     mov     #OW+OW_POS, r14
     mov     #OW+OW_ANG, r15
 1:  cmp     r10, r13                ; j < n
     jhs     9f
-    cmp.b   #DROPPED, OW+OW_SM(r13)
-    jhs     2f
-    mov.b   OW+OW_ORD(r13), r11     ; s + 6 ord[j]
+    mov.b   @r13+, r11
+    cmp.b   #DROPPED, r11
+    jhs     1b
+    mov.b   OW_ORD-OW_SM-1(r13), r11 ; s + 6 ord[j]
     rla     r11
     mov     r11, r9
     rla     r11
@@ -406,9 +408,10 @@ optical_gather:
     mov     0(r11), 0(r15)
     mov     2(r11), 2(r15)
     add     #4, r15
-    mov.b   r13, 0(r14)
+    mov     r13, r9                 ; j
+    sub     #OW+OW_SM+1, r9
+    mov.b   r9, 0(r14)
     inc     r14
-2:  inc     r13
     jmp     1b
 9:  sub     #OW+OW_POS, r14
     mov.b   r14, &OW+OW_M
