@@ -7,6 +7,8 @@
  * Registers as clang emits calls (TI EABI): arguments in R12..R15, results in R12; R11..R15
  * may be clobbered, R4..R10 are preserved. optical_sighting_t is 6 bytes (angle 0, width 4),
  * optical_xy_t 8; the work area's offsets are static-asserted in fix.c and fastmath.c.
+ * A binary angle rounded to 16 bits, (a + 2^15) >> 16, is its high word plus bit 15 of its low
+ * word (RLA low, ADC high).
  */
 
     .set MPY,   0x0130
@@ -65,7 +67,7 @@ optical_setup:
     mov     r12, 10(r15)
     mov     8(r14), r12             ; head
     mov     10(r14), r11
-    add     #0x8000, r12
+    rla     r12
     adc     r11
     mov     r11, &OW+OW_HEAD
     mov     10(r13), r12            ; m8 = ceil(window_pos / 2^8), saturated
@@ -180,7 +182,7 @@ optical_sort:
     jhs     9f
     mov     @r12+, r11              ; t = (angle + 2^15) >> 16
     mov     @r12+, r10
-    add     #0x8000, r11
+    rla     r11
     adc     r10
     cmp     r15, r10                ; below th[i - 1]: inserted
     jlo     20f
@@ -327,9 +329,8 @@ optical_unique:
     add     r5, r14
     mov     4(r14), r14
     mov     r4, r12
-    push    r11
     call    #optical_width_ok
-    pop     r11
+    mov.b   OW+OW_SM(r8), r11       ; (k again)
     tst.b   r12
     mov.b   r11, r12
     jnz     2f
@@ -459,7 +460,7 @@ optical_resid:
     mov     r14, r6
     mov     8(r4), r10              ; a16(heading)
     mov     10(r4), r9
-    add     #0x8000, r10
+    rla     r10
     adc     r9
     clr     r7
     mov     #4, r8                  ; CHECK_MAX
@@ -492,7 +493,7 @@ optical_resid:
     rla     r10
     mov     OW+OW_ANG(r10), r11
     mov     OW+OW_ANG+2(r10), r13
-    add     #0x8000, r11
+    rla     r11
     adc     r13
     sub     r13, r12
     jn      3f
