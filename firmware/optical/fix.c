@@ -20,9 +20,10 @@
  * (0.7), and spare.
  *
  * Cost on the MSP430: the per-beacon work (expected angle, range bound, window) and the
- * window scans are the assembly kernels optical_expect and optical_scan (fastmath.h); the
- * precise fixed-point work is left to the selected triplet (triangulate.c). docs/optical.md
- * lists the measured cycles.
+ * window scans are the assembly kernels optical_expect and optical_scan (fastmath.h), and so
+ * are the glue's loops over the sightings (glue.h: defined in C below, msp430/optical_glue.S);
+ * the precise fixed-point work is left to the selected triplet (triangulate.c).
+ * docs/optical.md lists the measured cycles.
  */
 #include <stdbool.h>
 #include <stddef.h>
@@ -330,8 +331,7 @@ static uint16_t pos_part(uint8_t k, uint8_t j)
                       OPTICAL_MARGIN);
 }
 
-/* The seed's overlapping-window rule: k's window meets the window of another beacon. (Not
- * inlined: unique would prepare its operands on every call, mostly without the rule.) */
+/* The seed's overlapping-window rule: k's window meets the window of another beacon. */
 __attribute__((noinline)) static bool overlaps(uint8_t k, uint16_t half)
 {
     uint32_t wk = 2u * (uint32_t)half + W.u.id.e[k];
