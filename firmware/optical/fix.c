@@ -20,14 +20,16 @@
  * (0.7), and spare.
  *
  * Cost on the MSP430: the per-beacon work (expected angle, range bound, window) and the
- * window scans are the assembly kernels optical_expect and optical_scan (fastmath.h); the
- * precise fixed-point work is left to the selected triplet (triangulate.c). docs/optical.md
- * lists the measured cycles.
+ * window scans are the assembly kernels optical_expect and optical_scan (fastmath.h), and so
+ * are the glue's loops over the sightings (glue.h: defined in C below, msp430/optical_glue.S);
+ * the precise fixed-point work is left to the selected triplet (triangulate.c).
+ * docs/optical.md lists the measured cycles.
  */
 #include <stdbool.h>
 #include <stddef.h>
 
 #include "optical/fastmath.h"
+#include "optical/glue.h"
 #include "optical/optical.h"
 
 #define NONE    OPTICAL_NONE
@@ -53,7 +55,7 @@ void optical_config_default(optical_config_t *cfg)
 
 /* ------------------------------------------------------------------ small helpers */
 
-static uint32_t umag(int32_t v)
+static inline __attribute__((always_inline)) uint32_t umag(int32_t v)
 {
     return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
 }
@@ -97,18 +99,6 @@ static bool coords_ok(fx_q16_t x, fx_q16_t y)
     return (uint32_t)x + (l - 1u) < 2u * l - 1u && (uint32_t)y + (l - 1u) < 2u * l - 1u;
 }
 
-/* Byte offset of input sighting i: a table, since the MSP430 would multiply the index through
- * a helper. */
-#define SZ_S sizeof(optical_sighting_t)
-static const uint8_t sight_off[OPTICAL_MAX_SIGHTINGS] = {
-    0,        SZ_S,     2 * SZ_S,  3 * SZ_S,  4 * SZ_S,  5 * SZ_S,  6 * SZ_S, 7 * SZ_S,
-    8 * SZ_S, 9 * SZ_S, 10 * SZ_S, 11 * SZ_S, 12 * SZ_S, 13 * SZ_S, 14 * SZ_S};
-_Static_assert(14 * sizeof(optical_sighting_t) <= 255, "sight_off: offsets in a byte");
-
-/* Input sighting of sorted sighting j. */
-#define SIGHTING(x, j)                                                                             \
-    ((const optical_sighting_t *)(const void *)((const uint8_t *)(x)->s + sight_off[W.ord[j]]))
-
 /* ------------------------------------------------------------------ revolution */
 
 int8_t optical_rev_sightings(const optical_rev_t *rev, uint16_t counts_per_turn,
@@ -151,6 +141,175 @@ int8_t optical_rev_order(const optical_rev_t *rev, uint16_t counts_per_turn,
     return (int8_t)n;
 }
 
+/* ------------------------------------------------------------------ glue kernels */
+
+#ifdef __MSP430__
+/* msp430/optical_glue.S addresses the work area and the sightings by these offsets. */
+_Static_assert(offsetof(optical_work_t, n) == 21 && offsetof(optical_work_t, m) == 23 &&
+                   offsetof(optical_work_t, ord) == 205 && offsetof(optical_work_t, pos) == 235 &&
+                   offsetof(optical_work_t, u.id.psi) == 250 &&
+                   offsetof(optical_work_t, u.sv.ang) == 250 &&
+                   offsetof(optical_work_t, u.id.bm) == 442 && sizeof(optical_sighting_t) == 6 &&
+                   offsetof(optical_sighting_t, width) == 4 && sizeof(optical_xy_t) == 8,
+               "optical_work_t layout (optical_glue.S)");
+_Static_assert(offsetof(optical_fix_t, quality) == 12 && offsetof(optical_fix_t, ident) == 16 &&
+                   offsetof(optical_fix_t, n_ident) == 34 &&
+                   offsetof(optical_fix_t, widened) == 35 && sizeof(optical_pose_t) == 12 &&
+                   OPTICAL_MAX_SIGHTINGS == 15,
+               "optical_fix_t layout (optical_glue.S)");
+_Static_assert(offsetof(optical_config_t, beacon_flat) == 4 &&
+                   offsetof(optical_config_t, window_pos) == 10 &&
+                   offsetof(optical_config_t, dist_tol) == 30 &&
+                   offsetof(optical_config_t, dist_rel) == 34 &&
+                   offsetof(optical_width_t, eps8) == 12 && offsetof(optical_width_t, flat) == 18 &&
+                   offsetof(optical_work_t, eps8) == 12 && offsetof(optical_work_t, nb) == 20 &&
+                   offsetof(optical_map_t, n) == 2,
+               "optical_config_t, optical_width_t, optical_map_t layout (optical_glue.S)");
+_Static_assert(offsetof(optical_config_t, jump_max) == 38 &&
+                   offsetof(optical_config_t, turn_max) == 42 && OPTICAL_E_JUMP == 6 &&
+                   OPTICAL_E_TURN == 7 && OPTICAL_E_DISAGREE == 8,
+               "optical_config_t layout, status codes (optical_glue.S)");
+#endif
+
+#ifndef OPTICAL_ASM
+void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
+                   const optical_pose_t *approx, optical_width_t *wd)
+{
+    W.b = map->b;
+    W.nb = map->n;
+    W.x = wd->x = approx->x;
+    W.y = wd->y = approx->y;
+    W.head = a16(approx->heading);
+    /* the expected angles come from offsets floored to 2^-8 m: that adds up to sqrt 2 units
+     * to the position uncertainty */
+    uint16_t e8 = m8((uint32_t)cfg->window_pos);
+    W.eps8 = sat16((uint32_t)e8 + 2u);
+    /* D (m) * 2^8 * 2^16 / (2 pi) = D (Q16) * 10430.378 / 2^8 */
+    wd->dk = ((uint32_t)cfg->beacon_diameter * 10430u) >> 8;
+    wd->eps8 = e8;
+    wd->tol8 = sat16((uint32_t)cfg->dist_tol >> 8);
+    wd->rel16 = sat16((uint32_t)cfg->dist_rel);
+    wd->flat = cfg->beacon_flat;
+}
+
+void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx)
+{
+    for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++)
+        out->ident[i] = -1;
+    out->n_ident = 0;
+    out->widened = 0;
+    out->quality = UINT32_MAX;
+    out->pose = *approx;
+}
+
+void optical_sort(const optical_sighting_t *s)
+{
+    for (uint8_t i = 0; i < W.n; i++, s++) {
+        uint16_t t = a16(s->angle);
+        uint8_t j = i;
+        while (j > 0 && W.th[j - 1] > t) {
+            W.th[j] = W.th[j - 1];
+            W.ord[j] = W.ord[j - 1];
+            W.we[j] = W.we[j - 1];
+            j--;
+        }
+        W.th[j] = t;
+        W.ord[j] = i;
+        W.we[j] = s->width;
+    }
+    optical_buckets();
+}
+
+void optical_buckets(void)
+{
+    uint8_t b = 0;
+    for (uint8_t j = 0; j < W.n; j++) /* the buckets up to th[j]'s start at j */
+        for (uint8_t bj = (uint8_t)(W.th[j] >> 12); b <= bj; b++)
+            W.bstart[b] = j;
+    for (; b < 16; b++)
+        W.bstart[b] = 0;
+}
+
+int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, int16_t *lohi)
+{
+    int8_t found = 0;
+    for (uint8_t j = 0; j < W.n; j++) {
+        uint8_t k = W.sm[j];
+        if (k >= DROPPED)
+            continue;
+        if (W.u.id.bm[k] == j) {
+            /* O5, once per (sighting, beacon): bit 7 of wchk marks a misfit. */
+            uint8_t c = W.wchk[j];
+            if ((c & 0x7Fu) != k) {
+                c = k;
+                if (!optical_width_ok(wd, &W.b[k], s[W.ord[j]].width))
+                    c |= 0x80u;
+                W.wchk[j] = c;
+            }
+            if (!(c & 0x80u)) {
+                found++;
+                if (lohi) { /* lo = max(lo, off - e), hi = min(hi, off + e), in 16 bits */
+                    uint16_t off = (uint16_t)(W.th[j] - W.u.id.psi[k]), e = W.we[j];
+                    if ((int16_t)off > lohi[0] && (uint16_t)(off - (uint16_t)lohi[0]) > e)
+                        lohi[0] = (int16_t)(off - e);
+                    if ((int16_t)off < lohi[1] && (uint16_t)((uint16_t)lohi[1] - off) > e)
+                        lohi[1] = (int16_t)(off + e);
+                }
+                continue;
+            }
+        }
+        W.sm[j] = NONE;
+    }
+    return found;
+}
+
+void optical_gather(const optical_sighting_t *s)
+{
+    uint8_t m = 0;
+    for (uint8_t j = 0; j < W.n; j++) {
+        if (W.sm[j] >= DROPPED)
+            continue;
+        W.u.sv.ang[m] = s[W.ord[j]].angle;
+        W.pos[m++] = j;
+    }
+    W.m = m;
+}
+
+void optical_ident(int8_t *ident)
+{
+    for (uint8_t i = 0; i < W.m; i++)
+        ident[W.ord[W.pos[i]]] = (int8_t)W.sm[W.pos[i]];
+}
+
+int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap, const optical_config_t *cfg)
+{
+    /* (|jx| + |jy| <= jump_max bounds the distance without the root) */
+    uint32_t jx = umag(p->x - ap->x), jy = umag(p->y - ap->y), jm = (uint32_t)cfg->jump_max;
+    if ((jx > jm || jy > jm - jx) && fx_hypot((int32_t)jx, (int32_t)jy) > jm)
+        return OPTICAL_E_JUMP;
+    if (umag((int32_t)(p->heading - ap->heading)) > cfg->turn_max)
+        return OPTICAL_E_TURN;
+    return OPTICAL_OK;
+}
+
+int8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol)
+{
+    uint16_t h16 = a16(p->heading);
+    uint8_t left = CHECK_MAX;
+    for (uint8_t i = 0; i < W.m && left; i++) {
+        if (i == t3[0] || i == t3[1] || i == t3[2])
+            continue;
+        left--;
+        const optical_xy_t *bk = &W.b[W.sm[W.pos[i]]];
+        uint16_t res =
+            (uint16_t)(optical_angle16(bk->x - p->x, bk->y - p->y) - h16 - a16(W.u.sv.ang[i]));
+        if (abs16(res) > tol)
+            return OPTICAL_E_DISAGREE;
+    }
+    return OPTICAL_OK;
+}
+#endif
+
 /* ------------------------------------------------------------------ identification */
 
 typedef struct {
@@ -172,8 +331,7 @@ static uint16_t pos_part(uint8_t k, uint8_t j)
                       OPTICAL_MARGIN);
 }
 
-/* The seed's overlapping-window rule: k's window meets the window of another beacon. (Not
- * inlined: unique would prepare its operands on every call, mostly without the rule.) */
+/* The seed's overlapping-window rule: k's window meets the window of another beacon. */
 __attribute__((noinline)) static bool overlaps(uint8_t k, uint16_t half)
 {
     uint32_t wk = 2u * (uint32_t)half + W.u.id.e[k];
@@ -187,41 +345,17 @@ __attribute__((noinline)) static bool overlaps(uint8_t k, uint16_t half)
 }
 
 /*
- * Keep in W.sm only the matches unique both ways (and, when asked, clear of overlapping
- * windows) whose width fits the map distance (O5); count them. With @p lo, narrow [*lo, *hi]
- * (heading offsets within +-half0, 2^-16 turn) to the offsets every kept match allows.
+ * The seed's overlapping-window rule before the both-ways uniqueness (optical_unique): a
+ * unique match whose window meets another beacon's is dropped (W.sm = NONE), neither
+ * width-checked nor counted.
  */
-static int8_t unique(const ctx_t *x, bool overlap_rule, uint16_t half, int16_t *lo, int16_t *hi)
+__attribute__((noinline)) static void drop_overlapping(uint16_t half)
 {
-    int8_t found = 0;
     for (uint8_t j = 0; j < W.n; j++) {
         uint8_t k = W.sm[j];
-        if (k >= DROPPED)
-            continue;
-        if (W.u.id.bm[k] == j && !(overlap_rule && overlaps(k, half))) {
-            /* O5, once per (sighting, beacon): bit 7 of wchk marks a misfit. */
-            uint8_t c = W.wchk[j];
-            if ((c & 0x7Fu) != k) {
-                c = k;
-                if (!optical_width_ok(&x->wd, &x->map->b[k], SIGHTING(x, j)->width))
-                    c |= 0x80u;
-                W.wchk[j] = c;
-            }
-            if (!(c & 0x80u)) {
-                found++;
-                if (lo) { /* *lo = max(*lo, off - e), *hi = min(*hi, off + e), in 16 bits */
-                    uint16_t off = (uint16_t)(W.th[j] - W.u.id.psi[k]), e = W.we[j];
-                    if ((int16_t)off > *lo && (uint16_t)(off - (uint16_t)*lo) > e)
-                        *lo = (int16_t)(off - e);
-                    if ((int16_t)off < *hi && (uint16_t)((uint16_t)*hi - off) > e)
-                        *hi = (int16_t)(off + e);
-                }
-                continue;
-            }
-        }
-        W.sm[j] = NONE;
+        if (k < DROPPED && W.u.id.bm[k] == j && overlaps(k, half))
+            W.sm[j] = NONE;
     }
-    return found;
 }
 
 enum { IDENT_SAFE = 0, IDENT_GUESS = 1, IDENT_WIDENED = 2 };
@@ -261,7 +395,7 @@ static int8_t guess(ctx_t *x, uint8_t nc)
     if (best_n < 3)
         return 0;
     optical_eval(best_h, best_e);
-    return unique(x, false, best_e, NULL, NULL);
+    return optical_unique(&x->wd, x->s, NULL);
 }
 
 /* The half-width of the first pass's windows (optical_fix scans them). */
@@ -272,16 +406,16 @@ static uint16_t half0(const optical_config_t *cfg)
 }
 
 /*
- * Identify (O3-O5), after optical_fix's first scan (mid 0, half0): leaves in W.sm[j] the
+ * Identify (O3-O5), after optical_fix's first scan (mid 0, @p h0 = half0): leaves in W.sm[j] the
  * beacon of each identified sorted sighting (NONE, MULTI or DROPPED otherwise) and returns
  * how many, or -1 when the matches contradict the stated uncertainty. *mode: IDENT_SAFE
  * (within the bounds), IDENT_GUESS or IDENT_WIDENED (the fix must be confirmed by the other
  * sightings). *widened: widenings used.
  */
-static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
+static int8_t identify(ctx_t *x, uint16_t h0, uint8_t *mode, uint8_t *widened)
 {
     const optical_config_t *cfg = x->cfg;
-    int16_t hi = (int16_t)half0(cfg), lo = (int16_t)-hi;
+    int16_t hi = (int16_t)h0, lo = (int16_t)-hi;
     uint8_t nc = W.nc; /* the first pass's candidates (0xFF: too many to keep) */
     int8_t found;
     *mode = IDENT_SAFE;
@@ -298,8 +432,14 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
             else
                 optical_expect_scan(mid, half);
         }
-        int16_t nlo = lo, nhi = hi;
-        found = unique(x, cfg->reject_overlap, (uint16_t)((d >> 1) + (d & 1u)), &nlo, &nhi);
+        int16_t lohi[2] = {lo, hi};
+        /* Keep in W.sm only the matches unique both ways (and, when asked, clear of
+         * overlapping windows) whose width fits the map distance (O5); narrow the interval to
+         * the offsets every kept match allows. */
+        if (cfg->reject_overlap)
+            drop_overlapping((uint16_t)((d >> 1) + (d & 1u)));
+        found = optical_unique(&x->wd, x->s, lohi);
+        int16_t nlo = lohi[0], nhi = lohi[1];
         if (nlo > nhi)
             return -1;
         uint32_t nd = (uint16_t)((uint16_t)nhi - (uint16_t)nlo);
@@ -330,7 +470,8 @@ static int8_t identify(ctx_t *x, uint8_t *mode, uint8_t *widened)
         int16_t mid = (int16_t)((uint32_t)(wlo + whi) >> 1); /* floor((lo + hi) / 2) */
         uint16_t half = (uint16_t)((uint32_t)(whi - wlo + 1) >> 1);
         optical_expect_scan(mid, half);
-        found = unique(x, true, half, NULL, NULL);
+        drop_overlapping(half);
+        found = optical_unique(&x->wd, x->s, NULL);
         *widened = w;
         if (found >= 3) {
             *mode = IDENT_WIDENED;
@@ -364,18 +505,11 @@ static int8_t finish(optical_fix_t *out, int8_t status)
  * angle turned by its latched heading's change to the reference instant). */
 static void gather(const ctx_t *x)
 {
-    fx_angle_t *ang = W.u.sv.ang;
-    uint8_t m = 0;
-    for (uint8_t j = 0; j < W.n; j++) {
-        if (W.sm[j] >= DROPPED)
-            continue;
-        fx_angle_t d = SIGHTING(x, j)->angle;
-        if (x->latched != NULL)
-            d += x->latched[W.ord[j]].heading - x->ap->heading;
-        *ang++ = d;
-        W.pos[m++] = j;
-    }
-    W.m = m;
+    optical_gather(x->s);
+    const optical_pose_t *lat = x->latched;
+    if (lat != NULL)
+        for (uint8_t i = 0; i < W.m; i++)
+            W.u.sv.ang[i] += lat[W.ord[W.pos[i]]].heading - x->ap->heading;
 }
 
 /* Triangulate the triplet at positions t[] of the identified set; when moving, refine the
@@ -462,11 +596,13 @@ static bool prepare(ctx_t *x)
     const optical_sighting_t *si = x->s; /* (pointers: no index multiplies on the MSP430) */
     uint16_t lever8 = 0;
     uint8_t n = W.n;
-    for (uint8_t i = 0; i < n; i++, si++) {
-        fx_angle_t d = si->angle;
-        int32_t c = 0;
-        uint16_t l = 0;
-        if (lat != NULL) {
+    if (lat == NULL) {
+        optical_sort(si); /* and the buckets (until the first scan, we holds the widths) */
+    } else {
+        for (uint8_t i = 0; i < n; i++, si++, lat++) {
+            fx_angle_t d = si->angle;
+            int32_t c = 0;
+            uint16_t l = 0;
             if (!coords_ok(lat->x, lat->y))
                 return false;
             int32_t ex = lat->x - ap->x, ey = lat->y - ap->y;
@@ -483,20 +619,8 @@ static bool prepare(ctx_t *x)
                 }
             }
             d += lat->heading - ap->heading;
-            lat++;
-        }
-        uint16_t t = (uint16_t)((d + 0x8000ul) >> 16); /* a16(d), without the call */
-        /* Insertion by angle (standing, the input is sorted: at most the last one, wrapped to
-         * 0 by the rounding, moves). */
-        uint8_t j = i;
-        if (lat == NULL) {
-            while (j > 0 && W.th[j - 1] > t) {
-                W.th[j] = W.th[j - 1];
-                W.ord[j] = W.ord[j - 1];
-                W.we[j] = W.we[j - 1];
-                j--;
-            }
-        } else {
+            uint16_t t = a16(d);
+            uint8_t j = i;
             while (j > 0 && W.th[j - 1] > t) {
                 W.th[j] = W.th[j - 1];
                 W.c[j] = W.c[j - 1];
@@ -507,20 +631,14 @@ static bool prepare(ctx_t *x)
             }
             W.c[j] = c;
             W.lev[j] = l;
+            W.th[j] = t;
+            W.ord[j] = i;
+            W.we[j] = si->width;
         }
-        W.th[j] = t;
-        W.ord[j] = i;
-        W.we[j] = si->width; /* until the first scan: the width, for threshold() */
+        optical_buckets();
     }
     W.lever8 = lever8;
     W.amax8 = sat16((uint32_t)W.eps8 + lever8);
-    /* Bucket index: first sorted sighting at or after each 1/16 turn (0 when none: wraps). */
-    uint8_t b = 0;
-    for (uint8_t j = 0; j < n; j++) /* the buckets up to th[j]'s start at j */
-        for (uint8_t bj = (uint8_t)(W.th[j] >> 12); b <= bj; b++)
-            W.bstart[b] = j;
-    for (; b < 16; b++)
-        W.bstart[b] = 0;
     return true;
 }
 
@@ -543,47 +661,34 @@ static fx_q16_t threshold(const ctx_t *x)
     }
 }
 
-/* O6: implausible jumps and turns, then the other identified sightings must agree. */
+/* O6: implausible jumps and turns, then the other identified sightings must agree (when
+ * moving, their angles in W.u.sv.ang corrected for the parallax first: the fix's last use). */
 static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3])
 {
-    const optical_config_t *cfg = x->cfg;
-    /* (|jx| + |jy| <= jump_max bounds the distance without the root) */
-    uint32_t jx = umag(p->x - x->ap->x), jy = umag(p->y - x->ap->y), jm = (uint32_t)cfg->jump_max;
-    if ((jx > jm || jy > jm - jx) && fx_hypot((int32_t)jx, (int32_t)jy) > jm)
-        return OPTICAL_E_JUMP;
-    fx_angle_t dh = p->heading - x->ap->heading;
-    if (umag((int32_t)dh) > cfg->turn_max)
-        return OPTICAL_E_TURN;
-    uint16_t tol = (uint16_t)(a16(cfg->resid_max) + 3u), h16 = a16(p->heading);
-    const optical_xy_t *mb = x->map->b;
-    uint8_t left = CHECK_MAX;
-    for (uint8_t i = 0; i < W.m && left; i++) {
-        if (i == t3[0] || i == t3[1] || i == t3[2])
-            continue;
-        left--;
-        uint8_t j = W.pos[i];
-        const optical_xy_t *bk = &mb[W.sm[j]];
-        int32_t dx = bk->x - p->x, dy = bk->y - p->y;
-        fx_angle_t th = W.u.sv.ang[i];
-        if (x->latched != NULL && W.c[j])
-            th = corrected(th, j, fx_hypot(dx, dy));
-        uint16_t res = (uint16_t)(optical_angle16(dx, dy) - h16 - a16(th));
-        if (abs16(res) > tol)
-            return OPTICAL_E_DISAGREE;
+    int8_t st = optical_jump(p, x->ap, x->cfg);
+    if (st != OPTICAL_OK)
+        return st;
+    if (x->latched != NULL) {
+        uint8_t left = CHECK_MAX;
+        for (uint8_t i = 0; i < W.m && left; i++) {
+            if (i == t3[0] || i == t3[1] || i == t3[2])
+                continue;
+            left--;
+            uint8_t j = W.pos[i];
+            if (W.c[j]) {
+                const optical_xy_t *bk = &W.b[W.sm[j]];
+                W.u.sv.ang[i] = corrected(W.u.sv.ang[i], j, fx_hypot(bk->x - p->x, bk->y - p->y));
+            }
+        }
     }
-    return OPTICAL_OK;
+    return optical_resid(p, t3, (uint16_t)(a16(x->cfg->resid_max) + 3u));
 }
 
 int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *approx, const optical_sighting_t *s, uint8_t n,
                    const optical_pose_t *latched, optical_fix_t *out)
 {
-    for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++)
-        out->ident[i] = -1;
-    out->n_ident = 0;
-    out->widened = 0;
-    out->quality = UINT32_MAX;
-    out->pose = *approx;
+    optical_fix_init(out, approx);
     if (map == NULL || map->n < 3 || map->n > OPTICAL_MAX_BEACONS || n > OPTICAL_MAX_SIGHTINGS ||
         !coords_ok(approx->x, approx->y))
         return finish(out, OPTICAL_E_ARG);
@@ -594,37 +699,23 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     x.ap = approx;
     x.s = s;
     x.latched = latched;
-    W.b = map->b;
-    W.x = approx->x;
-    W.y = approx->y;
-    W.head = a16(approx->heading);
-    /* the expected angles come from offsets floored to 2^-8 m: that adds up to sqrt 2 units
-     * to the position uncertainty */
-    W.eps8 = sat16(m8((uint32_t)cfg->window_pos) + 2u);
-    W.nb = map->n;
     W.n = n;
-    /* D (m) * 2^8 * 2^16 / (2 pi) = D (Q16) * 10430.378 / 2^8 */
-    x.wd.dk = ((uint32_t)cfg->beacon_diameter * 10430u) >> 8;
-    x.wd.x = approx->x;
-    x.wd.y = approx->y;
-    x.wd.eps8 = m8((uint32_t)cfg->window_pos);
-    x.wd.tol8 = sat16((uint32_t)cfg->dist_tol >> 8);
-    x.wd.rel16 = sat16((uint32_t)cfg->dist_rel);
-    x.wd.flat = cfg->beacon_flat;
+    optical_setup(map, cfg, approx, &x.wd);
 
     if (!prepare(&x))
         return finish(out, OPTICAL_E_ARG);
     /* O4, then O2: expected angles of the beacons within T (+ the position uncertainty),
      * and the first identification pass (O3). */
     W.gate8 = sat15(((uint32_t)threshold(&x) + (uint32_t)cfg->window_pos) >> 8);
-    if (optical_expect_scan(0, half0(cfg)))
+    uint16_t h0 = half0(cfg);
+    if (optical_expect_scan(0, h0))
         return finish(out, OPTICAL_E_ARG);
     if (n < 3)
         return finish(out, OPTICAL_E_FEW);
 
     /* O3-O5 */
     uint8_t mode, widened;
-    int8_t found = identify(&x, &mode, &widened);
+    int8_t found = identify(&x, h0, &mode, &widened);
     out->widened = widened;
     if (found < 0)
         return finish(out, OPTICAL_E_INCONSISTENT);
@@ -652,7 +743,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         for (uint8_t j = 0; j < n; j++)
             W.wchk[j] = 0x7Fu;
         optical_expect_scan(0, rmax);
-        if (unique(&x, false, rmax, NULL, NULL) < 5) {
+        if (optical_unique(&x.wd, x.s, NULL) < 5) {
             for (uint8_t j = 0; j < n; j++)
                 if (W.sm[j] < DROPPED)
                     W.sm[j] = NONE;
@@ -663,14 +754,16 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         gather(&x);
         st = solve(&x, passes, t3, &tri);
     }
-    for (uint8_t i = 0; i < W.m; i++)
-        out->ident[W.ord[W.pos[i]]] = (int8_t)W.sm[W.pos[i]];
+    optical_ident(out->ident);
     out->n_ident = W.m;
     if (st == OPTICAL_OK || st == OPTICAL_E_SINGULAR) {
-        out->pose = tri.pose;
+        out->pose.x = tri.pose.x; /* (field by field, unrolled: no memcpy, no counter) */
+        out->pose.y = tri.pose.y;
+        out->pose.heading = tri.pose.heading;
         out->quality = tri.quality;
-        for (uint8_t i = 0; i < 3; i++)
-            out->used[i] = W.sm[W.pos[t3[i]]];
+        out->used[0] = W.sm[W.pos[t3[0]]];
+        out->used[1] = W.sm[W.pos[t3[1]]];
+        out->used[2] = W.sm[W.pos[t3[2]]];
     }
     if (st == OPTICAL_OK)
         st = check(&x, &tri.pose, t3);

@@ -18,6 +18,7 @@
 #include "fx/fx.h"
 #include "optical/capture.h"
 #include "optical/fastmath.h"
+#include "optical/glue.h"
 #include "optical/optical.h"
 #include "optical/reflectors3.h"
 #include "optical_vectors_data.h"
@@ -509,6 +510,209 @@ static void kernels(void)
     }
 }
 
+/* fix.c's glue kernels (optical/glue.h) on random work areas: the standing preparation and
+ * its buckets, the both-ways uniqueness with its O5 checks and narrowing, the gather. */
+static void print_work(uint8_t n)
+{
+    for (uint8_t j = 0; j < n; j++) {
+        cy_print(" ");
+        cy_print_dec(KW.sm[j]);
+        cy_print(":");
+        cy_print_dec(KW.wchk[j]);
+    }
+}
+
+static void glue_kernels(void)
+{
+    for (uint8_t t = 0; t < 40; t++) {
+        KW.n = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
+        for (uint8_t i = 0; i < KW.n; i++) {
+            /* ascending with ties, some near the wrap, some out of order */
+            uint32_t a = (t & 1) ? (uint32_t)i << 28 : rnd32();
+            if (t % 5 == 2)
+                a = 0xFFFF7000u + (rnd32() & 0x1FFFu);
+            else if (t % 5 == 3)
+                a = (rnd32() & 3u) << 16 | 0x7FFFu;
+            else if (t % 5 == 4) /* ascending (ties too), to the end of the turn or not */
+                a = (i ? sight[i - 1].angle : 0u) + (rnd32() >> (t & 8 ? 4 : 8)) * (rnd32() & 1u);
+            sight[i].angle = a;
+            sight[i].width = (uint16_t)rnd32();
+        }
+        optical_sort(sight);
+        cy_print("sort ");
+        cy_print_dec(t);
+        for (uint8_t b = 0; b < 16; b++) {
+            cy_print(" ");
+            cy_print_dec(KW.bstart[b]);
+            KW.bstart[b] = 0xAA;
+        }
+        optical_buckets();
+        for (uint8_t j = 0; j < KW.n; j++) {
+            cy_print(" ");
+            cy_print_dec(KW.th[j]);
+            cy_print(":");
+            cy_print_dec(KW.ord[j]);
+            cy_print(":");
+            cy_print_dec(KW.we[j]);
+        }
+        cy_print(" b");
+        for (uint8_t b = 0; b < 16; b++) {
+            cy_print(" ");
+            cy_print_dec(KW.bstart[b]);
+        }
+        cy_println();
+    }
+    for (uint8_t t = 0; t < 100; t++) {
+        optical_width_t wd;
+        wd.dk = 213000u + rnd32() % 1000000u;
+        wd.x = rnd_in(0x00800000u);
+        wd.y = rnd_in(0x00800000u);
+        wd.eps8 = (uint16_t)(rnd32() % 300u);
+        wd.tol8 = (uint16_t)(rnd32() % 300u);
+        wd.rel16 = (uint16_t)rnd32();
+        wd.flat = (uint8_t)(rnd32() & 1u);
+        KW.nb = (uint8_t)(1u + rnd32() % OPTICAL_MAX_BEACONS);
+        for (uint8_t k = 0; k < KW.nb; k++) {
+            kmap[k].x = wd.x + rnd_in(0x01000000u);
+            kmap[k].y = wd.y + rnd_in(0x01000000u);
+            KW.u.id.psi[k] = (uint16_t)rnd32();
+            uint8_t r = (uint8_t)(rnd32() % 8u);
+            KW.u.id.bm[k] = r < 2 ? (uint8_t)(0xFEu + r) : (uint8_t)(rnd32() % 16u);
+        }
+        KW.b = kmap;
+        KW.n = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
+        for (uint8_t j = 0; j < KW.n; j++) {
+            uint8_t r = (uint8_t)(rnd32() % 8u), k = (uint8_t)(rnd32() % KW.nb);
+            KW.sm[j] = r < 3 ? (uint8_t)(0xFDu + r) : k;
+            if (r >= 5) /* unique both ways */
+                KW.u.id.bm[k] = j;
+            r = (uint8_t)(rnd32() % 4u);
+            KW.wchk[j] = r == 0   ? 0x7Fu
+                         : r == 1 ? k
+                         : r == 2 ? (uint8_t)(k | 0x80u)
+                                  : (uint8_t)rnd32();
+            KW.th[j] = (uint16_t)rnd32();
+            KW.we[j] = (uint16_t)(rnd32() >> (rnd32() & 15u));
+            KW.ord[j] = (uint8_t)(rnd32() % KW.n);
+            sight[j].angle = rnd32();
+            sight[j].width = (uint16_t)(rnd32() % ((t & 3) ? 400u : 9000u));
+        }
+        int16_t lohi[2] = {(int16_t)rnd32(), (int16_t)rnd32()};
+        if (t & 4) { /* an interval around 0, as identify() passes */
+            lohi[1] = (int16_t)(rnd32() & 0x3FFFu);
+            lohi[0] = (int16_t)-lohi[1];
+        }
+        int8_t found = optical_unique(&wd, sight, (t % 3) ? lohi : NULL);
+        cy_print("uniq ");
+        cy_print_dec(t);
+        cy_print(" ");
+        cy_print_dec(found);
+        cy_print(" ");
+        cy_print_dec(lohi[0]);
+        cy_print(" ");
+        cy_print_dec(lohi[1]);
+        print_work(KW.n);
+        optical_gather(sight);
+        cy_print(" g ");
+        cy_print_dec(KW.m);
+        for (uint8_t i = 0; i < KW.m; i++) {
+            cy_print(" ");
+            cy_print_dec(KW.pos[i]);
+            cy_print(":");
+            cy_print_hex32(KW.u.sv.ang[i]);
+        }
+        cy_println();
+    }
+    /* O6's residuals: a fix near the beacons' true bearings, tolerances around them, the
+     * triplet anywhere among the identified. */
+    for (uint8_t t = 0; t < 60; t++) {
+        optical_pose_t p = {rnd_in(0x00800000u), rnd_in(0x00800000u), rnd32()};
+        KW.nb = OPTICAL_MAX_BEACONS;
+        KW.n = OPTICAL_MAX_SIGHTINGS;
+        KW.m = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
+        KW.b = kmap;
+        for (uint8_t k = 0; k < KW.nb; k++) {
+            kmap[k].x = p.x + rnd_in((t & 1) ? 0x00080000u : 0x02000000u);
+            kmap[k].y = p.y + rnd_in((t & 1) ? 0x00080000u : 0x02000000u);
+        }
+        for (uint8_t i = 0; i < KW.m; i++) {
+            uint8_t j = (uint8_t)(rnd32() % OPTICAL_MAX_SIGHTINGS), k = (uint8_t)(rnd32() % KW.nb);
+            KW.pos[i] = j;
+            KW.sm[j] = k;
+            /* the bearing the fix sees, off by up to about 3 tolerances */
+            uint16_t a = optical_angle16(kmap[k].x - p.x, kmap[k].y - p.y);
+            KW.u.sv.ang[i] = ((uint32_t)a << 16) - p.heading + (uint32_t)rnd_in(0x01000000u);
+        }
+        uint8_t t3[3];
+        for (uint8_t q = 0; q < 3; q++)
+            t3[q] = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
+        uint16_t tol = (uint16_t)(rnd32() % 400u);
+        if (t % 7 == 3)
+            tol = (uint16_t)rnd32();
+        cy_print("resid ");
+        cy_print_dec(t);
+        cy_print(" ");
+        cy_print_dec(optical_resid(&p, t3, tol));
+        if (t % 3 == 0) { /* the work area's and O5's arguments: ordinary, then saturating */
+            optical_config_t c;
+            optical_config_default(&c);
+            optical_map_t mp = {kmap, (uint8_t)(3u + t % 30u)};
+            c.beacon_diameter = (fx_q16_t)(rnd32() >> (rnd32() % 32u));
+            c.beacon_flat = (uint8_t)(t & 1u);
+            c.window_pos = (fx_q16_t)(rnd32() >> (t < 30 ? 12u + rnd32() % 8u : rnd32() % 8u));
+            if (t % 9 == 3)
+                c.window_pos = (fx_q16_t)(0xFFFE00l + rnd32() % 0x300u);
+            c.dist_tol = (fx_q16_t)(rnd32() >> (rnd32() % 16u));
+            c.dist_rel = (fx_q16_t)(rnd32() >> (rnd32() % 20u));
+            optical_width_t w;
+            optical_setup(&mp, &c, &p, &w);
+            cy_print(" s ");
+            cy_print_hex32(w.dk);
+            field("", (uint32_t)w.x);
+            field("", (uint32_t)w.y);
+            field("", ((uint32_t)w.eps8 << 16) | w.tol8);
+            field("", ((uint32_t)w.rel16 << 16) | w.flat);
+            field("", (uint32_t)KW.x);
+            field("", (uint32_t)KW.y);
+            field("", ((uint32_t)KW.head << 16) | KW.eps8);
+            field("", ((uint32_t)KW.nb << 16) | (KW.b == kmap));
+        }
+        { /* O6's jump and turn: around the limits, and far beyond */
+            optical_config_t c;
+            optical_config_default(&c);
+            c.jump_max = (fx_q16_t)(rnd32() >> (8u + rnd32() % 20u));
+            c.turn_max = rnd32() >> (rnd32() % 16u);
+            optical_pose_t ap = {p.x + rnd_in((uint32_t)c.jump_max), p.y, p.heading};
+            ap.y += (t & 2) ? rnd_in((uint32_t)c.jump_max) : rnd_in(0x3FFFFFFFu);
+            ap.heading += (t & 4) ? (uint32_t)rnd_in((c.turn_max >> 2) | 1u) : rnd32();
+            cy_print(" j ");
+            cy_print_dec(optical_jump(&p, &ap, &c));
+        }
+        int8_t id[OPTICAL_MAX_SIGHTINGS];
+        for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++) {
+            id[i] = -1;
+            KW.ord[i] = (uint8_t)(rnd32() % OPTICAL_MAX_SIGHTINGS);
+        }
+        optical_ident(id);
+        if (t % 10 == 0) { /* the result's initial state (over whatever was there) */
+            optical_fix_t f;
+            for (uint8_t i = 0; i <= offsetof(optical_fix_t, status); i++)
+                ((uint8_t *)&f)[i] = (uint8_t)rnd32();
+            optical_fix_init(&f, &p);
+            cy_print(" f");
+            for (uint8_t i = 0; i <= offsetof(optical_fix_t, status); i++) {
+                cy_print(" ");
+                cy_print_dec(((const uint8_t *)&f)[i]);
+            }
+        }
+        for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++) {
+            cy_print(" ");
+            cy_print_dec(id[i]);
+        }
+        cy_println();
+    }
+}
+
 static void reflectors(void)
 {
     /* Seed 004: A(0,21), B(13,21), C(13,0) ft; reflections 1.0556, 2.3628, 2.8508 s after the
@@ -825,6 +1029,7 @@ int main(void)
     cy_print("# optical vectors\n");
     helpers();
     kernels();
+    glue_kernels();
     fixes();
     reflectors();
     selections();

@@ -1,0 +1,605 @@
+/*
+ * optical_glue.S - MSP430 versions of the per-sighting loops of optical_fix()'s glue
+ * (optical/glue.h): optical_sort, optical_buckets, optical_unique, optical_gather. fix.c holds
+ * the portable C that defines the results; these perform the very same integer steps, and
+ * tests/vectors/optical_vectors.c checks them bit for bit on both worlds.
+ *
+ * Registers as clang emits calls (TI EABI): arguments in R12..R15, results in R12; R11..R15
+ * may be clobbered, R4..R10 are preserved. optical_sighting_t is 6 bytes (angle 0, width 4),
+ * optical_xy_t 8; the work area's offsets are static-asserted in fix.c and fastmath.c.
+ * A binary angle rounded to 16 bits, (a + 2^15) >> 16, is its high word plus bit 15 of its low
+ * word (RLA low, ADC high).
+ */
+
+    .set MPY,   0x0130
+    .set OP2,   0x0138
+    .set RESLO, 0x013a
+    .set RESHI, 0x013c
+
+/* optical_work_t (fastmath.h) */
+    .set OW,        optical_work
+    .set OW_B,      0
+    .set OW_X,      2
+    .set OW_Y,      6
+    .set OW_HEAD,   10
+    .set OW_EPS8,   12
+    .set OW_NB,     20
+    .set OW_N,      21
+    .set OW_M,      23
+    .set OW_TH,     24
+    .set OW_WE,     84
+    .set OW_SM,     174
+    .set OW_BSTART, 189
+    .set OW_ORD,    205
+    .set OW_WCHK,   220
+    .set OW_POS,    235
+    .set OW_PSI,    250
+    .set OW_ANG,    250
+    .set OW_BM,     442
+
+    .set NONE,     0xff
+    .set DROPPED,  0xfd
+
+/*
+ * void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
+ * const optical_pose_t *approx, optical_width_t *wd): R12 = map, R13 = cfg, R14 = approx,
+ * R15 = wd. optical_config_t: beacon_diameter 0, beacon_flat 4, window_pos 10, dist_tol 30,
+ * dist_rel 34; optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18. The
+ * product with interrupts held off (as fx's multiply helpers).
+ */
+    .section .text.optical_setup,"ax",@progbits
+    .global optical_setup
+    .type optical_setup,@function
+optical_setup:
+    mov     0(r12), &OW+OW_B
+    mov.b   2(r12), &OW+OW_NB
+    mov     0(r14), r12             ; x, y
+    mov     r12, &OW+OW_X
+    mov     r12, 4(r15)
+    mov     2(r14), r12
+    mov     r12, &OW+OW_X+2
+    mov     r12, 6(r15)
+    mov     4(r14), r12
+    mov     r12, &OW+OW_Y
+    mov     r12, 8(r15)
+    mov     6(r14), r12
+    mov     r12, &OW+OW_Y+2
+    mov     r12, 10(r15)
+    mov     8(r14), r12             ; head
+    mov     10(r14), r11
+    rla     r12
+    adc     r11
+    mov     r11, &OW+OW_HEAD
+    mov     10(r13), r12            ; m8 = ceil(window_pos / 2^8), saturated
+    mov     12(r13), r11
+    mov     #-1, r14
+    cmp     #0x0100, r11
+    jhs     1f
+    swpb    r12
+    swpb    r11
+    mov.b   r12, r14
+    bis     r11, r14
+    and     #0xff00, r12
+    jz      1f
+    inc     r14
+    jnz     1f
+    mov     #-1, r14
+1:  mov     r14, 12(r15)
+    add     #2, r14                 ; eps8 = m8 + 2, saturated
+    jnc     2f
+    mov     #-1, r14
+2:  mov     r14, &OW+OW_EPS8
+    mov     30(r13), r12            ; tol8 = dist_tol >> 8, saturated
+    mov     32(r13), r11
+    mov     #-1, r14
+    cmp     #0x0100, r11
+    jhs     3f
+    swpb    r12
+    swpb    r11
+    mov.b   r12, r14
+    bis     r11, r14
+3:  mov     r14, 14(r15)
+    mov     34(r13), r14            ; rel16 = dist_rel, saturated
+    tst     36(r13)
+    jz      4f
+    mov     #-1, r14
+4:  mov     r14, 16(r15)
+    mov.b   4(r13), 18(r15)         ; flat
+    push    r2                      ; dk = (D 10430 mod 2^32) >> 8
+    dint
+    nop
+    mov     0(r13), &MPY
+    mov     #10430, &OP2
+    mov     &RESLO, r12
+    mov     &RESHI, r11
+    mov     2(r13), &MPY
+    mov     #10430, &OP2
+    add     &RESLO, r11
+    pop     r2
+    swpb    r12
+    mov.b   r12, r12
+    swpb    r11
+    mov     r11, r14
+    and     #0xff00, r14
+    bis     r14, r12
+    mov.b   r11, r11
+    mov     r12, 0(r15)
+    mov     r11, 2(r15)
+    ret
+
+/*
+ * void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx): R12 = out,
+ * R13 = approx. optical_fix_t: pose 0, quality 12, ident 16..30, n_ident 34, widened 35.
+ */
+    .section .text.optical_fix_init,"ax",@progbits
+    .global optical_fix_init
+    .type optical_fix_init,@function
+optical_fix_init:
+    mov     0(r13), 0(r12)
+    mov     2(r13), 2(r12)
+    mov     4(r13), 4(r12)
+    mov     6(r13), 6(r12)
+    mov     8(r13), 8(r12)
+    mov     10(r13), 10(r12)
+    mov     #-1, r14
+    mov     r14, 12(r12)
+    mov     r14, 14(r12)
+    mov     r14, 16(r12)
+    mov     r14, 18(r12)
+    mov     r14, 20(r12)
+    mov     r14, 22(r12)
+    mov     r14, 24(r12)
+    mov     r14, 26(r12)
+    mov     r14, 28(r12)
+    mov.b   r14, 30(r12)
+    clr     34(r12)
+    ret
+
+/*
+ * void optical_sort(const optical_sighting_t *s): R12 = s. R13 = i, R14 = &th[i], R9 = n,
+ * R10 = t, R15 = th[i - 1] (0 for i = 0: the largest so far). A sighting not below it is
+ * placed at i; otherwise it is inserted (R11 = &th[j], R6 = j). While none has moved, the
+ * buckets up to each one's start are filled as it is placed (R8 = 2^12 b, the start of the
+ * next bucket b, R7 = &bstart[b], 0 when all 16 are set); after a move R8 = 1 and
+ * optical_buckets does them.
+ */
+    .section .text.optical_sort,"ax",@progbits
+    .global optical_sort
+    .type optical_sort,@function
+optical_sort:
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    push    r6
+    mov.b   &OW+OW_N, r9
+    clr     r13
+    mov     #OW+OW_TH, r14
+    clr     r15
+    clr     r8
+    mov     #OW+OW_BSTART, r7
+1:  cmp     r9, r13                 ; i < n
+    jhs     9f
+    mov     @r12+, r11              ; t = (angle + 2^15) >> 16
+    mov     @r12+, r10
+    rla     r11
+    adc     r10
+    cmp     r15, r10                ; below th[i - 1]: inserted
+    jlo     20f
+    mov     r10, 0(r14)
+    mov     @r12+, r11
+    mov     r11, OW_WE-OW_TH(r14)
+    mov.b   r13, OW+OW_ORD(r13)
+    mov     r10, r15
+    tst     r7                      ; the buckets up to t's start at i
+    jz      5f
+4:  cmp     r8, r10
+    jlo     5f
+    mov.b   r13, 0(r7)
+    inc     r7
+    add     #0x1000, r8
+    jnz     4b
+    clr     r7                      ; all 16 set
+5:  inc     r13
+    incd    r14
+    jmp     1b
+20: mov     r14, r11                ; j = i; while j > 0 and th[j - 1] > t: move up
+    mov     r13, r6
+21: tst     r6
+    jz      22f
+    cmp     -2(r11), r10
+    jhs     22f
+    mov     -2(r11), 0(r11)
+    mov     OW_WE-OW_TH-2(r11), OW_WE-OW_TH(r11)
+    mov.b   OW+OW_ORD-1(r6), OW+OW_ORD(r6)
+    decd    r11
+    add     #-1, r6
+    jmp     21b
+22: mov     r10, 0(r11)
+    mov     @r12+, r10
+    mov     r10, OW_WE-OW_TH(r11)
+    mov.b   r13, OW+OW_ORD(r6)
+    mov     #1, r8                  ; (moved: the buckets afterwards)
+    clr     r7
+    jmp     5b
+9:  cmp     #1, r8
+    jeq     7f
+    tst     r7                      ; the rest: 0
+    jz      8f
+6:  cmp     #OW+OW_BSTART+16, r7
+    jhs     8f
+    clr.b   0(r7)
+    inc     r7
+    jmp     6b
+7:  call    #optical_buckets
+8:  pop     r6
+    pop     r7
+    pop     r8
+    pop     r9
+    pop     r10
+    ret
+
+/*
+ * void optical_buckets(void): R15 = n, R14 = j, R11 = &th[j] + 1 (its high byte), R10 = that
+ * byte, R12 = 16 b (the high byte where bucket b starts; 0 after the last), R13 = &bstart[b].
+ */
+    .section .text.optical_buckets,"ax",@progbits
+    .global optical_buckets
+    .type optical_buckets,@function
+optical_buckets:
+    push    r10
+    mov.b   &OW+OW_N, r15
+    clr     r14
+    mov     #OW+OW_TH+1, r11
+    clr     r12
+    mov     #OW+OW_BSTART, r13
+1:  cmp     r15, r14                ; j < n
+    jhs     5f
+    mov.b   @r11, r10
+    incd    r11
+2:  cmp     r12, r10                ; the buckets up to th[j]'s start at j
+    jlo     3f
+    mov.b   r14, 0(r13)
+    inc     r13
+    add.b   #16, r12
+    jnz     2b
+    pop     r10                     ; all 16 set
+    ret
+3:  inc     r14
+    jmp     1b
+5:  cmp     #OW+OW_BSTART+16, r13   ; the rest: 0
+    jhs     6f
+    clr.b   0(r13)
+    inc     r13
+    jmp     5b
+6:  pop     r10
+    ret
+
+/*
+ * int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, int16_t *lohi):
+ * R12 = wd, R13 = s, R14 = lohi (kept on the stack) -> R12 = the kept. R4 = wd, R5 = s,
+ * R6 = n, R7 = kept, R8 = j, R9 = lo, R10 = hi (without lohi: narrowed all the same, and
+ * dropped), R11 = k.
+ */
+    .section .text.optical_unique,"ax",@progbits
+    .global optical_unique
+    .type optical_unique,@function
+optical_unique:
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    push    r6
+    push    r5
+    push    r4
+    push    r14
+    mov     r12, r4
+    mov     r13, r5
+    mov.b   &OW+OW_N, r6
+    clr     r7
+    clr     r8
+    clr     r9
+    clr     r10
+    tst     r14
+    jz      1f
+    mov     0(r14), r9
+    mov     2(r14), r10
+1:  cmp     r6, r8                  ; j < n
+    jhs     9f
+    mov.b   OW+OW_SM(r8), r11       ; k
+    cmp.b   #DROPPED, r11
+    jhs     8f
+    cmp.b   OW+OW_BM(r11), r8       ; bm[k] = j
+    jne     7f
+    mov.b   OW+OW_WCHK(r8), r12     ; c: the cached verdict when it is k's
+    mov.b   r12, r13
+    and.b   #0x7f, r13
+    cmp.b   r11, r13
+    jeq     3f
+    mov     r11, r13                ; O5: &b[k], the width of s[ord[j]]
+    rla     r13
+    rla     r13
+    rla     r13
+    add     &OW+OW_B, r13
+    mov.b   OW+OW_ORD(r8), r14
+    mov     r14, r15
+    rla     r14
+    add     r15, r14
+    rla     r14
+    add     r5, r14
+    mov     4(r14), r14
+    mov     r4, r12
+    call    #optical_width_ok
+    mov.b   OW+OW_SM(r8), r11       ; (k again)
+    tst.b   r12
+    mov.b   r11, r12
+    jnz     2f
+    bis.b   #0x80, r12              ; a misfit
+2:  mov.b   r12, OW+OW_WCHK(r8)
+3:  tst.b   r12                     ; bit 7: a misfit
+    jn      7f
+    inc     r7
+    mov     r8, r13                 ; off = th[j] - psi[k], e = we[j]
+    rla     r13
+    rla     r11
+    mov     OW+OW_TH(r13), r15
+    sub     OW+OW_PSI(r11), r15
+    mov     OW+OW_WE(r13), r14
+    cmp     r15, r9                 ; off > lo and off - lo > e: lo = off - e
+    jge     4f
+    mov     r15, r13
+    sub     r9, r13
+    cmp     r13, r14
+    jhs     4f
+    mov     r15, r9
+    sub     r14, r9
+4:  cmp     r10, r15                ; off < hi and hi - off > e: hi = off + e
+    jge     8f
+    mov     r10, r13
+    sub     r15, r13
+    cmp     r13, r14
+    jhs     8f
+    mov     r15, r10
+    add     r14, r10
+    jmp     8f
+7:  mov.b   #NONE, OW+OW_SM(r8)
+8:  inc     r8
+    jmp     1b
+9:  pop     r14
+    tst     r14
+    jz      1f
+    mov     r9, 0(r14)
+    mov     r10, 2(r14)
+1:  mov     r7, r12
+    pop     r4
+    pop     r5
+    pop     r6
+    pop     r7
+    pop     r8
+    pop     r9
+    pop     r10
+    ret
+
+/*
+ * void optical_gather(const optical_sighting_t *s): R12 = s. R13 = &sm[j + 1] (walked),
+ * R10 = &sm[n], R14 = &pos[m], R15 = &ang[m], R11 and R9 the sighting's address, then j.
+ */
+    .section .text.optical_gather,"ax",@progbits
+    .global optical_gather
+    .type optical_gather,@function
+optical_gather:
+    push    r10
+    push    r9
+    mov     #OW+OW_SM, r13
+    mov.b   &OW+OW_N, r10
+    add     r13, r10
+    mov     #OW+OW_POS, r14
+    mov     #OW+OW_ANG, r15
+1:  cmp     r10, r13                ; j < n
+    jhs     9f
+    mov.b   @r13+, r11
+    cmp.b   #DROPPED, r11
+    jhs     1b
+    mov.b   OW_ORD-OW_SM-1(r13), r11 ; s + 6 ord[j]
+    rla     r11
+    mov     r11, r9
+    rla     r11
+    add     r9, r11
+    add     r12, r11
+    mov     0(r11), 0(r15)
+    mov     2(r11), 2(r15)
+    add     #4, r15
+    mov     r13, r9                 ; j
+    sub     #OW+OW_SM+1, r9
+    mov.b   r9, 0(r14)
+    inc     r14
+    jmp     1b
+9:  sub     #OW+OW_POS, r14
+    mov.b   r14, &OW+OW_M
+    pop     r9
+    pop     r10
+    ret
+
+/*
+ * void optical_ident(int8_t *ident): R12 = ident. R14 = &pos[i], R15 = &pos[m], R13 = j.
+ */
+    .section .text.optical_ident,"ax",@progbits
+    .global optical_ident
+    .type optical_ident,@function
+optical_ident:
+    mov.b   &OW+OW_M, r15
+    add     #OW+OW_POS, r15
+    mov     #OW+OW_POS, r14
+1:  cmp     r15, r14
+    jhs     9f
+    mov.b   @r14+, r13
+    mov.b   OW+OW_ORD(r13), r11
+    add     r12, r11
+    mov.b   OW+OW_SM(r13), 0(r11)
+    jmp     1b
+9:  ret
+
+/*
+ * int8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol): R12 = p,
+ * R13 = t3, R14 = tol -> R12. R4 = p, R5 = t3, R6 = tol, R7 = i, R8 = left, R9 = a16(heading),
+ * R10 scratch (optical_angle16 preserves R4..R10).
+ */
+    .section .text.optical_resid,"ax",@progbits
+    .global optical_resid
+    .type optical_resid,@function
+optical_resid:
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    push    r6
+    push    r5
+    push    r4
+    mov     r12, r4
+    mov     r13, r5
+    mov     r14, r6
+    mov     8(r4), r10              ; a16(heading)
+    mov     10(r4), r9
+    rla     r10
+    adc     r9
+    clr     r7
+    mov     #4, r8                  ; CHECK_MAX
+1:  cmp.b   &OW+OW_M, r7            ; i < m
+    jhs     8f
+    cmp.b   @r5, r7                 ; not one of the triplet
+    jeq     7f
+    cmp.b   1(r5), r7
+    jeq     7f
+    cmp.b   2(r5), r7
+    jeq     7f
+    mov.b   OW+OW_POS(r7), r10      ; &b[sm[pos[i]]]
+    mov.b   OW+OW_SM(r10), r10
+    rla     r10
+    rla     r10
+    rla     r10
+    add     &OW+OW_B, r10
+    mov     0(r10), r12             ; b - p
+    mov     2(r10), r13
+    sub     0(r4), r12
+    subc    2(r4), r13
+    mov     4(r10), r14
+    mov     6(r10), r15
+    sub     4(r4), r14
+    subc    6(r4), r15
+    call    #optical_angle16
+    sub     r9, r12
+    mov     r7, r10                 ; - a16(ang[i])
+    rla     r10
+    rla     r10
+    mov     OW+OW_ANG(r10), r11
+    mov     OW+OW_ANG+2(r10), r13
+    rla     r11
+    adc     r13
+    sub     r13, r12
+    jn      3f
+2:  cmp     r12, r6                 ; |res| > tol: disagree
+    jlo     9f
+    add     #-1, r8
+    jz      8f
+7:  inc     r7
+    jmp     1b
+3:  inv     r12
+    inc     r12
+    jmp     2b
+8:  clr     r12                     ; OPTICAL_OK
+    jmp     4f
+9:  mov     #8, r12                 ; OPTICAL_E_DISAGREE
+4:  pop     r4
+    pop     r5
+    pop     r6
+    pop     r7
+    pop     r8
+    pop     r9
+    pop     r10
+    ret
+
+/*
+ * int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap,
+ * const optical_config_t *cfg): R12 = p, R13 = ap, R14 = cfg -> R12. R11:R10 = jx (then |dh|),
+ * R9:R8 = jy, R7:R6 = jump_max - jx - jy (then turn_max - |dh|). optical_config_t: jump_max
+ * 38, turn_max 42.
+ */
+    .section .text.optical_jump,"ax",@progbits
+    .global optical_jump
+    .type optical_jump,@function
+optical_jump:
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    push    r6
+    mov     0(r12), r10             ; jx = |p.x - ap.x|
+    mov     2(r12), r11
+    sub     0(r13), r10
+    subc    2(r13), r11
+    tst     r11
+    jge     1f
+    inv     r10
+    inv     r11
+    inc     r10
+    adc     r11
+1:  mov     4(r12), r8              ; jy = |p.y - ap.y|
+    mov     6(r12), r9
+    sub     4(r13), r8
+    subc    6(r13), r9
+    tst     r9
+    jge     2f
+    inv     r8
+    inv     r9
+    inc     r8
+    adc     r9
+2:  mov     38(r14), r6             ; jx > jump_max or jy > jump_max - jx: the root decides
+    mov     40(r14), r7
+    sub     r10, r6
+    subc    r11, r7
+    jlo     3f
+    sub     r8, r6
+    subc    r9, r7
+    jhs     4f
+3:  push    r12
+    push    r13
+    push    r14
+    mov     r10, r12
+    mov     r11, r13
+    mov     r8, r14
+    mov     r9, r15
+    call    #fx_hypot
+    pop     r14
+    mov     38(r14), r6             ; hypot > jump_max: a jump
+    mov     40(r14), r7
+    sub     r12, r6
+    subc    r13, r7
+    pop     r13
+    pop     r12
+    jlo     8f
+4:  mov     8(r12), r10             ; |heading - ap heading|
+    mov     10(r12), r11
+    sub     8(r13), r10
+    subc    10(r13), r11
+    tst     r11
+    jge     5f
+    inv     r10
+    inv     r11
+    inc     r10
+    adc     r11
+5:  mov     42(r14), r6             ; > turn_max: a turn
+    mov     44(r14), r7
+    sub     r10, r6
+    subc    r11, r7
+    jlo     9f
+    clr     r12                     ; OPTICAL_OK
+    jmp     6f
+8:  mov     #6, r12                 ; OPTICAL_E_JUMP
+    jmp     6f
+9:  mov     #7, r12                 ; OPTICAL_E_TURN
+6:  pop     r6
+    pop     r7
+    pop     r8
+    pop     r9
+    pop     r10
+    ret
