@@ -736,7 +736,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         uint16_t rmax = a16(cfg->resid_max);
         x.wd.eps8 = 13;
         W.eps8 = 15;
-        W.amax8 = sat16(15u + W.lever8);
+        W.amax8 = sat16(15ul + W.lever8);
         W.x = x.wd.x = tri.pose.x;
         W.y = x.wd.y = tri.pose.y;
         W.head = a16(tri.pose.heading);
