@@ -149,10 +149,6 @@ static bool test(uint8_t j, uint8_t k, int16_t mid, uint16_t half)
     return true;
 }
 
-/* ceil(2^(9 + l) k), k = 1 and 2/3, l = 0..6: the window factor's scale (expect_scan). */
-static const uint16_t gscale[2][7] = {{512, 1024, 2048, 4096, 8192, 16384, 32768},
-                                      {342, 683, 1366, 2731, 5462, 10923, 21846}};
-
 uint8_t optical_expect_scan(int16_t mid, uint16_t half)
 {
     uint8_t bad = 0;
@@ -180,7 +176,7 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half)
             ay = t;
             flags |= 1u;
         }
-        uint16_t m8 = ax, psi = 0, g = 0xFFFFu;
+        uint16_t m8 = ax, psi = 0, g = 0xFFFFu, ek = 0x7FFFu + OPTICAL_MARGIN;
         angle_parts_t p = {0, 0};
         uint8_t l = 0;
         if (ax) {
@@ -192,30 +188,31 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half)
         }
         psi = (uint16_t)(psi - W.head);
         W.u.id.psi[k] = psi;
-        /* The window factor (2^16 / (2 pi) asin(l8 / r8) <= g l8 / 256): the range is at least
-         * m8 sqrt(1 + t^2), asin(x) <= k (pi / 2) x, and 2^16 / (2 pi) (pi / 2) 256 = 2^22, so
-         * g = 2^22 k / r8 <= h k 2^(l - 7). */
+        /* The window (docs/optical.md "O2-O5"): 2^16 / (2 pi) asin(x) <= 2^14 k x for x =
+         * eps8 / r8 <= 1 / (3 - 2 k), k = 2/3 or 1; with r8 >= m8 sqrt(1 + t^2) = u 2^-l
+         * sqrt(1 + t^2) and h >= 2^30 (2/3) / (u sqrt(1 + t^2)) (k = 2/3; times 3/2 for
+         * k = 1) the window part is at most h eps8 2^l / 2^16, the lever window l8 g / 256. */
         if (m8 >= 77u && m8 > W.amax8) {
-            uint16_t h = (uint16_t)(((uint32_t)p.r * optical_ct_tab[p.i < 64 ? p.i : 63]) >> 16);
-            uint8_t small = m8 >= 2u * (uint32_t)W.amax8; /* x <= 1/2: k = 2/3 */
-            if (l <= 6) {
-                g = (uint16_t)((((uint32_t)h * gscale[small][l]) >> 16) + 1u);
-            } else {
-                uint32_t v = small ? ((uint32_t)h * 2u + 2u) / 3u : h;
-                v <<= l - 7u;
-                g = v >= 0xFFFEu ? 0xFFFEu : (uint16_t)(v + 1u);
-            }
+            uint32_t h = ((uint32_t)p.r * optical_ct_tab[p.i < 64 ? p.i : 63]) >> 16;
+            if (m8 < 2u * (uint32_t)W.amax8) /* x up to 1: k = 1 */
+                h += (h >> 1) + 2u;
+            /* (eps8 <= amax8 < m8: eps8 2^l < 2^16) */
+            uint32_t v = ((h * (uint16_t)(W.eps8 << l)) >> 16) + 1u;
+            ek = (uint16_t)((v > 0x7FFFu ? 0x7FFFu : v) + OPTICAL_MARGIN);
+            if (l <= 8)
+                g = (uint16_t)((h >> (8u - l)) + 1u);
+            else /* (l = 9: m8 < 128) */
+                g = 2u * h + 1u >= 0xFFFEu ? 0xFFFEu : (uint16_t)(2u * h + 1u);
         }
         if (W.lever8) /* (standing, only e is read) */
             W.u.id.g[k] = g;
-        uint16_t ek = (uint16_t)(optical_win(W.eps8, g) + OPTICAL_MARGIN);
         W.u.id.e[k] = ek;
         /* The candidate sightings: from the bucket of the window's start. */
-        uint16_t wmax = ek;
+        uint32_t wmax = ek;
         if (W.lever8) /* the widest window over the sightings: the largest lever */
-            wmax = (uint16_t)(optical_win(W.amax8, g) + OPTICAL_MARGIN);
-        wmax = (uint16_t)(wmax + half);
-        uint16_t lo = (uint16_t)(psi + (uint16_t)mid - wmax);
+            wmax = optical_win(W.amax8, g) + (uint32_t)OPTICAL_MARGIN;
+        wmax += half;
+        uint16_t lo = (uint16_t)(psi + (uint16_t)mid - (uint16_t)wmax);
         uint16_t span = (uint16_t)(2u * wmax);
         bool all = wmax >= 0x7000u; /* that wide: test every sighting */
         uint8_t j = all ? 0u : W.bstart[lo >> 12];
