@@ -64,73 +64,24 @@ oct_b:
     .short  0, 16385, 32769, 16384, 1, 49152, 32768, 49153
 
 /*
- * The octant's arctangent (octant() in fastmath.c): R12 = u in [2^15, 2^16), R14 = v <= u,
- * R11 = flags (2 swapped, 4 dx < 0, 8 dy < 0) -> R12 = the angle (2^-16 turn), R13 = r
- * (2^30 / u), R14 = 2 min(i, 63). Clobbers R15. The caller holds interrupts off (the three
- * products). The ratio's product v r holds q = (v r) >> 14 as its bits 14..29: i = q >> 10
- * is RESHI's high byte, the fraction q << 6 RESHI's low byte and RESLO's top two bits.
+ * The octant's arctangent (octant() in fastmath.c; es_octant, inside optical_expect_scan's
+ * loop): R12 = u in [2^15, 2^16), R14 = v <= u, R11 = flags (2 swapped, 4 dx < 0, 8 dy < 0)
+ * -> R12 = the angle (2^-16 turn), R13 = r (2^30 / u), R14 = 2 min(i, 63). Clobbers R15.
+ * Interrupts held off (the three products). The ratio's product v r holds q = (v r) >> 14
+ * as its bits 14..29: i = q >> 10 is RESHI's high byte, the fraction q << 6 RESHI's low byte
+ * and RESLO's top two bits.
  */
     .section .text.optical_octant,"ax",@progbits
-octant:
-    mov     r12, r15                ; f = u << 7: (u mod 2^8) << 7, bit 8 of u into bit 15
-    swpb    r15
-    bit     #1, r15
-    bic     #0x00ff, r15
-    rrc     r15
-    mov     r15, &MPY
-    mov     r12, r15                ; 2 (u >> 9): recip_tab - 128 based
-    swpb    r15
-    and     #0x00fe, r15
-    mov     optical_recip_tab-128(r15), r13
-    sub     optical_recip_tab-126(r15), r13 ; RT[i] - RT[i+1]
-    mov     r13, &OP2
-    mov     optical_recip_tab-128(r15), r13
-    mov     &RESLO, r15             ; r = RT[i] - RESHI - the rounding bit (carry: its inverse)
-    inv     r15
-    rla     r15
-    subc    &RESHI, r13
-    cmp     r12, r14                ; v >= u: 45 degrees (2^-18 turn)
-    jhs     3f
-    mov     r14, &MPY               ; q = (v r) >> 14, saturated
-    mov     r13, &OP2
-    mov     &RESHI, r12
-    cmp     #0x4000, r12
-    jhs     4f
-    mov     &RESLO, r15
-    swpb    r12                     ; 2 (q >> 10)
-    mov.b   r12, r14
-    rla     r14
-    and     #0xff00, r12            ; f = q << 6
-    swpb    r15
-    and     #0x00c0, r15
-    bis     r15, r12
-1:  mov     r12, &MPY
-    mov     optical_atan_tab(r14), r12
-    mov     optical_atan_tab+2(r14), r15
-    sub     r12, r15                ; AT[i+1] - AT[i]
-    mov     r15, &OP2
-    mov     &RESLO, r15             ; a = AT[i] + RESHI + the rounding bit, 2^-18 turn
-    rla     r15
-    addc    &RESHI, r12
-2:  incd    r12                     ; (a + 2) >> 2 (a <= 32768: no carry out)
-    rrc     r12
-    rra     r12
-    xor     oct_m(r11), r12         ; unfold
-    add     oct_b(r11), r12
-    ret
-3:  mov     #32768, r12
-    mov     #126, r14
-    jmp     2b
-4:  mov     #0xffc0, r12            ; q = 0xffff: i = 63, f = 0xffc0
-    mov     #126, r14
-    jmp     1b
-
-/* The octant with interrupts held off (optical_angle16's tail). */
+/* optical_angle16's octant: the scan's (es_octant), R9 = 0xffff telling it to come back. */
 a16_octant:
+    push    r9
     push    r2
     dint
-    call    #octant
+    mov     #-1, r9
+    jmp     es_octant
+a16_done:
     pop     r2
+    pop     r9
     ret
 
 /* uint16_t optical_angle16(int32_t dx, int32_t dy): R13:R12 = dx, R15:R14 = dy -> R12. */
@@ -368,10 +319,11 @@ clear_sm:
  * or 1 when a beacon lies beyond the coordinate limit.
  * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000), R7 = k,
  * R8 = 2 nc; per beacon R9 = m8, R10 = eps8 shifted with u (2^l eps8), R11 = flags, then h.
- * The frame: 0 the map's end, 2 the sightings' scan (standing or moving), 4 min(2 amax8,
- * 0xffff) (m8 from there on: k = 2/3), 6 max(77, amax8 + 1) (m8 from there on: a window;
- * saturated), 8 mid - half, 10 2 half, 12 0x7000 - half or 0 (e from there on: every
- * sighting). Without sightings the half-width is taken as 0x7000 (every sighting, i.e. none).
+ * The frame: 0 the map's end, 2 min(gate8 + 1, 0xffff) (m8 from there on: gated), 4 min(2
+ * amax8, 0xffff) (m8 from there on: k = 2/3), 6 max(77, amax8 + 1) (m8 from there on: a
+ * window; saturated), 8 mid - half, 10 2 half, 12 0x7000 - half, 0 when that is negative or
+ * moving (e from there on: every sighting, or moving). Without sightings the half-width is
+ * taken as 0x7000 (every sighting, i.e. none).
  * Interrupts are held off from the reciprocal's product to the window's (about 100 cycles).
  */
     .section .text.optical_expect_scan,"ax",@progbits
@@ -398,14 +350,17 @@ optical_expect_scan:
     mov     r12, 10(r1)
     mov     #0x7000, r12            ; 0x7000 - half, or 0
     sub     r13, r12
-    jc      2f
-    clr     r12
-2:  mov     r12, 12(r1)
-    mov     #es_stand, 2(r1)
-    tst     &OW+OW_LEVER8
+    jnc     2f
+    tst     &OW+OW_LEVER8           ; (moving: always, then es_mov)
     jz      3f
-    mov     #es_mov, 2(r1)
-3:  call    #clear_sm
+2:  clr     r12
+3:  mov     r12, 12(r1)
+    mov     &OW+OW_GATE8, r12       ; gate8 + 1, saturated
+    add     #1, r12
+    jnc     7f
+    mov     #-1, r12
+7:  mov     r12, 2(r1)
+    call    #clear_sm
     clr     r8                      ; 2 nc
     mov     &OW+OW_AMAX8, r12       ; amax8 + 1, at least 77, saturated
     mov     r12, r13
@@ -467,13 +422,15 @@ es_beacon:
     clr     r11                     ; magnitudes; flags 4 dx < 0, 8 dy < 0, 2 swapped
     tst     r12
     jge     1f
-    inv     r12
-    inc     r12
+    mov     r12, r9
+    clr     r12
+    sub     r9, r12
     bis     #4, r11
 1:  tst     r14
     jge     2f
-    inv     r14
-    inc     r14
+    mov     r14, r9
+    clr     r14
+    sub     r9, r14
     bis     #8, r11
 2:  cmp     r14, r12                ; the larger in R12
     jhs     3f
@@ -481,8 +438,8 @@ es_beacon:
     xor     r14, r12
     xor     r12, r14
     bis     #2, r11
-3:  cmp     r12, &OW+OW_GATE8       ; beyond the gate
-    jlo     es_gated
+3:  cmp     2(r1), r12              ; beyond the gate
+    jhs     es_gated
     mov     r12, r9                 ; m8
     mov     &OW+OW_EPS8, r10        ; u, v and eps8 left by l: 8, 4, 2, 1
     cmp     #0x0100, r12
@@ -521,7 +478,57 @@ es_beacon:
     rla     r10
 7:  push    r2
     dint
-    call    #octant                 ; R12 angle, R13 r, R14 2 min(i, 63)
+es_octant:                          ; the octant's arctangent: R12 angle, R13 r, R14 2 min(i, 63)
+    mov     r12, r15                ; f = u << 7: (u mod 2^8) << 7, bit 8 of u into bit 15
+    swpb    r15
+    bit     #1, r15
+    bic     #0x00ff, r15
+    rrc     r15
+    mov     r15, &MPY
+    mov     r12, r15                ; 2 (u >> 9): recip_tab - 128 based
+    swpb    r15
+    and     #0x00fe, r15
+    mov     optical_recip_tab-128(r15), r13
+    sub     optical_recip_tab-126(r15), r13 ; RT[i] - RT[i+1]
+    mov     r13, &OP2
+    mov     optical_recip_tab-128(r15), r13
+    mov     &RESLO, r15             ; r = RT[i] - RESHI - the rounding bit (carry: its inverse)
+    inv     r15
+    rla     r15
+    subc    &RESHI, r13
+    cmp     r12, r14                ; v >= u: 45 degrees (2^-18 turn)
+    jhs     es_o45
+    mov     r14, &MPY               ; q = (v r) >> 14, saturated
+    mov     r13, &OP2
+    mov     &RESHI, r12
+    cmp     #0x4000, r12
+    jhs     es_osat
+    mov     &RESLO, r15
+    swpb    r12                     ; 2 (q >> 10)
+    mov.b   r12, r14
+    rla     r14
+    and     #0xff00, r12            ; f = q << 6
+    swpb    r15
+    and     #0x00c0, r15
+    bis     r15, r12
+es_o1:
+    mov     r12, &MPY
+    mov     optical_atan_tab(r14), r12
+    mov     optical_atan_tab+2(r14), r15
+    sub     r12, r15                ; AT[i+1] - AT[i]
+    mov     r15, &OP2
+    mov     &RESLO, r15             ; a = AT[i] + RESHI + the rounding bit, 2^-18 turn
+    rla     r15
+    addc    &RESHI, r12
+es_o2:
+    incd    r12                     ; (a + 2) >> 2 (a <= 32768: no carry out)
+    rrc     r12
+    rra     r12
+    xor     oct_m(r11), r12         ; unfold
+    add     oct_b(r11), r12
+    cmp     #-1, r9                 ; (optical_angle16: done)
+    jeq     a16_done
+
     sub     &OW+OW_HEAD, r12        ; psi
     mov     r12, OW+OW_PSI(r4)
     cmp     8(r1), r9               ; a window: m8 >= max(77, amax8 + 1) (SR on the frame)
@@ -538,41 +545,9 @@ es_beacon:
     add     #1+MARGIN, r15
 es_e:                               ; R9 = m8, R11 = h (0xffff: none), R12 = psi, R15 = e
     mov     r15, OW+OW_E(r4)
-    mov     2(r1), r0               ; the sightings' scan
-es_k1:                              ; h + h / 2 + 2; e capped at 0x7fff + margin
-    mov     r11, r15
-    clrc
-    rrc     r15
-    add     r15, r11
-    add     #2, r11
-    mov     r11, &MPY
-    mov     r10, &OP2
-    mov     &RESHI, r15
-    pop     r2
-    cmp     #0x7fff, r15
-    jhs     2f
-    add     #1+MARGIN, r15
-    jmp     es_e
-2:  mov     #0x7fff+MARGIN, r15
-    jmp     es_e
-es_zero:
-    clr     r12
-    sub     &OW+OW_HEAD, r12
-    mov     r12, OW+OW_PSI(r4)
-    jmp     1f
-es_nowin:
-    pop     r2
-1:  mov     #-1, r11
-    mov     #0x7fff+MARGIN, r15
-    jmp     es_e
-es_gated:
-    clr     OW+OW_E(r4)
-    mov.b   #NONE, OW+OW_BM(r7)
-    jmp     es_next
-
 es_stand:                           ; standing: rel <= span is the window test itself
-    cmp     12(r1), r15             ; that wide: test every sighting
-    jhs     es_all
+    cmp     12(r1), r15             ; that wide (or moving): test every sighting
+    jhs     es_wide
     mov     r12, r10                ; lo = psi - e + mid - half, span = 2 e + 2 half
     sub     r15, r10
     add     8(r1), r10
@@ -600,7 +575,7 @@ es_walk:
     cmp     #0xf000, r11            ; (in lo's 1/16 turn, before lo: the next)
     jlo     es_wend                 ; past the window
 es_wnext:
-    inc.b   r14
+    sub.b   #-1, r14
     jnz     es_walk
     mov.b   &OW+OW_N, r11           ; at the list's end: from its start (not twice, and not
     rla     r11                     ; when the run began there)
@@ -612,13 +587,13 @@ es_wnext:
     jz      es_wend
     mov     #OW+OW_TH, r13
     inv.b   r14
-    inc.b   r14
+    sub.b   #-1, r14
     jmp     es_walk
 es_wend:
     mov.b   r12, OW+OW_BM(r7)
 es_next:
     incd    r4
-    inc     r7
+    sub     #-1, r7                 ; (mspdebug charges #1 three cycles, #-1 two)
     cmp     @r1, r5
     jlo     es_beacon
 es_done:
@@ -637,6 +612,45 @@ es_done:
     pop     r9
     pop     r10
     ret
+es_k1:                              ; h + h / 2 + 2; e capped at 0x7fff + margin
+    mov     r11, r15
+    clrc
+    rrc     r15
+    add     r15, r11
+    add     #2, r11
+    mov     r11, &MPY
+    mov     r10, &OP2
+    mov     &RESHI, r15
+    pop     r2
+    cmp     #0x7fff, r15
+    jhs     2f
+    add     #1+MARGIN, r15
+    jmp     es_e
+2:  mov     #0x7fff+MARGIN, r15
+    jmp     es_e
+es_zero:
+    clr     r12
+    sub     &OW+OW_HEAD, r12
+    mov     r12, OW+OW_PSI(r4)
+    jmp     1f
+es_nowin:
+    pop     r2
+1:  mov     #-1, r11
+    mov     #0x7fff+MARGIN, r15
+    jmp     es_e
+es_o45:                             ; (the octant) v >= u: 45 degrees
+    mov     #32768, r12
+    mov     #126, r14
+    jmp     es_o2
+es_osat:                            ; (the octant) q = 0xffff: i = 63, f = 0xffc0
+    mov     #0xffc0, r12
+    mov     #126, r14
+    jmp     es_o1
+es_gated:
+    clr     OW+OW_E(r4)
+    mov.b   #NONE, OW+OW_BM(r7)
+    jmp     es_next
+
 es_pair:                            ; R11 = j: marks, we[j] = e, the pair kept
     mov     r13, r11
     sub     #OW+OW_TH+2, r11
@@ -675,6 +689,9 @@ es_bucket:
     mov.b   OW+OW_BSTART(r14), r14
     ret
 
+es_wide:
+    tst     &OW+OW_LEVER8
+    jz      es_all
 es_mov:                             ; moving: g, then each sighting's window
     cmp     #-1, r11
     jeq     4f
