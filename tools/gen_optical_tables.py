@@ -6,8 +6,9 @@ checked in. Declared in firmware/optical/include/optical/fastmath.h:
 
   optical_recip_tab[i]  i = 0..64:  round(2^30 / (2^15 + 512 i)), the reciprocal of a
                         component normalised to [2^15, 2^16) (optical_angle16)
-  optical_atan_tab[i]   i = 0..64:  round(atan(i / 64) * 2^18 / (2 pi)), the arctangent of
-                        the ratio in 2^-18 turn (optical_angle16)
+  optical_atan_tab[i]   i = 0..64:  round(atan(i / 64) * 2^18 / (2 pi)) + 2, the arctangent
+                        of the ratio in 2^-18 turn plus the half of the rounding to 2^-16
+                        turn (optical_angle16)
   optical_ct_tab[i]     i = 0..63:  ceil(2^16 (2/3) / sqrt(1 + (i / 64)^2)), the range
                         bound of optical_expect_scan's windows (with asin's factor 2/3)
 
@@ -28,7 +29,7 @@ def recip_tab():
 
 
 def atan_tab():
-    return [round(math.atan(i / 64) * 2**18 / (2 * math.pi)) for i in range(65)]
+    return [round(math.atan(i / 64) * 2**18 / (2 * math.pi)) + 2 for i in range(65)]
 
 
 def ct_tab():

@@ -52,12 +52,14 @@ static uint16_t sat16(uint32_t v)
 /* The parts of the arctangent that optical_expect_scan reuses. */
 typedef struct {
     uint16_t r; /* 2^30 / u (interpolated) */
-    uint16_t i; /* floor(64 v / u), 0..64 */
+    uint16_t i; /* floor(64 v / u), 0..63 */
 } angle_parts_t;
 
 /*
  * The arctangent of the octant: u in [2^15, 2^16), v <= u (the larger and the smaller
  * magnitude, scaled alike), then unfolded by the flags (1 swapped, 2 dx < 0, 4 dy < 0).
+ * (v = u needs no case of its own: q saturates, and the interpolation gives 45 degrees for
+ * every u, checked exhaustively.)
  */
 static uint16_t octant(uint16_t u, uint16_t v, uint8_t flags, angle_parts_t *p)
 {
@@ -65,18 +67,13 @@ static uint16_t octant(uint16_t u, uint16_t v, uint8_t flags, angle_parts_t *p)
     uint16_t i = (uint16_t)((u >> 9) - 64u), f = (uint16_t)(u << 7), a;
     uint16_t d = (uint16_t)(optical_recip_tab[i] - optical_recip_tab[i + 1u]);
     p->r = (uint16_t)(optical_recip_tab[i] - (((uint32_t)d * f + 0x8000u) >> 16));
-    if (v >= u) {
-        a = 32768u; /* 45 degrees, 2^-18 turn */
-        p->i = 64;
-    } else {
-        uint16_t q = sat16(((uint32_t)v * p->r) >> 14);
-        i = (uint16_t)(q >> 10);
-        f = (uint16_t)(q << 6);
-        d = (uint16_t)(optical_atan_tab[i + 1u] - optical_atan_tab[i]);
-        a = (uint16_t)(optical_atan_tab[i] + (((uint32_t)d * f + 0x8000u) >> 16));
-        p->i = i;
-    }
-    a = (uint16_t)((a + 2u) >> 2);
+    uint16_t q = sat16(((uint32_t)v * p->r) >> 14);
+    i = (uint16_t)(q >> 10);
+    f = (uint16_t)(q << 6);
+    d = (uint16_t)(optical_atan_tab[i + 1u] - optical_atan_tab[i]);
+    /* 2^-18 turn, plus the 2 of the table: rounded to 2^-16 turn */
+    a = (uint16_t)((optical_atan_tab[i] + (((uint32_t)d * f + 0x8000u) >> 16)) >> 2);
+    p->i = i;
     if (flags & 1u)
         a = (uint16_t)(16384u - a);
     if (flags & 2u)
@@ -193,7 +190,7 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half)
          * sqrt(1 + t^2) and h >= 2^30 (2/3) / (u sqrt(1 + t^2)) (k = 2/3; times 3/2 for
          * k = 1) the window part is at most h eps8 2^l / 2^16, the lever window l8 g / 256. */
         if (m8 >= 77u && m8 > W.amax8) {
-            uint32_t h = ((uint32_t)p.r * optical_ct_tab[p.i < 64 ? p.i : 63]) >> 16;
+            uint32_t h = ((uint32_t)p.r * optical_ct_tab[p.i]) >> 16;
             if (m8 < 2u * (uint32_t)W.amax8) /* x up to 1: k = 1 */
                 h += (h >> 1) + 2u;
             /* (eps8 <= amax8 < m8: eps8 2^l < 2^16) */

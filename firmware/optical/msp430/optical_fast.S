@@ -66,7 +66,7 @@ oct_b:
 /*
  * The octant's arctangent (octant() in fastmath.c; es_octant, inside optical_expect_scan's
  * loop): R12 = u in [2^15, 2^16), R14 = v <= u, R11 = flags (2 swapped, 4 dx < 0, 8 dy < 0)
- * -> R12 = the angle (2^-16 turn), R13 = r (2^30 / u), R14 = 2 min(i, 63). Clobbers R15.
+ * -> R12 = the angle (2^-16 turn), R13 = r (2^30 / u), R14 = 2i (i <= 63). Clobbers R15.
  * Interrupts held off (the three products). The ratio's product v r holds q = (v r) >> 14
  * as its bits 14..29: i = q >> 10 is RESHI's high byte, the fraction q << 6 RESHI's low byte
  * and RESLO's top two bits.
@@ -478,7 +478,7 @@ es_beacon:
     rla     r10
 7:  push    r2
     dint
-es_octant:                          ; the octant's arctangent: R12 angle, R13 r, R14 2 min(i, 63)
+es_octant:                          ; the octant's arctangent: R12 angle, R13 r, R14 2i
     mov     r12, r15                ; f = u << 7: (u mod 2^8) << 7, bit 8 of u into bit 15
     swpb    r15
     bit     #1, r15
@@ -496,8 +496,6 @@ es_octant:                          ; the octant's arctangent: R12 angle, R13 r,
     inv     r15
     rla     r15
     subc    &RESHI, r13
-    cmp     r12, r14                ; v >= u: 45 degrees (2^-18 turn)
-    jhs     es_o45
     mov     r14, &MPY               ; q = (v r) >> 14, saturated
     mov     r13, &OP2
     mov     &RESHI, r12
@@ -519,9 +517,7 @@ es_o1:
     mov     r15, &OP2
     mov     &RESLO, r15             ; a = AT[i] + RESHI + the rounding bit, 2^-18 turn
     rla     r15
-    addc    &RESHI, r12
-es_o2:
-    incd    r12                     ; (a + 2) >> 2 (a <= 32768: no carry out)
+    addc    &RESHI, r12             ; (the table holds + 2: a >> 2 rounds; a <= 32770, C = 0)
     rrc     r12
     rra     r12
     xor     oct_m(r11), r12         ; unfold
@@ -638,10 +634,6 @@ es_nowin:
 1:  mov     #-1, r11
     mov     #0x7fff+MARGIN, r15
     jmp     es_e
-es_o45:                             ; (the octant) v >= u: 45 degrees
-    mov     #32768, r12
-    mov     #126, r14
-    jmp     es_o2
 es_osat:                            ; (the octant) q = 0xffff: i = 63, f = 0xffc0
     mov     #0xffc0, r12
     mov     #126, r14
