@@ -820,7 +820,8 @@ optical_eval:
 /*
  * uint8_t optical_drop(uint32_t dk, uint32_t t8): R13:R12 = dk, R15:R14 = t8 -> R12 = the
  * sightings kept (fastmath.c). wmin = floor(dk / t8) into R11 (a 16-step restoring division
- * when t8 and the quotient fit 16 bits); R13 = 1 when wmin >= 2^16 (none kept), else 0.
+ * when t8 and the quotient fit 16 bits); when wmin >= 2^16 none is kept: R13, the mark of a
+ * kept sighting (NONE), is then DROPPED too and the count cleared. R10 = 0x7f (wchk).
  */
     .section .text.optical_drop,"ax",@progbits
     .global optical_drop
@@ -840,40 +841,45 @@ optical_drop:
     cmp     r14, r13
     jlo     6f
 2:  sub     r14, r13
-    bis     #1, r12
+    sub     #-1, r12                ; (the bit shifted in is 0)
 6:  add     #-1, r15
     jnz     1b
     mov     r12, r11
     jmp     4f
 3:  call    #__mspabi_divul         ; t8 >= 2^16: the quotient fits 16 bits
     mov     r12, r11
-4:  clr     r13
-7:  mov.b   &OW+OW_N, r14
+4:  mov     #NONE, r13
+7:  push    r10
+    mov     #0x7f, r10
+    mov.b   &OW+OW_N, r14
     clr     r12                     ; kept
     tst     r14
     jz      9f
     mov     r14, r15
     add     r15, r15                ; R14 = j + 1, R15 = 2 (j + 1)
-8:  mov.b   #0x7f, OW+OW_WCHK-1(r14)
-    mov.b   #NONE, OW+OW_SM-1(r14)
+8:  mov.b   r10, OW+OW_WCHK-1(r14)
+    mov.b   r13, OW+OW_SM-1(r14)
     cmp     r11, OW+OW_WE-2(r15)    ; we[j] >= wmin (< 2^16): kept
     jlo     10f
-    tst     r13
-    jnz     10f
     sub     #-1, r12
-    jmp     11f
-10: mov.b   #DROPPED, OW+OW_SM-1(r14)
 11: decd    r15
     add     #-1, r14
     jnz     8b
-9:  ret
-5:  mov     #1, r13
+    cmp     #NONE, r13
+    jeq     9f
+    clr     r12
+9:  pop     r10
+    ret
+10: mov.b   #DROPPED, OW+OW_SM-1(r14)
+    jmp     11b
+5:  mov     #DROPPED, r13
     jmp     7b
 
 /*
  * bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16):
  * R12 = a, R13 = b, R14 = w16 -> R12 (fastmath.c's steps). R10 = a, R9 = x8, R11 = rhi then
- * hi, R13 = rlo then lo, R15 = tol. Interrupts held off around each multiply.
+ * hi, R13 = rlo then lo, R15 = tol. Interrupts held off from the first product to the last
+ * (about 60 cycles).
  * optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18.
  */
     .section .text.optical_width_ok,"ax",@progbits
@@ -929,20 +935,18 @@ optical_width_ok:
     add     r9, r12
     jnc     2f
     mov     #-1, r12
-2:  mov     r12, r11                ; rhi = o + eps8, saturated
+2:  push    r2                      ; (one multiplier window for all the products)
+    dint
+    mov     r12, r11                ; rhi = o + eps8, saturated
+    mov     r12, &MPY               ; rlo = (o 58623) >> 16 - eps8, or 0
+    mov     #58623, &OP2
     add     12(r10), r11
     jnc     3f
     mov     #-1, r11
-3:  push    r2
-    dint
-    nop
-    mov     r12, &MPY               ; rlo = (o 58623) >> 16 - eps8, or 0
-    mov     #58623, &OP2
-    mov     &RESHI, r13
+3:  mov     &RESHI, r13
     mov     r11, &MPY               ; tol = tol8 + (rhi rel16) >> 16, saturated
     mov     16(r10), &OP2
     mov     &RESHI, r15
-    pop     r2
     sub     12(r10), r13
     jc      4f
     clr     r13
@@ -957,10 +961,7 @@ optical_width_ok:
     mov     #-1, r11
 7:  cmp     #5216, r14
     jhs     wd_wide
-    push    r2                      ; p = lo w16, q = hi w16 (w16 stays in MPY)
-    dint
-    nop
-    mov     r14, &MPY
+    mov     r14, &MPY               ; p = lo w16, q = hi w16 (w16 stays in MPY)
     mov     r13, &OP2
     mov     &RESLO, r12
     mov     &RESHI, r13
@@ -1003,9 +1004,6 @@ wd_true:
     pop     r10
     ret
 wd_wide:                            ; w16 > 5215: lo 5215 <= dk + (dk >> 4)
-    push    r2
-    dint
-    nop
     mov     r13, &MPY
     mov     #5215, &OP2
     mov     &RESLO, r9
