@@ -319,9 +319,9 @@ clear_sm:
  * or 1 when a beacon lies beyond the coordinate limit.
  * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000), R7 = k,
  * R8 = 2 nc; per beacon R9 = m8, R10 = eps8 shifted with u (2^l eps8), R11 = flags, then h.
- * The frame: 0 the map's end, 2 min(gate8 + 1, 0xffff) (m8 from there on: gated), 4 min(2
- * amax8, 0xffff) (m8 from there on: k = 2/3), 6 max(77, amax8 + 1) (m8 from there on: a
- * window; saturated), 8 mid - half, 10 2 half, 12 0x7000 - half, 0 when that is negative or
+ * The frame: 0 the map's end, 2 min(gate8 + 1, 0xffff) (m8 from there on: gated), 4 the
+ * larger of min(2 amax8, 0xffff) and the next (m8 from there on: a window with k = 2/3), 6
+ * max(77, amax8 + 1) (m8 from there on: a window; saturated), 8 mid - half, 10 2 half, 12 0x7000 - half, 0 when that is negative or
  * moving (e from there on: every sighting, or moving). Without sightings the half-width is
  * taken as 0x7000 (every sighting, i.e. none).
  * Interrupts are held off from the reciprocal's product to the window's (about 100 cycles).
@@ -374,7 +374,10 @@ optical_expect_scan:
     rla     r12                     ; 2 amax8, saturated
     jnc     6f
     mov     #-1, r12
-6:  mov     r12, 4(r1)
+6:  cmp     r13, r12                ; (and at least the window's threshold)
+    jhs     8f
+    mov     r13, r12
+8:  mov     r12, 4(r1)
     mov     &OW+OW_B, r5
     mov.b   &OW+OW_NB, r12          ; the map's end
     rla     r12
@@ -527,13 +530,11 @@ es_o1:
 
     sub     &OW+OW_HEAD, r12        ; psi
     mov     r12, OW+OW_PSI(r4)
-    cmp     8(r1), r9               ; a window: m8 >= max(77, amax8 + 1) (SR on the frame)
-    jlo     es_nowin
-    mov     r13, &MPY               ; h = (r C) >> 16 (k = 2/3)
+    cmp     6(r1), r9               ; a window with k = 2/3 (SR on the frame)
+    jlo     es_wk1
+    mov     r13, &MPY               ; h = (r C) >> 16
     mov     optical_ct_tab(r14), &OP2
     mov     &RESHI, r11
-    cmp     6(r1), r9               ; m8 < 2 amax8: k = 1
-    jlo     es_k1
     mov     r11, &MPY               ; e = (h 2^l eps8) >> 16 + 1 + margin (below 2^14 + 7)
     mov     r10, &OP2
     mov     &RESHI, r15
@@ -608,7 +609,12 @@ es_done:
     pop     r9
     pop     r10
     ret
-es_k1:                              ; h + h / 2 + 2; e capped at 0x7fff + margin
+es_wk1:
+    cmp     8(r1), r9               ; a window: m8 >= max(77, amax8 + 1)
+    jlo     es_nowin
+    mov     r13, &MPY               ; h = (r C) >> 16, k = 1: h + h / 2 + 2; e capped at
+    mov     optical_ct_tab(r14), &OP2 ; 0x7fff + margin
+    mov     &RESHI, r11
     mov     r11, r15
     clrc
     rrc     r15
