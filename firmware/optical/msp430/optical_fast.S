@@ -72,17 +72,19 @@ oct_b:
  * and RESLO's top two bits.
  */
     .section .text.optical_octant,"ax",@progbits
-/* optical_angle16's octant: the scan's (es_octant), R9 = 0xffff telling it to come back. */
+/*
+ * optical_angle16's octant: the scan's (es_octant), on a frame that asks for no window (its
+ * thresholds 0xffff) with m8 = 0 (R9), which sends it back here.
+ */
 a16_octant:
     push    r9
+    push    #-1
+    push    #-1
+    sub     #4, r1
     push    r2
     dint
-    mov     #-1, r9
+    clr     r9
     jmp     es_octant
-a16_done:
-    pop     r2
-    pop     r9
-    ret
 
 /* uint16_t optical_angle16(int32_t dx, int32_t dy): R13:R12 = dx, R15:R14 = dy -> R12. */
     .section .text.optical_angle16,"ax",@progbits
@@ -525,13 +527,10 @@ es_o1:
     rra     r12
     xor     oct_m(r11), r12         ; unfold
     add     oct_b(r11), r12
-    cmp     #-1, r9                 ; (optical_angle16: done)
-    jeq     a16_done
-
-    sub     &OW+OW_HEAD, r12        ; psi
-    mov     r12, OW+OW_PSI(r4)
     cmp     6(r1), r9               ; a window with k = 2/3 (SR on the frame)
     jlo     es_wk1
+    sub     &OW+OW_HEAD, r12        ; psi
+    mov     r12, OW+OW_PSI(r4)
     mov     r13, &MPY               ; h = (r C) >> 16
     mov     optical_ct_tab(r14), &OP2
     mov     &RESHI, r11
@@ -612,6 +611,8 @@ es_done:
 es_wk1:
     cmp     8(r1), r9               ; a window: m8 >= max(77, amax8 + 1)
     jlo     es_nowin
+    sub     &OW+OW_HEAD, r12        ; psi
+    mov     r12, OW+OW_PSI(r4)
     mov     r13, &MPY               ; h = (r C) >> 16, k = 1: h + h / 2 + 2; e capped at
     mov     optical_ct_tab(r14), &OP2 ; 0x7fff + margin
     mov     &RESHI, r11
@@ -632,14 +633,21 @@ es_wk1:
     jmp     es_e
 es_zero:
     clr     r12
-    sub     &OW+OW_HEAD, r12
-    mov     r12, OW+OW_PSI(r4)
     jmp     1f
-es_nowin:
+es_nowin:                           ; (m8 = 0 for optical_angle16's octant: done)
+    tst     r9
+    jz      a16_done
     pop     r2
-1:  mov     #-1, r11
+1:  sub     &OW+OW_HEAD, r12        ; psi
+    mov     r12, OW+OW_PSI(r4)
+    mov     #-1, r11
     mov     #0x7fff+MARGIN, r15
     jmp     es_e
+a16_done:                           ; (optical_angle16's octant: its frame off)
+    pop     r2
+    add     #8, r1
+    pop     r9
+    ret
 es_osat:                            ; (the octant) q = 0xffff: i = 63, f = 0xffc0
     mov     #0xffc0, r12
     mov     #126, r14
