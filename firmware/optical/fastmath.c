@@ -186,9 +186,9 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half)
         psi = (uint16_t)(psi - W.head);
         W.u.id.psi[k] = psi;
         /* The window (docs/optical.md "O2-O5"): 2^16 / (2 pi) asin(x) <= 2^14 k x for x =
-         * eps8 / r8 <= 1 / (3 - 2 k), k = 2/3 or 1; with r8 >= m8 sqrt(1 + t^2) = u 2^-l
-         * sqrt(1 + t^2) and h >= 2^30 (2/3) / (u sqrt(1 + t^2)) (k = 2/3; times 3/2 for
-         * k = 1) the window part is at most h eps8 2^l / 2^16, the lever window l8 g / 256. */
+         * eps8 / r8, k = 2/3 up to x = 1/2 (m8 >= 2 amax8), k = 1 up to 1; with r8 >= m8
+         * sqrt(1 + t^2) = u 2^-l sqrt(1 + t^2) and h about 2^30 k / (u sqrt(1 + t^2)), that is
+         * at most h eps8 2^l / 2^16, and a lever l8's window at most l8 g / 256. */
         if (m8 >= 77u && m8 > W.amax8) {
             uint32_t h = ((uint32_t)p.r * optical_ct_tab[p.i]) >> 16;
             if (m8 < 2u * (uint32_t)W.amax8) /* x up to 1: k = 1 */
