@@ -251,7 +251,7 @@ uint8_t optical_drop(uint32_t dk, uint32_t t8)
 void optical_eval(int16_t mid, uint16_t half)
 {
     clear();
-    for (uint8_t c = 0; c < W.nc; c++)
+    for (uint8_t c = W.nc; c-- > 0;) /* (from the last pair) */
         test(W.u.id.cand[2u * c], W.u.id.cand[2u * c + 1u], mid, half);
 }
 

@@ -74,12 +74,12 @@ oct_b:
     .section .text.optical_octant,"ax",@progbits
 /*
  * optical_angle16's octant: the scan's (es_octant), on a frame that asks for no window (its
- * thresholds 0xffff) with m8 = 0 (R9), which sends it back here.
+ * thresholds nonzero) with m8 = 0 (R9), which sends it back here.
  */
 a16_octant:
     push    r9
-    push    #-1
-    push    #-1
+    push    r12                     ; (u >= 2^15: thresholds no m8 = 0 reaches)
+    push    r12
     sub     #4, r1
     push    r2
     dint
@@ -784,52 +784,64 @@ es_all2:
 
 /*
  * void optical_eval(int16_t mid, uint16_t half): R12 = mid, R13 = half. Standing: the pair
- * (j, k) is in when |th[j] - psi[k] - mid| <= half + e[k]; moving: pair_test.
+ * (j, k) is in when |th[j] - psi[k] - mid| <= half + e[k]; moving: pair_test. The pairs from
+ * the last to the first (the marks come out the same: a second match is MULTI either way, and
+ * we[j] is read only where a sighting has one match).
  */
     .section .text.optical_eval,"ax",@progbits
     .global optical_eval
     .type optical_eval,@function
 optical_eval:
+    push    r10
     push    r9
+    push    r8
     push    r6
     push    r4
     mov     r12, &sc_mid
     mov     r13, &sc_half
+    mov     r12, r10                ; R10 = mid, R8 = half
+    mov     r13, r8
     call    #clear_marks
-    clr     r6
-1:  mov.b   &OW+OW_NC, r12          ; 2c < 2 nc
-    add     r12, r12
-    cmp     r12, r6
-    jhs     4f
-    mov.b   OW+OW_CAND(r6), r12
-    mov.b   OW+OW_CAND+1(r6), r4
+    mov.b   &OW+OW_NC, r6           ; R6 = 2c, counted down to 0
+    add     r6, r6
+    jz      4f
+    tst     &OW+OW_LEVER8
+    jnz     3f
+1:  mov.b   OW+OW_CAND-2(r6), r12   ; standing: j, k (from the last pair)
+    mov.b   OW+OW_CAND-1(r6), r4
     add     r4, r4
     mov     r12, r13
     add     r13, r13
-    tst     &OW+OW_LEVER8
-    jnz     3f
-    mov     OW+OW_TH(r13), r11      ; standing
+    mov     OW+OW_TH(r13), r11      ; |th[j] - psi[k] - mid| <= half + e[k]
     sub     OW+OW_PSI(r4), r11
-    sub     &sc_mid, r11
+    sub     r10, r11
     tst     r11
     jge     2f
-    mov     r11, r15
-    clr     r11
-    sub     r15, r11
+    inv     r11
+    sub     #-1, r11
 2:  mov     OW+OW_E(r4), r15
-    mov     &sc_half, r14
+    mov     r8, r14
     add     r15, r14
     cmp     r11, r14
     jlo     5f
     call    #mark
-    jmp     5f
-3:  call    #pair_test
-5:  incd    r6
-    jmp     1b
+5:  decd    r6
+    jnz     1b
 4:  pop     r4
     pop     r6
+    pop     r8
     pop     r9
+    pop     r10
     ret
+3:  mov.b   OW+OW_CAND-2(r6), r12   ; moving: pair_test
+    mov.b   OW+OW_CAND-1(r6), r4
+    add     r4, r4
+    mov     r12, r13
+    add     r13, r13
+    call    #pair_test
+    decd    r6
+    jnz     3b
+    jmp     4b
 
 /*
  * uint8_t optical_drop(uint32_t dk, uint32_t t8): R13:R12 = dk, R15:R14 = t8 -> R12 = the

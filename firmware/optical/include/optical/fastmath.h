@@ -140,8 +140,8 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half);
  * The stored candidate pairs within the windows (mid, half): pair (j, k) when
  * |th[j] - psi[k] - mid| <= half + w, w = e[k] standing (lever8 = 0 or lev[j] = 0), else
  * optical_win(min(eps8 + lev[j], 0xFFFF), g[k]) + margin; marked: sm[j], bm[k] get the partner
- * (or MULTI when they had one), we[j] = w. Clears bm and sm (except DROPPED) first. half + w
- * must stay below 2^16; nc not 0xFF.
+ * (or MULTI when they had one), we[j] = w (the pairs taken from the last to the first). Clears
+ * bm and sm (except DROPPED) first. half + w must stay below 2^16; nc not 0xFF.
  */
 void optical_eval(int16_t mid, uint16_t half);
 
