@@ -319,7 +319,9 @@ clear_sm:
 /*
  * uint8_t optical_expect_scan(int16_t mid, uint16_t half): R12 = mid, R13 = half -> R12 = 0,
  * or 1 when a beacon lies beyond the coordinate limit.
- * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000), R7 = k,
+ * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000: in the loop
+ * only of the beacons beyond 2^23, the others lie within the limit when x, y lie within
+ * 2^28; else all of them before the loop), R7 = k,
  * R8 = 2 nc; per beacon R9 = m8, R10 = eps8 shifted with u (2^l eps8), R11 = flags, then h.
  * The frame: 0 the map's end, 2 min(gate8 + 1, 0xffff) (m8 from there on: gated), 4 the
  * larger of min(2 amax8, 0xffff) and the next (m8 from there on: a window with k = 2/3), 6
@@ -390,19 +392,31 @@ optical_expect_scan:
     clr     r4
     clr     r6
     clr     r7
-    cmp     @r1, r5
+    mov     &OW+OW_X+2, r13         ; x, y within +-2^28: a beacon within 2^23 of them lies
+    add     #0x1000, r13            ; within the limit, and only those beyond (gated) are
+    mov     &OW+OW_Y+2, r14         ; checked in the loop; else every one here
+    add     #0x1000, r14
+    bis     r14, r13
+    cmp     #0x2000, r13
+    jlo     2f
+    mov     r5, r13
+1:  cmp     @r1, r13
+    jhs     2f
+    mov     2(r13), r14             ; |bx|, |by| < 2^29: high word + 0x2000 below 0x4000
+    add     #0x2000, r14
+    bis     r14, r6
+    mov     6(r13), r14
+    add     #0x2000, r14
+    bis     r14, r6
+    add     #8, r13
+    jmp     1b
+2:  cmp     @r1, r5
     jhs     es_done
 es_beacon:
     mov     @r5+, r12               ; bx, by
     mov     @r5+, r13
     mov     @r5+, r14
     mov     @r5+, r15
-    mov     r13, r9                 ; |bx|, |by| < 2^29: high word + 0x2000 below 0x4000
-    add     #0x2000, r9
-    bis     r9, r6
-    mov     r15, r9
-    add     #0x2000, r9
-    bis     r9, r6
     sub     &OW+OW_X, r12           ; dx, dy
     subc    &OW+OW_X+2, r13
     sub     &OW+OW_Y, r14
@@ -413,7 +427,7 @@ es_beacon:
     add     #0x0080, r10
     bis     r10, r9
     cmp     #0x0100, r9
-    jhs     es_gated
+    jhs     es_far
     swpb    r12                     ; x8 = floor(dx / 256), y8
     mov.b   r12, r12
     swpb    r13
@@ -652,6 +666,13 @@ es_osat:                            ; (the octant) q = 0xffff: i = 63, f = 0xffc
     mov     #0xffc0, r12
     mov     #126, r14
     jmp     es_o1
+es_far:                             ; beyond 2^23: the coordinate check
+    mov     -6(r5), r9
+    add     #0x2000, r9
+    bis     r9, r6
+    mov     -2(r5), r9
+    add     #0x2000, r9
+    bis     r9, r6
 es_gated:
     clr     OW+OW_E(r4)
     mov.b   #NONE, OW+OW_BM(r7)
