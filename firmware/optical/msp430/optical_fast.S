@@ -72,19 +72,63 @@ oct_b:
  * and RESLO's top two bits.
  */
     .section .text.optical_octant,"ax",@progbits
-/*
- * optical_angle16's octant: the scan's (es_octant), on a frame that asks for no window (its
- * thresholds nonzero) with m8 = 0 (R9), which sends it back here.
- */
+/* optical_angle16's octant: es_octant's steps (optical_expect_scan's loop holds its own copy),
+ * interrupts held off around its products. */
 a16_octant:
-    push    r9
-    push    r12                     ; (u >= 2^15: thresholds no m8 = 0 reaches)
-    push    r12
-    sub     #4, r1
     push    r2
     dint
-    clr     r9
-    jmp     es_octant
+    call    #a16_oct
+    pop     r2
+    ret
+a16_oct:
+    mov     r12, r15                ; f = u << 7: (u mod 2^8) << 7, bit 8 of u into bit 15
+    swpb    r15
+    bit     #1, r15
+    bic     #0x00ff, r15
+    rrc     r15
+    mov     r15, &MPY
+    mov     r12, r15                ; 2 (u >> 9): recip_tab - 128 based
+    swpb    r15
+    and     #0x00fe, r15
+    mov     optical_recip_tab-128(r15), r13
+    sub     optical_recip_tab-126(r15), r13 ; RT[i] - RT[i+1]
+    mov     r13, &OP2
+    mov     optical_recip_tab-128(r15), r13
+    mov     &RESLO, r15             ; r = RT[i] - RESHI - the rounding bit (carry: its inverse)
+    inv     r15
+    rla     r15
+    subc    &RESHI, r13
+    mov     r14, &MPY               ; q = (v r) >> 14, saturated
+    mov     r13, &OP2
+    mov     &RESHI, r12
+    cmp     #0x4000, r12
+    jhs     a16_osat
+    mov     &RESLO, r15
+    swpb    r12                     ; 2 (q >> 10)
+    mov.b   r12, r14
+    rla     r14
+    and     #0xff00, r12            ; f = q << 6
+    swpb    r15
+    and     #0x00c0, r15
+    bis     r15, r12
+a16_o1:
+    mov     r12, &MPY
+    mov     optical_atan_tab(r14), r12
+    mov     optical_atan_tab+2(r14), r15
+    sub     r12, r15                ; AT[i+1] - AT[i]
+    mov     r15, &OP2
+    mov     &RESLO, r15             ; a = AT[i] + RESHI + the rounding bit, 2^-18 turn
+    rla     r15
+    addc    &RESHI, r12             ; (the table holds + 2: a >> 2 rounds; a <= 32770, C = 0)
+    rrc     r12
+    rra     r12
+    xor     oct_m(r11), r12         ; unfold
+    add     oct_b(r11), r12
+    ret
+a16_osat:
+    mov     #0xffc0, r12
+    mov     #126, r14
+    jmp     a16_o1
 
 /* uint16_t optical_angle16(int32_t dx, int32_t dy): R13:R12 = dx, R15:R14 = dy -> R12. */
     .section .text.optical_angle16,"ax",@progbits
@@ -118,7 +162,7 @@ optical_angle16:
     xor     r15, r13
     xor     r13, r15
     bis     #2, r11
-4:  tst     r13                     ; both to [2^15, 2^16): right by 8, 4, 2, 1, 1
+4:  tst     r13                     ; both to [2^15, 2^16): right by 8, then by 1
     jz      20f
     cmp     #0x0100, r13            ; (logical: ax may be 2^31)
     jlo     11f
@@ -138,47 +182,13 @@ optical_angle16:
     bis     r15, r14
     pop     r15
     mov.b   r15, r15
-11: cmp     #0x0010, r13
-    jlo     12f
-    rra     r13
-    rrc     r12
-    rra     r13
-    rrc     r12
-    rra     r13
-    rrc     r12
-    rra     r13
-    rrc     r12
-    rra     r15
-    rrc     r14
-    rra     r15
-    rrc     r14
-    rra     r15
-    rrc     r14
-    rra     r15
-    rrc     r14
-12: cmp     #0x0004, r13
-    jlo     13f
-    rra     r13
-    rrc     r12
-    rra     r13
-    rrc     r12
-    rra     r15
-    rrc     r14
-    rra     r15
-    rrc     r14
-13: cmp     #0x0002, r13
-    jlo     14f
-    rra     r13
-    rrc     r12
-    rra     r15
-    rrc     r14
-14: tst     r13
+11: tst     r13                     ; then by 1 (after the 8: R13 < 2^8)
     jz      a16_octant
     rra     r13
     rrc     r12
     rra     r15
     rrc     r14
-    jmp     a16_octant
+    jmp     11b
 20: tst     r12                     ; ax < 2^16 (ay too): left, a bit at a time
     jz      9f
     jn      a16_octant
@@ -648,20 +658,13 @@ es_wk1:
 es_zero:
     clr     r12
     jmp     1f
-es_nowin:                           ; (m8 = 0 for optical_angle16's octant: done)
-    tst     r9
-    jz      a16_done
+es_nowin:
     pop     r2
 1:  sub     &OW+OW_HEAD, r12        ; psi
     mov     r12, OW+OW_PSI(r4)
     mov     #-1, r11
     mov     #0x7fff+MARGIN, r15
     jmp     es_e
-a16_done:                           ; (optical_angle16's octant: its frame off)
-    pop     r2
-    add     #8, r1
-    pop     r9
-    ret
 es_osat:                            ; (the octant) q = 0xffff: i = 63, f = 0xffc0
     mov     #0xffc0, r12
     mov     #126, r14
