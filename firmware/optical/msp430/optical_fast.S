@@ -162,27 +162,16 @@ optical_angle16:
     xor     r15, r13
     xor     r13, r15
     bis     #2, r11
-4:  tst     r13                     ; both to [2^15, 2^16): right by 8, then by 1
+4:  tst     r13                     ; both to [2^15, 2^16): right, a bit at a time
     jz      20f
-    cmp     #0x0100, r13            ; (logical: ax may be 2^31)
-    jlo     11f
-    swpb    r12
-    swpb    r13
-    mov.b   r12, r12
-    push    r13
-    and     #0xff00, r13
-    bis     r13, r12
-    pop     r13
-    mov.b   r13, r13
-    swpb    r14
-    swpb    r15
-    mov.b   r14, r14
-    push    r15
-    and     #0xff00, r15
-    bis     r15, r14
-    pop     r15
-    mov.b   r15, r15
-11: tst     r13                     ; then by 1 (after the 8: R13 < 2^8)
+    jge     11f
+    clrc                            ; (ax = 2^31, ay up to that: logical)
+    rrc     r13
+    rrc     r12
+    clrc
+    rrc     r15
+    rrc     r14
+11: tst     r13
     jz      a16_octant
     rra     r13
     rrc     r12
