@@ -42,7 +42,7 @@
     .set OW_BM,     442
     .set OW_CAND,   474
 
-    .set NONE,     0xff
+    .set NONE,     -1              ; (0xff in byte operations: the constant generator)
     .set MULTI,    0xfe
     .set DROPPED,  0xfd
     .set MARGIN,   6
