@@ -6,10 +6,11 @@ checked in. Declared in firmware/optical/include/optical/fastmath.h:
 
   optical_recip_tab[i]  i = 0..64:  round(2^30 / (2^15 + 512 i)), the reciprocal of a
                         component normalised to [2^15, 2^16) (optical_angle16)
-  optical_atan_tab[i]   i = 0..64:  round(atan(i / 64) * 2^18 / (2 pi)), the arctangent of
-                        the ratio in 2^-18 turn (optical_angle16)
-  optical_ct_tab[i]     i = 0..63:  ceil(2^15 / sqrt(1 + (i / 64)^2)), the range bound of
-                        optical_expect_scan
+  optical_atan_tab[i]   i = 0..64:  round(atan(i / 64) * 2^18 / (2 pi)) + 2, the arctangent
+                        of the ratio in 2^-18 turn plus the half of the rounding to 2^-16
+                        turn (optical_angle16)
+  optical_ct_tab[i]     i = 0..63:  ceil(2^16 (2/3) / sqrt(1 + (i / 64)^2)), the range
+                        bound of optical_expect_scan's windows (with asin's factor 2/3)
 
 The reciprocal and the bound are computed in exact integer arithmetic; the arctangent in
 double precision, whose error is far below the half LSB that rounding could tip.
@@ -28,18 +29,18 @@ def recip_tab():
 
 
 def atan_tab():
-    return [round(math.atan(i / 64) * 2**18 / (2 * math.pi)) for i in range(65)]
+    return [round(math.atan(i / 64) * 2**18 / (2 * math.pi)) + 2 for i in range(65)]
 
 
 def ct_tab():
-    # the least k with k >= 2^15 / sqrt(1 + (i/64)^2), i.e. k^2 (4096 + i^2) >= 2^42
+    # the least k with k >= 2^16 (2/3) / sqrt(1 + (i/64)^2), i.e. 9 k^2 (4096 + i^2) >= 2^46
     out = []
     for i in range(64):
-        q = 4096 + i * i
-        k = math.isqrt(2**42 // q)
-        while k * k * q < 2**42:
+        q = 9 * (4096 + i * i)
+        k = math.isqrt(2**46 // q)
+        while k * k * q < 2**46:
             k += 1
-        while k > 0 and (k - 1) * (k - 1) * q >= 2**42:
+        while k > 0 and (k - 1) * (k - 1) * q >= 2**46:
             k -= 1
         out.append(k)
     return out

@@ -52,12 +52,14 @@ static uint16_t sat16(uint32_t v)
 /* The parts of the arctangent that optical_expect_scan reuses. */
 typedef struct {
     uint16_t r; /* 2^30 / u (interpolated) */
-    uint16_t i; /* floor(64 v / u), 0..64 */
+    uint16_t i; /* floor(64 v / u), 0..63 */
 } angle_parts_t;
 
 /*
  * The arctangent of the octant: u in [2^15, 2^16), v <= u (the larger and the smaller
  * magnitude, scaled alike), then unfolded by the flags (1 swapped, 2 dx < 0, 4 dy < 0).
+ * (v = u needs no case of its own: q saturates, and the interpolation gives 45 degrees for
+ * every u, checked exhaustively.)
  */
 static uint16_t octant(uint16_t u, uint16_t v, uint8_t flags, angle_parts_t *p)
 {
@@ -65,18 +67,13 @@ static uint16_t octant(uint16_t u, uint16_t v, uint8_t flags, angle_parts_t *p)
     uint16_t i = (uint16_t)((u >> 9) - 64u), f = (uint16_t)(u << 7), a;
     uint16_t d = (uint16_t)(optical_recip_tab[i] - optical_recip_tab[i + 1u]);
     p->r = (uint16_t)(optical_recip_tab[i] - (((uint32_t)d * f + 0x8000u) >> 16));
-    if (v >= u) {
-        a = 32768u; /* 45 degrees, 2^-18 turn */
-        p->i = 64;
-    } else {
-        uint16_t q = sat16(((uint32_t)v * p->r) >> 14);
-        i = (uint16_t)(q >> 10);
-        f = (uint16_t)(q << 6);
-        d = (uint16_t)(optical_atan_tab[i + 1u] - optical_atan_tab[i]);
-        a = (uint16_t)(optical_atan_tab[i] + (((uint32_t)d * f + 0x8000u) >> 16));
-        p->i = i;
-    }
-    a = (uint16_t)((a + 2u) >> 2);
+    uint16_t q = sat16(((uint32_t)v * p->r) >> 14);
+    i = (uint16_t)(q >> 10);
+    f = (uint16_t)(q << 6);
+    d = (uint16_t)(optical_atan_tab[i + 1u] - optical_atan_tab[i]);
+    /* 2^-18 turn, plus the 2 of the table: rounded to 2^-16 turn */
+    a = (uint16_t)((optical_atan_tab[i] + (((uint32_t)d * f + 0x8000u) >> 16)) >> 2);
+    p->i = i;
     if (flags & 1u)
         a = (uint16_t)(16384u - a);
     if (flags & 2u)
@@ -149,10 +146,6 @@ static bool test(uint8_t j, uint8_t k, int16_t mid, uint16_t half)
     return true;
 }
 
-/* ceil(2^(9 + l) k), k = 1 and 2/3, l = 0..6: the window factor's scale (expect_scan). */
-static const uint16_t gscale[2][7] = {{512, 1024, 2048, 4096, 8192, 16384, 32768},
-                                      {342, 683, 1366, 2731, 5462, 10923, 21846}};
-
 uint8_t optical_expect_scan(int16_t mid, uint16_t half)
 {
     uint8_t bad = 0;
@@ -180,7 +173,7 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half)
             ay = t;
             flags |= 1u;
         }
-        uint16_t m8 = ax, psi = 0, g = 0xFFFFu;
+        uint16_t m8 = ax, psi = 0, g = 0xFFFFu, ek = 0x7FFFu + OPTICAL_MARGIN;
         angle_parts_t p = {0, 0};
         uint8_t l = 0;
         if (ax) {
@@ -192,30 +185,31 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half)
         }
         psi = (uint16_t)(psi - W.head);
         W.u.id.psi[k] = psi;
-        /* The window factor (2^16 / (2 pi) asin(l8 / r8) <= g l8 / 256): the range is at least
-         * m8 sqrt(1 + t^2), asin(x) <= k (pi / 2) x, and 2^16 / (2 pi) (pi / 2) 256 = 2^22, so
-         * g = 2^22 k / r8 <= h k 2^(l - 7). */
+        /* The window (docs/optical.md "O2-O5"): 2^16 / (2 pi) asin(x) <= 2^14 k x for x =
+         * eps8 / r8, k = 2/3 up to x = 1/2 (m8 >= 2 amax8), k = 1 up to 1; with r8 >= m8
+         * sqrt(1 + t^2) = u 2^-l sqrt(1 + t^2) and h about 2^30 k / (u sqrt(1 + t^2)), that is
+         * at most h eps8 2^l / 2^16, and a lever l8's window at most l8 g / 256. */
         if (m8 >= 77u && m8 > W.amax8) {
-            uint16_t h = (uint16_t)(((uint32_t)p.r * optical_ct_tab[p.i < 64 ? p.i : 63]) >> 16);
-            uint8_t small = m8 >= 2u * (uint32_t)W.amax8; /* x <= 1/2: k = 2/3 */
-            if (l <= 6) {
-                g = (uint16_t)((((uint32_t)h * gscale[small][l]) >> 16) + 1u);
-            } else {
-                uint32_t v = small ? ((uint32_t)h * 2u + 2u) / 3u : h;
-                v <<= l - 7u;
-                g = v >= 0xFFFEu ? 0xFFFEu : (uint16_t)(v + 1u);
-            }
+            uint32_t h = ((uint32_t)p.r * optical_ct_tab[p.i]) >> 16;
+            if (m8 < 2u * (uint32_t)W.amax8) /* x up to 1: k = 1 */
+                h += (h >> 1) + 2u;
+            /* (eps8 <= amax8 < m8: eps8 2^l < 2^16) */
+            uint32_t v = ((h * (uint16_t)(W.eps8 << l)) >> 16) + 1u;
+            ek = (uint16_t)((v > 0x7FFFu ? 0x7FFFu : v) + OPTICAL_MARGIN);
+            if (l <= 8)
+                g = (uint16_t)((h >> (8u - l)) + 1u);
+            else /* (l = 9: m8 < 128) */
+                g = 2u * h + 1u >= 0xFFFEu ? 0xFFFEu : (uint16_t)(2u * h + 1u);
         }
         if (W.lever8) /* (standing, only e is read) */
             W.u.id.g[k] = g;
-        uint16_t ek = (uint16_t)(optical_win(W.eps8, g) + OPTICAL_MARGIN);
         W.u.id.e[k] = ek;
         /* The candidate sightings: from the bucket of the window's start. */
-        uint16_t wmax = ek;
+        uint32_t wmax = ek;
         if (W.lever8) /* the widest window over the sightings: the largest lever */
-            wmax = (uint16_t)(optical_win(W.amax8, g) + OPTICAL_MARGIN);
-        wmax = (uint16_t)(wmax + half);
-        uint16_t lo = (uint16_t)(psi + (uint16_t)mid - wmax);
+            wmax = optical_win(W.amax8, g) + (uint32_t)OPTICAL_MARGIN;
+        wmax += half;
+        uint16_t lo = (uint16_t)(psi + (uint16_t)mid - (uint16_t)wmax);
         uint16_t span = (uint16_t)(2u * wmax);
         bool all = wmax >= 0x7000u; /* that wide: test every sighting */
         uint8_t j = all ? 0u : W.bstart[lo >> 12];
@@ -257,7 +251,7 @@ uint8_t optical_drop(uint32_t dk, uint32_t t8)
 void optical_eval(int16_t mid, uint16_t half)
 {
     clear();
-    for (uint8_t c = 0; c < W.nc; c++)
+    for (uint8_t c = W.nc; c-- > 0;) /* (from the last pair) */
         test(W.u.id.cand[2u * c], W.u.id.cand[2u * c + 1u], mid, half);
 }
 

@@ -641,6 +641,72 @@ TEST(Angle16, AgainstAtan2)
     EXPECT_EQ(optical_angle16(0, 0), 0);
 }
 
+// Every window of optical_expect_scan bounds the arcsine it stands for: the position part
+// e - margin covers 2^16 / (2 pi) asin(eps8 / r8) and the lever window optical_win(l, g) covers
+// asin(l / r8) for every lever up to amax8, r8 the range of the kernel's own floored offsets
+// (libm); and the bound is tight: within 6 % plus two units of the exact arcsine where a
+// component of the offset is twice the largest lever or more (asin(x) <= pi / 3 x is 4.7 %
+// above asin near 0; the range bound's table adds up to 1 %).
+TEST(ExpectScan, WindowsBoundTheArcsineTightly)
+{
+    std::mt19937 rng(11);
+    static optical_xy_t map[OPTICAL_MAX_BEACONS];
+    optical_work_t &w = optical_work;
+    long windows = 0, levers = 0;
+    double worst_ratio = 0;
+    for (int t = 0; t < 4000; t++) {
+        std::memset(&w, 0, sizeof w);
+        w.x = (int32_t)(rng() % 0x01000000u) - 0x00800000;
+        w.y = (int32_t)(rng() % 0x01000000u) - 0x00800000;
+        w.head = (uint16_t)rng();
+        static const uint16_t eps[] = {1, 3, 23, 79, 200, 1000};
+        w.eps8 = (t & 1) ? eps[(t >> 1) % 6] : (uint16_t)(rng() % 3000u);
+        w.lever8 = (t & 2) ? (uint16_t)(rng() % 400u) : 0;
+        w.amax8 = (uint16_t)std::min<uint32_t>(w.eps8 + (uint32_t)w.lever8, 0xFFFFu);
+        w.gate8 = 0x7FFF;
+        w.nb = OPTICAL_MAX_BEACONS;
+        w.n = 0;
+        w.b = map;
+        for (int k = 0; k < OPTICAL_MAX_BEACONS; k++) {
+            // ranges from 0.3 m to 100 m, log-uniform; any direction
+            double r = 0.3 * std::pow(333.0, (rng() % 10000) / 10000.0);
+            double a = (rng() % 100000) * kTau / 100000.0;
+            map[k] = q16(from_q16(w.x, w.y) + V2(r * std::cos(a), r * std::sin(a)));
+        }
+        ASSERT_EQ(optical_expect_scan(0, 0), 0);
+        for (int k = 0; k < OPTICAL_MAX_BEACONS; k++) {
+            // the kernel's offsets, floored to 2^-8 m
+            double x8 = std::floor((double)(map[k].x - w.x) / 256.0);
+            double y8 = std::floor((double)(map[k].y - w.y) / 256.0);
+            double r8 = std::hypot(x8, y8);
+            uint16_t e = w.u.id.e[k];
+            ASSERT_NE(e, 0) << "beacon " << k << " gated";
+            if (e == 0x7FFF + OPTICAL_MARGIN)
+                continue; // no bound: the beacon may lie within the uncertainty
+            ASSERT_GT(r8, (double)w.amax8);
+            auto arc = [&](double l) { return 65536.0 / kTau * std::asin(std::min(1.0, l / r8)); };
+            double pos = e - OPTICAL_MARGIN;
+            EXPECT_GE(pos, arc(w.eps8)) << "eps8 " << w.eps8 << " r8 " << r8;
+            windows++;
+            if (std::max(std::fabs(x8), std::fabs(y8)) >= 2.0 * w.amax8 && w.eps8 > 0) {
+                double ratio = (pos - 2.0) / arc(w.eps8);
+                worst_ratio = std::max(worst_ratio, ratio);
+                EXPECT_LE(ratio, 1.06) << "eps8 " << w.eps8 << " r8 " << r8;
+            }
+            if (w.lever8) {
+                uint16_t g = w.u.id.g[k];
+                for (uint16_t l : {(uint16_t)1, (uint16_t)(w.amax8 / 2), w.amax8}) {
+                    EXPECT_GE(optical_win(l, g), arc(l)) << "lever " << l << " r8 " << r8;
+                    levers++;
+                }
+            }
+        }
+    }
+    std::printf("optical_expect_scan: %ld windows and %ld lever windows bound the arcsine; the "
+                "position part at most %.4f times it (plus 2 units) from twice the lever on\n",
+                windows, levers, worst_ratio);
+}
+
 // ---------------------------------------------------------------- the pipeline (O2-O7)
 
 constexpr double kD = 0.08; // beacon diameter

@@ -406,6 +406,26 @@ static void kernels(void)
         cy_print_dec(optical_expect_scan(0, 100));
         cy_println();
     }
+    /* The position itself near the limit (beyond 2^28: every coordinate checked before the
+     * loop): a beacon within 16 m of it on either side of the limit. */
+    static const int32_t near[4] = {0x1FF80000l, -0x1FF80000l, 0x10000000l, -0x10000001l};
+    for (uint8_t t = 0; t < 8; t++) {
+        int32_t p = near[t >> 1], d = (t & 1) ? 0x00100000l : -0x00100000l;
+        KW.x = (t & 4) ? 0 : p;
+        KW.y = (t & 4) ? p : 0;
+        kmap[0].x = KW.x;
+        kmap[0].y = KW.y + 0x00080000l;
+        kmap[1].x = KW.x + ((t & 4) ? 0 : d);
+        kmap[1].y = KW.y + ((t & 4) ? d : 0);
+        KW.b = kmap;
+        KW.nb = 2;
+        KW.n = 0;
+        cy_print("lim ");
+        cy_print_dec(10 + t);
+        cy_print(" ");
+        cy_print_dec(optical_expect_scan(0, 100));
+        cy_println();
+    }
     /* The triangulation kernels: beacon offsets from beacon 2 of every span (Q16), the
      * inscribed angles of a vehicle among them (fx_atan2) or random ones (near 0 and 180
      * degrees too: most of them inconsistent or beyond the circles' range). */

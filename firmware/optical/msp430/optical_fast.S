@@ -42,7 +42,7 @@
     .set OW_BM,     442
     .set OW_CAND,   474
 
-    .set NONE,     0xff
+    .set NONE,     -1              ; (0xff in byte operations: the constant generator)
     .set MULTI,    0xfe
     .set DROPPED,  0xfd
     .set MARGIN,   6
@@ -62,84 +62,73 @@ oct_m:
     .short  0, -1, -1, 0, -1, 0, 0, -1
 oct_b:
     .short  0, 16385, 32769, 16384, 1, 49152, 32768, 49153
-/* The scale of the window factor: ceil(2^(9 + l) k), k = 1, 2/3, l = 0..6. */
-gscale:
-    .short  512, 1024, 2048, 4096, 8192, 16384, 32768
-    .short  342, 683, 1366, 2731, 5462, 10923, 21846
 
 /*
- * The octant's arctangent (octant() in fastmath.c): R12 = u in [2^15, 2^16), R14 = v <= u,
- * R11 = flags (2 swapped, 4 dx < 0, 8 dy < 0) -> R12 = the angle (2^-16 turn), R13 = r
- * (2^30 / u), R14 = 2 min(i, 63). Clobbers R15. Interrupts held off for about 100 cycles (the
- * three products).
+ * The octant's arctangent (octant() in fastmath.c; es_octant, inside optical_expect_scan's
+ * loop): R12 = u in [2^15, 2^16), R14 = v <= u, R11 = flags (2 swapped, 4 dx < 0, 8 dy < 0)
+ * -> R12 = the angle (2^-16 turn), R13 = r (2^30 / u), R14 = 2i (i <= 63). Clobbers R15.
+ * Interrupts held off (the three products). The ratio's product v r holds q = (v r) >> 14
+ * as its bits 14..29: i = q >> 10 is RESHI's high byte, the fraction q << 6 RESHI's low byte
+ * and RESLO's top two bits.
  */
     .section .text.optical_octant,"ax",@progbits
-octant:
+/* optical_angle16's octant: es_octant's steps (optical_expect_scan's loop holds its own copy),
+ * interrupts held off around its products. */
+a16_octant:
+    push    r2
+    dint
+    call    #a16_oct
+    pop     r2
+    ret
+a16_oct:
     mov     r12, r15                ; f = u << 7: (u mod 2^8) << 7, bit 8 of u into bit 15
     swpb    r15
     bit     #1, r15
     bic     #0x00ff, r15
     rrc     r15
-    push    r2
-    dint
-    mov     r12, r13                ; 2 (u >> 9): recip_tab - 128 based
-    swpb    r13
-    and     #0x00fe, r13
     mov     r15, &MPY
-    mov     optical_recip_tab-128(r13), r15
-    sub     optical_recip_tab-126(r13), r15 ; RT[i] - RT[i+1]
-    mov     r15, &OP2
-    mov     optical_recip_tab-128(r13), r13
-    mov     &RESLO, r15             ; (the rounding bit into the carry)
+    mov     r12, r15                ; 2 (u >> 9): recip_tab - 128 based
+    swpb    r15
+    and     #0x00fe, r15
+    mov     optical_recip_tab-128(r15), r13
+    sub     optical_recip_tab-126(r15), r13 ; RT[i] - RT[i+1]
+    mov     r13, &OP2
+    mov     optical_recip_tab-128(r15), r13
+    mov     &RESLO, r15             ; r = RT[i] - RESHI - the rounding bit (carry: its inverse)
+    inv     r15
     rla     r15
-    mov     &RESHI, r15
-    adc     r15
-    sub     r15, r13                ; r
-    cmp     r12, r14                ; v >= u: 45 degrees (2^-18 turn)
-    jhs     3f
+    subc    &RESHI, r13
     mov     r14, &MPY               ; q = (v r) >> 14, saturated
     mov     r13, &OP2
-    mov     &RESLO, r15
     mov     &RESHI, r12
     cmp     #0x4000, r12
-    jhs     4f
-    rla     r15
-    rlc     r12
-    rla     r15
-    rlc     r12
-1:  mov     r12, r14                ; 2 (q >> 10)
-    swpb    r14
-    mov.b   r14, r14
-    rra     r14
-    and     #0x007e, r14
-    rla     r12                     ; f = q << 6
-    rla     r12
-    rla     r12
-    rla     r12
-    rla     r12
-    rla     r12
+    jhs     a16_osat
+    mov     &RESLO, r15
+    swpb    r12                     ; 2 (q >> 10)
+    mov.b   r12, r14
+    rla     r14
+    and     #0xff00, r12            ; f = q << 6
+    swpb    r15
+    and     #0x00c0, r15
+    bis     r15, r12
+a16_o1:
     mov     r12, &MPY
     mov     optical_atan_tab(r14), r12
     mov     optical_atan_tab+2(r14), r15
     sub     r12, r15                ; AT[i+1] - AT[i]
     mov     r15, &OP2
-    mov     &RESLO, r15
+    mov     &RESLO, r15             ; a = AT[i] + RESHI + the rounding bit, 2^-18 turn
     rla     r15
-    mov     &RESHI, r15
-    adc     r15
-    add     r15, r12                ; a, 2^-18 turn
-2:  pop     r2
-    incd    r12                     ; (a + 2) >> 2 (a <= 32768: no carry out)
+    addc    &RESHI, r12             ; (the table holds + 2: a >> 2 rounds; a <= 32770, C = 0)
     rrc     r12
     rra     r12
     xor     oct_m(r11), r12         ; unfold
     add     oct_b(r11), r12
     ret
-3:  mov     #32768, r12
+a16_osat:
+    mov     #0xffc0, r12
     mov     #126, r14
-    jmp     2b
-4:  mov     #-1, r12
-    jmp     1b
+    jmp     a16_o1
 
 /* uint16_t optical_angle16(int32_t dx, int32_t dy): R13:R12 = dx, R15:R14 = dy -> R12. */
     .section .text.optical_angle16,"ax",@progbits
@@ -173,73 +162,28 @@ optical_angle16:
     xor     r15, r13
     xor     r13, r15
     bis     #2, r11
-4:  tst     r13                     ; both to [2^15, 2^16): right by 8, 4, 2, 1, 1
+4:  tst     r13                     ; both to [2^15, 2^16): right, a bit at a time
     jz      20f
-    cmp     #0x0100, r13            ; (logical: ax may be 2^31)
-    jlo     11f
-    swpb    r12
-    swpb    r13
-    mov.b   r12, r12
-    push    r13
-    and     #0xff00, r13
-    bis     r13, r12
-    pop     r13
-    mov.b   r13, r13
-    swpb    r14
-    swpb    r15
-    mov.b   r14, r14
-    push    r15
-    and     #0xff00, r15
-    bis     r15, r14
-    pop     r15
-    mov.b   r15, r15
-11: cmp     #0x0010, r13
-    jlo     12f
-    rra     r13
+    jge     11f
+    clrc                            ; (ax = 2^31, ay up to that: logical)
+    rrc     r13
     rrc     r12
-    rra     r13
-    rrc     r12
-    rra     r13
-    rrc     r12
+    clrc
+    rrc     r15
+    rrc     r14
+11: tst     r13
+    jz      a16_octant
     rra     r13
     rrc     r12
     rra     r15
     rrc     r14
-    rra     r15
-    rrc     r14
-    rra     r15
-    rrc     r14
-    rra     r15
-    rrc     r14
-12: cmp     #0x0004, r13
-    jlo     13f
-    rra     r13
-    rrc     r12
-    rra     r13
-    rrc     r12
-    rra     r15
-    rrc     r14
-    rra     r15
-    rrc     r14
-13: cmp     #0x0002, r13
-    jlo     14f
-    rra     r13
-    rrc     r12
-    rra     r15
-    rrc     r14
-14: tst     r13
-    jz      octant
-    rra     r13
-    rrc     r12
-    rra     r15
-    rrc     r14
-    jmp     octant
+    jmp     11b
 20: tst     r12                     ; ax < 2^16 (ay too): left, a bit at a time
     jz      9f
-    jn      octant
+    jn      a16_octant
 21: rla     r14
     rla     r12
-    jn      octant
+    jn      a16_octant
     jmp     21b
 9:  ret
 
@@ -347,34 +291,43 @@ pair_test:
 4:  clrc
     ret
 
-/* Clear the marks: sm (except DROPPED) and bm to NONE. Clobbers R14, R15. */
+/* Clear the marks: bm (clear_marks only) and sm (except DROPPED) to NONE. Clobbers R12..R15. */
     .section .text.optical_clear,"ax",@progbits
 clear_marks:
-    mov.b   &OW+OW_N, r14
-    tst     r14
-    jz      2f
-1:  cmp.b   #DROPPED, OW+OW_SM-1(r14)
-    jeq     3f
-    mov.b   #NONE, OW+OW_SM-1(r14)
-3:  add     #-1, r14
-    jnz     1b
-2:  mov.b   &OW+OW_NB, r14
+    mov.b   &OW+OW_NB, r14
     clr     r15
-4:  mov     #-1, OW+OW_BM(r15)      ; four at a time (the array has room for 32)
+1:  mov     #-1, OW+OW_BM(r15)      ; four at a time (the array has room for 32)
     mov     #-1, OW+OW_BM+2(r15)
     add     #4, r15
     cmp     r14, r15
-    jlo     4b
-    ret
+    jlo     1b
+clear_sm:
+    mov.b   &OW+OW_N, r14
+    tst     r14
+    jz      3f
+    mov     #OW+OW_SM, r15
+    mov     #DROPPED, r13
+    mov     #NONE, r12
+2:  cmp.b   @r15+, r13
+    jeq     4f
+    mov.b   r12, -1(r15)
+4:  add     #-1, r14
+    jnz     2b
+3:  ret
 
 /*
  * uint8_t optical_expect_scan(int16_t mid, uint16_t half): R12 = mid, R13 = half -> R12 = 0,
  * or 1 when a beacon lies beyond the coordinate limit.
- * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000), R7 = lever8
- * (0: standing), R8 = 2 nc; per beacon R9 = m8, R10 = l, R11 = flags. The frame: 0(r1) the
- * map's end, 2(r1) min(2 amax8, 0xffff) (m8 from there on: k = 2/3), 4(r1) max(77, amax8 + 1)
- * (m8 from there on: a window factor; saturated). Without sightings the half-width is taken as
- * 0x7000 (the scan of every sighting, i.e. of none).
+ * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000: in the loop
+ * only of the beacons beyond 2^23, the others lie within the limit when x, y lie within
+ * 2^28; else all of them before the loop), R7 = k,
+ * R8 = 2 nc; per beacon R9 = m8, R10 = eps8 shifted with u (2^l eps8), R11 = flags, then h.
+ * The frame: 0 the map's end, 2 min(gate8 + 1, 0xffff) (m8 from there on: gated), 4 the
+ * larger of min(2 amax8, 0xffff) and the next (m8 from there on: a window with k = 2/3), 6
+ * max(77, amax8 + 1) (m8 from there on: a window; saturated), 8 mid - half, 10 2 half, 12 0x7000 - half, 0 when that is negative or
+ * moving (e from there on: every sighting, or moving). Without sightings the half-width is
+ * taken as 0x7000 (every sighting, i.e. none).
+ * Interrupts are held off from the reciprocal's product to the window's (about 100 cycles).
  */
     .section .text.optical_expect_scan,"ax",@progbits
     .global optical_expect_scan
@@ -387,49 +340,82 @@ optical_expect_scan:
     push    r6
     push    r5
     push    r4
+    sub     #14, r1
     mov     r12, &sc_mid
-    mov     &OW+OW_LEVER8, r7
     tst.b   &OW+OW_N
     jnz     1f
     mov     #0x7000, r13
 1:  mov     r13, &sc_half
-    call    #clear_marks
+    sub     r13, r12                ; mid - half
+    mov     r12, 8(r1)
+    mov     r13, r12                ; 2 half
+    add     r12, r12
+    mov     r12, 10(r1)
+    mov     #0x7000, r12            ; 0x7000 - half, or 0
+    sub     r13, r12
+    jnc     2f
+    tst     &OW+OW_LEVER8           ; (moving: always, then es_mov)
+    jz      3f
+2:  clr     r12
+3:  mov     r12, 12(r1)
+    mov     &OW+OW_GATE8, r12       ; gate8 + 1, saturated
+    add     #1, r12
+    jnc     7f
+    mov     #-1, r12
+7:  mov     r12, 2(r1)
+    call    #clear_sm
     clr     r8                      ; 2 nc
     mov     &OW+OW_AMAX8, r12       ; amax8 + 1, at least 77, saturated
     mov     r12, r13
     add     #1, r13
-    jnc     2f
-    mov     #-1, r13
-2:  cmp     #77, r13
-    jhs     3f
-    mov     #77, r13
-3:  push    r13
-    rla     r12                     ; 2 amax8, saturated
     jnc     4f
+    mov     #-1, r13
+4:  cmp     #77, r13
+    jhs     5f
+    mov     #77, r13
+5:  mov     r13, 6(r1)
+    rla     r12                     ; 2 amax8, saturated
+    jnc     6f
     mov     #-1, r12
-4:  push    r12
+6:  cmp     r13, r12                ; (and at least the window's threshold)
+    jhs     8f
+    mov     r13, r12
+8:  mov     r12, 4(r1)
     mov     &OW+OW_B, r5
     mov.b   &OW+OW_NB, r12          ; the map's end
     rla     r12
     rla     r12
     rla     r12
     add     r5, r12
-    push    r12
+    mov     r12, 0(r1)
     clr     r4
     clr     r6
-    cmp     @r1, r5
+    clr     r7
+    mov     &OW+OW_X+2, r13         ; x, y within +-2^28: a beacon within 2^23 of them lies
+    add     #0x1000, r13            ; within the limit, and only those beyond (gated) are
+    mov     &OW+OW_Y+2, r14         ; checked in the loop; else every one here
+    add     #0x1000, r14
+    bis     r14, r13
+    cmp     #0x2000, r13
+    jlo     2f
+    mov     r5, r13
+1:  cmp     @r1, r13
+    jhs     2f
+    mov     2(r13), r14             ; |bx|, |by| < 2^29: high word + 0x2000 below 0x4000
+    add     #0x2000, r14
+    bis     r14, r6
+    mov     6(r13), r14
+    add     #0x2000, r14
+    bis     r14, r6
+    add     #8, r13
+    jmp     1b
+2:  cmp     @r1, r5
     jhs     es_done
 es_beacon:
     mov     @r5+, r12               ; bx, by
     mov     @r5+, r13
     mov     @r5+, r14
     mov     @r5+, r15
-    mov     r13, r9                 ; |bx|, |by| < 2^29: high word + 0x2000 below 0x4000
-    add     #0x2000, r9
-    bis     r9, r6
-    mov     r15, r9
-    add     #0x2000, r9
-    bis     r9, r6
     sub     &OW+OW_X, r12           ; dx, dy
     subc    &OW+OW_X+2, r13
     sub     &OW+OW_Y, r14
@@ -440,7 +426,7 @@ es_beacon:
     add     #0x0080, r10
     bis     r10, r9
     cmp     #0x0100, r9
-    jhs     es_gated
+    jhs     es_far
     swpb    r12                     ; x8 = floor(dx / 256), y8
     mov.b   r12, r12
     swpb    r13
@@ -470,20 +456,19 @@ es_beacon:
     xor     r14, r12
     xor     r12, r14
     bis     #2, r11
-3:  cmp     r12, &OW+OW_GATE8       ; beyond the gate
-    jlo     es_gated
+3:  cmp     2(r1), r12              ; beyond the gate
+    jhs     es_gated
     mov     r12, r9                 ; m8
-    clr     r10                     ; l: u, v left to [2^15, 2^16) by 8, 4, 2, 1
-    tst     r12
-    jz      4f                      ; (0, 0): angle 0
-    jn      5f
+    mov     &OW+OW_EPS8, r10        ; u, v and eps8 left by l: 8, 4, 2, 1
     cmp     #0x0100, r12
-    jhs     1f
+    jhs     4f
+    tst     r12
+    jz      es_zero                 ; (0, 0): angle 0
     swpb    r12
     swpb    r14
-    mov     #8, r10
-1:  cmp     #0x1000, r12
-    jhs     2f
+    swpb    r10                     ; (eps8 < m8 < 2^8 where it is used)
+4:  cmp     #0x1000, r12
+    jhs     5f
     rla     r12
     rla     r12
     rla     r12
@@ -492,169 +477,136 @@ es_beacon:
     rla     r14
     rla     r14
     rla     r14
-    add     #4, r10
-2:  cmp     #0x4000, r12
-    jhs     3f
+    rla     r10
+    rla     r10
+    rla     r10
+    rla     r10
+5:  cmp     #0x4000, r12
+    jhs     6f
     rla     r12
     rla     r12
     rla     r14
     rla     r14
-    incd    r10
-3:  tst     r12
-    jn      5f
+    rla     r10
+    rla     r10
+6:  tst     r12
+    jn      7f
     rla     r12
     rla     r14
-    inc     r10
-5:  call    #octant                 ; R12 angle, R13 r, R14 2 min(i, 63)
-4:  sub     &OW+OW_HEAD, r12        ; psi
-    mov     r12, OW+OW_PSI(r4)
-    ; g: no bound within amax8 or 0.3 m; e = win(eps8, g) + margin
-    mov     #-1, r11
-    cmp     4(r1), r9               ; (the frame's max(77, amax8 + 1))
-    jlo     es_win
-    push    r2
+    rla     r10
+7:  push    r2
     dint
-    clr     r15                     ; k = 1, or 2/3 (row 14) when m8 >= 2 amax8
+es_octant:                          ; the octant's arctangent: R12 angle, R13 r, R14 2i
+    mov     r12, r15                ; f = u << 7: (u mod 2^8) << 7, bit 8 of u into bit 15
+    swpb    r15
+    bit     #1, r15
+    bic     #0x00ff, r15
+    rrc     r15
+    mov     r15, &MPY
+    mov     r12, r15                ; 2 (u >> 9): recip_tab - 128 based
+    swpb    r15
+    and     #0x00fe, r15
+    mov     optical_recip_tab-128(r15), r13
+    sub     optical_recip_tab-126(r15), r13 ; RT[i] - RT[i+1]
+    mov     r13, &OP2
+    mov     optical_recip_tab-128(r15), r13
+    mov     &RESLO, r15             ; r = RT[i] - RESHI - the rounding bit (carry: its inverse)
+    inv     r15
+    rla     r15
+    subc    &RESHI, r13
+    mov     r14, &MPY               ; q = (v r) >> 14, saturated
+    mov     r13, &OP2
+    mov     &RESHI, r12
+    cmp     #0x4000, r12
+    jhs     es_osat
+    mov     &RESLO, r15
+    swpb    r12                     ; 2 (q >> 10)
+    mov.b   r12, r14
+    rla     r14
+    and     #0xff00, r12            ; f = q << 6
+    swpb    r15
+    and     #0x00c0, r15
+    bis     r15, r12
+es_o1:
+    mov     r12, &MPY
+    mov     optical_atan_tab(r14), r12
+    mov     optical_atan_tab+2(r14), r15
+    sub     r12, r15                ; AT[i+1] - AT[i]
+    mov     r15, &OP2
+    mov     &RESLO, r15             ; a = AT[i] + RESHI + the rounding bit, 2^-18 turn
+    rla     r15
+    addc    &RESHI, r12             ; (the table holds + 2: a >> 2 rounds; a <= 32770, C = 0)
+    rrc     r12
+    rra     r12
+    xor     oct_m(r11), r12         ; unfold
+    add     oct_b(r11), r12
+    cmp     6(r1), r9               ; a window with k = 2/3 (SR on the frame)
+    jlo     es_wk1
+    sub     &OW+OW_HEAD, r12        ; psi
+    mov     r12, OW+OW_PSI(r4)
     mov     r13, &MPY               ; h = (r C) >> 16
     mov     optical_ct_tab(r14), &OP2
-    cmp     4(r1), r9               ; (the frame's 2 amax8, below the saved SR)
-    jlo     6f
-    mov     #14, r15
-6:  mov     &RESHI, r13
-    cmp     #7, r10
-    jhs     es_big
-    add     r10, r15                ; g = (h scale[k][l]) >> 16 + 1
-    add     r10, r15
-    mov     r13, &MPY
-    mov     gscale(r15), &OP2
     mov     &RESHI, r11
-    sub     #-1, r11
-    mov     &OW+OW_EPS8, &MPY       ; e = ceil(eps8 g / 256), capped, + margin
-    mov     r11, &OP2
-    mov     &RESLO, r15
-    add     #255, r15
-    mov     &RESHI, r13
-    adc     r13
+    mov     r11, &MPY               ; e = (h 2^l eps8) >> 16 + 1 + margin (below 2^14 + 7)
+    mov     r10, &OP2
+    mov     &RESHI, r15
     pop     r2
-    cmp     #0x0080, r13
-    jhs     7f
-    swpb    r13
-    swpb    r15
-    mov.b   r15, r15
-    bis     r13, r15
-    add     #MARGIN, r15
-es_e:                               ; R11 = g, R12 = psi, R15 = e
+    add     #1+MARGIN, r15
+es_e:                               ; R9 = m8, R11 = h (0xffff: none), R12 = psi, R15 = e
     mov     r15, OW+OW_E(r4)
-    tst     r7
-    jz      8f
-    mov     r11, OW+OW_G(r4)        ; moving: g, and the largest lever's window
-    mov     &OW+OW_AMAX8, r13
-    call    #win6
-8:  add     &sc_half, r15           ; wmax
-    cmp     #0x7000, r15            ; that wide: test every sighting
-    jhs     es_all
-    mov     r12, r10                ; lo = psi + mid - wmax, span = 2 wmax
-    add     &sc_mid, r10
+es_stand:                           ; standing: rel <= span is the window test itself
+    cmp     12(r1), r15             ; that wide (or moving): test every sighting
+    jhs     es_wide
+    mov     r12, r10                ; lo = psi - e + mid - half, span = 2 e + 2 half
     sub     r15, r10
+    add     8(r1), r10
     mov     r15, r9
     add     r9, r9
-    mov     r10, r12                ; j = bstart[lo >> 12]
-    swpb    r12
-    mov.b   r12, r12
-    rra     r12
-    rra     r12
-    rra     r12
-    rra     r12
-    mov.b   OW+OW_BSTART(r12), r12
-    tst     r7
-    jnz     es_lever
-    ; standing: rel <= span is the window test itself. R13 = &th[j], R14 the sightings up to
-    ; the end, then (R12 = the start) those before the start.
-    mov     r12, r13
+    add     10(r1), r9
+    mov     r10, r14                ; j = bstart[lo >> 12]
+    swpb    r14
+    mov.b   r14, r14
+    rra     r14
+    rra     r14
+    rra     r14
+    rra     r14
+    mov.b   OW+OW_BSTART(r14), r14
+    mov     r14, r13                ; R13 = &th[j], R14 = j - n (counted up to 0)
     add     r13, r13
     add     #OW+OW_TH, r13
-    mov.b   &OW+OW_N, r14
-    sub     r12, r14
-es_scan:
+    sub.b   &OW+OW_N, r14
+    mov     #-1, r12                ; bm[k]: NONE, then the sighting, then MULTI
+es_walk:
     mov     @r13+, r11
     sub     r10, r11
-    cmp     #0xf000, r11            ; in lo's 1/16 turn, before lo
-    jhs     es_snext
-    cmp     r11, r9                 ; past the window
-    jlo     es_next
-    mov     r13, r11                ; j, 2j
-    sub     #OW+OW_TH+2, r11
-    mov     r11, r15
-    rra     r15
-    cmp.b   #DROPPED, OW+OW_SM(r15)
-    jeq     es_snext
-    mov     OW+OW_E(r4), OW+OW_WE(r11) ; we[j] = e[k]
-    mov     r4, r11                 ; k
-    rra     r11
-    cmp.b   #NONE, OW+OW_SM(r15)    ; sm[j]: k or MULTI
-    jne     40f
-    mov.b   r11, OW+OW_SM(r15)
-    jmp     41f
-40: mov.b   #MULTI, OW+OW_SM(r15)
-41: cmp.b   #NONE, OW+OW_BM(r11)    ; bm[k]: j or MULTI
-    jne     42f
-    mov.b   r15, OW+OW_BM(r11)
-    jmp     43f
-42: mov.b   #MULTI, OW+OW_BM(r11)
-43: cmp     #2*MAXCAND, r8          ; keep (cand, nc)
-    jhs     44f
-    mov.b   r15, OW+OW_CAND(r8)
-    mov.b   r11, OW+OW_CAND+1(r8)
-    incd    r8
-es_snext:
-    add     #-1, r14
-    jnz     es_scan
-    tst     r12                     ; then from the first sighting to the start
-    jz      es_next
-    mov     r12, r14
-    clr     r12
+    cmp     r11, r9                 ; rel <= span: a pair
+    jhs     es_pair
+    cmp     #0xf000, r11            ; (in lo's 1/16 turn, before lo: the next)
+    jlo     es_wend                 ; past the window
+es_wnext:
+    sub.b   #-1, r14
+    jnz     es_walk
+    mov.b   &OW+OW_N, r11           ; at the list's end: from its start (not twice, and not
+    rla     r11                     ; when the run began there)
+    add     #OW+OW_TH, r11
+    cmp     r11, r13
+    jne     es_wend
+    call    #es_bucket
+    tst     r14
+    jz      es_wend
     mov     #OW+OW_TH, r13
-    jmp     es_scan
-44: mov     #0x1fe, r8              ; more than MAXCAND: nc = 0xff
-    jmp     es_snext
-7:  mov     #0x7fff+MARGIN, r15
-    jmp     es_e
-es_big:                             ; l >= 7: (h or (2h + 2) / 3) << (l - 7)
-    tst     r15
-    jz      1f
-    rla     r13
-    add     #2, r13
-    mov     r13, &MPY
-    mov     #0xaaab, &OP2           ; floor(x 43691 / 2^17) = floor(x / 3), x < 2^16
-    mov     &RESHI, r13
-    clrc
-    rrc     r13
-1:  pop     r2
-    sub     #7, r10
-    jz      3f
-2:  tst     r13
-    jn      4f
-    rla     r13
-    sub     #1, r10
-    jnz     2b
-3:  cmp     #0xfffe, r13
-    jhs     4f
-    add     #1, r13
-    mov     r13, r11
-    jmp     es_win
-4:  mov     #0xfffe, r11
-es_win:                             ; R11 = g: e = win(eps8, g) + margin
-    mov     &OW+OW_EPS8, r13
-    call    #win6
-    jmp     es_e
-es_gated:
-    clr     OW+OW_E(r4)
+    inv.b   r14
+    sub.b   #-1, r14
+    jmp     es_walk
+es_wend:
+    mov.b   r12, OW+OW_BM(r7)
 es_next:
     incd    r4
+    sub     #-1, r7                 ; (mspdebug charges #1 three cycles, #-1 two)
     cmp     @r1, r5
     jlo     es_beacon
 es_done:
-    add     #6, r1
+    add     #14, r1
     rra     r8                      ; nc
     mov.b   r8, &OW+OW_NC
     clr     r12                     ; 1 when a coordinate is beyond the limit
@@ -669,7 +621,134 @@ es_done:
     pop     r9
     pop     r10
     ret
-es_lever:                           ; moving: each sighting's window
+es_wk1:
+    cmp     8(r1), r9               ; a window: m8 >= max(77, amax8 + 1)
+    jlo     es_nowin
+    sub     &OW+OW_HEAD, r12        ; psi
+    mov     r12, OW+OW_PSI(r4)
+    mov     r13, &MPY               ; h = (r C) >> 16, k = 1: h + h / 2 + 2; e capped at
+    mov     optical_ct_tab(r14), &OP2 ; 0x7fff + margin
+    mov     &RESHI, r11
+    mov     r11, r15
+    clrc
+    rrc     r15
+    add     r15, r11
+    add     #2, r11
+    mov     r11, &MPY
+    mov     r10, &OP2
+    mov     &RESHI, r15
+    pop     r2
+    cmp     #0x7fff, r15
+    jhs     2f
+    add     #1+MARGIN, r15
+    jmp     es_e
+2:  mov     #0x7fff+MARGIN, r15
+    jmp     es_e
+es_zero:
+    clr     r12
+    jmp     1f
+es_nowin:
+    pop     r2
+1:  sub     &OW+OW_HEAD, r12        ; psi
+    mov     r12, OW+OW_PSI(r4)
+    mov     #-1, r11
+    mov     #0x7fff+MARGIN, r15
+    jmp     es_e
+es_osat:                            ; (the octant) q = 0xffff: i = 63, f = 0xffc0
+    mov     #0xffc0, r12
+    mov     #126, r14
+    jmp     es_o1
+es_far:                             ; beyond 2^23: the coordinate check
+    mov     -6(r5), r9
+    add     #0x2000, r9
+    bis     r9, r6
+    mov     -2(r5), r9
+    add     #0x2000, r9
+    bis     r9, r6
+es_gated:
+    clr     OW+OW_E(r4)
+    mov.b   #NONE, OW+OW_BM(r7)
+    jmp     es_next
+
+es_pair:                            ; R11 = j: marks, we[j] = e, the pair kept
+    mov     r13, r11
+    sub     #OW+OW_TH+2, r11
+    rra     r11
+    cmp.b   #NONE, OW+OW_SM(r11)    ; sm[j]: k or MULTI (DROPPED: left alone)
+    jne     3f
+    mov.b   r7, OW+OW_SM(r11)
+4:  mov     r15, OW_WE-OW_TH-2(r13) ; we[j] = e
+    tst     r12
+    jn      1f
+    mov     #MULTI, r12
+    jmp     2f
+1:  mov     r11, r12
+2:  cmp     #2*MAXCAND, r8          ; keep (cand, nc)
+    jhs     5f
+    mov.b   r11, OW+OW_CAND(r8)
+    mov.b   r7, OW+OW_CAND+1(r8)
+    incd    r8
+    jmp     es_wnext
+5:  mov     #0x1fe, r8              ; more than MAXCAND: nc = 0xff
+    jmp     es_wnext
+3:  cmp.b   #DROPPED, OW+OW_SM(r11)
+    jeq     es_wnext
+    mov.b   #MULTI, OW+OW_SM(r11)
+    jmp     4b
+
+/* R14 = bstart[R10 >> 12]: the first sighting in the bucket of the window's start lo. */
+es_bucket:
+    mov     r10, r14
+    swpb    r14
+    mov.b   r14, r14
+    rra     r14
+    rra     r14
+    rra     r14
+    rra     r14
+    mov.b   OW+OW_BSTART(r14), r14
+    ret
+
+es_wide:
+    tst     &OW+OW_LEVER8
+    jz      es_all
+es_mov:                             ; moving: g, then each sighting's window
+    cmp     #-1, r11
+    jeq     4f
+    cmp     #0x0100, r9             ; g = h >> (8 - l) + 1 (m8 in [2^(15 - l), 2^(16 - l)))
+    jlo     2f
+    clrc
+    rrc     r11
+1:  cmp     #0x0200, r9
+    jlo     3f
+    clrc
+    rrc     r9
+    clrc
+    rrc     r11
+    jmp     1b
+2:  cmp     #0x0080, r9             ; (l = 8: h + 1)
+    jhs     3f
+    rla     r11                     ; l = 9: 2 h + 1, at most 0xfffe
+    jc      5f
+    cmp     #0xfffe, r11
+    jhs     5f
+3:  inc     r11
+    jmp     4f
+5:  mov     #0xfffe, r11
+4:  mov     r11, OW+OW_G(r4)
+    mov.b   #NONE, OW+OW_BM(r7)
+    mov     &OW+OW_AMAX8, r13       ; the widest window: the largest lever's, + half
+    call    #win6
+    add     &sc_half, r15
+    jc      es_all2
+    cmp     #0x7000, r15
+    jhs     es_all2
+    mov     r12, r10                ; lo = psi + mid - wmax, span = 2 wmax
+    add     &sc_mid, r10
+    sub     r15, r10
+    mov     r15, r9
+    add     r9, r9
+    call    #es_bucket
+    mov     r14, r12                ; j
     mov.b   &OW+OW_N, r14
 31: mov     r12, r13
     add     r13, r13
@@ -696,6 +775,8 @@ es_lever:                           ; moving: each sighting's window
     jnz     31b
     jmp     es_next
 es_all:                             ; that wide: every sighting
+    mov.b   #NONE, OW+OW_BM(r7)
+es_all2:
     mov.b   &OW+OW_N, r14
     tst     r14
     jz      es_next
@@ -716,57 +797,70 @@ es_all:                             ; that wide: every sighting
 
 /*
  * void optical_eval(int16_t mid, uint16_t half): R12 = mid, R13 = half. Standing: the pair
- * (j, k) is in when |th[j] - psi[k] - mid| <= half + e[k]; moving: pair_test.
+ * (j, k) is in when |th[j] - psi[k] - mid| <= half + e[k]; moving: pair_test. The pairs from
+ * the last to the first (the marks come out the same: a second match is MULTI either way, and
+ * we[j] is read only where a sighting has one match).
  */
     .section .text.optical_eval,"ax",@progbits
     .global optical_eval
     .type optical_eval,@function
 optical_eval:
+    push    r10
     push    r9
+    push    r8
     push    r6
     push    r4
     mov     r12, &sc_mid
     mov     r13, &sc_half
+    mov     r12, r10                ; R10 = mid, R8 = half
+    mov     r13, r8
     call    #clear_marks
-    clr     r6
-1:  mov.b   &OW+OW_NC, r12          ; 2c < 2 nc
-    add     r12, r12
-    cmp     r12, r6
-    jhs     4f
-    mov.b   OW+OW_CAND(r6), r12
-    mov.b   OW+OW_CAND+1(r6), r4
+    mov.b   &OW+OW_NC, r6           ; R6 = 2c, counted down to 0
+    add     r6, r6
+    jz      4f
+    tst     &OW+OW_LEVER8
+    jnz     3f
+1:  mov.b   OW+OW_CAND-2(r6), r12   ; standing: j, k (from the last pair)
+    mov.b   OW+OW_CAND-1(r6), r4
     add     r4, r4
     mov     r12, r13
     add     r13, r13
-    tst     &OW+OW_LEVER8
-    jnz     3f
-    mov     OW+OW_TH(r13), r11      ; standing
+    mov     OW+OW_TH(r13), r11      ; |th[j] - psi[k] - mid| <= half + e[k]
     sub     OW+OW_PSI(r4), r11
-    sub     &sc_mid, r11
+    sub     r10, r11
     tst     r11
     jge     2f
-    mov     r11, r15
-    clr     r11
-    sub     r15, r11
+    inv     r11
+    sub     #-1, r11
 2:  mov     OW+OW_E(r4), r15
-    mov     &sc_half, r14
+    mov     r8, r14
     add     r15, r14
     cmp     r11, r14
     jlo     5f
     call    #mark
-    jmp     5f
-3:  call    #pair_test
-5:  incd    r6
-    jmp     1b
+5:  decd    r6
+    jnz     1b
 4:  pop     r4
     pop     r6
+    pop     r8
     pop     r9
+    pop     r10
     ret
+3:  mov.b   OW+OW_CAND-2(r6), r12   ; moving: pair_test
+    mov.b   OW+OW_CAND-1(r6), r4
+    add     r4, r4
+    mov     r12, r13
+    add     r13, r13
+    call    #pair_test
+    decd    r6
+    jnz     3b
+    jmp     4b
 
 /*
  * uint8_t optical_drop(uint32_t dk, uint32_t t8): R13:R12 = dk, R15:R14 = t8 -> R12 = the
  * sightings kept (fastmath.c). wmin = floor(dk / t8) into R11 (a 16-step restoring division
- * when t8 and the quotient fit 16 bits); R13 = 1 when wmin >= 2^16 (none kept), else 0.
+ * when t8 and the quotient fit 16 bits); when wmin >= 2^16 none is kept: R13, the mark of a
+ * kept sighting (NONE), is then DROPPED too and the count cleared. R10 = 0x7f (wchk).
  */
     .section .text.optical_drop,"ax",@progbits
     .global optical_drop
@@ -786,40 +880,45 @@ optical_drop:
     cmp     r14, r13
     jlo     6f
 2:  sub     r14, r13
-    bis     #1, r12
+    sub     #-1, r12                ; (the bit shifted in is 0)
 6:  add     #-1, r15
     jnz     1b
     mov     r12, r11
     jmp     4f
 3:  call    #__mspabi_divul         ; t8 >= 2^16: the quotient fits 16 bits
     mov     r12, r11
-4:  clr     r13
-7:  mov.b   &OW+OW_N, r14
+4:  mov     #NONE, r13
+7:  push    r10
+    mov     #0x7f, r10
+    mov.b   &OW+OW_N, r14
     clr     r12                     ; kept
     tst     r14
     jz      9f
     mov     r14, r15
     add     r15, r15                ; R14 = j + 1, R15 = 2 (j + 1)
-8:  mov.b   #0x7f, OW+OW_WCHK-1(r14)
-    mov.b   #NONE, OW+OW_SM-1(r14)
+8:  mov.b   r10, OW+OW_WCHK-1(r14)
+    mov.b   r13, OW+OW_SM-1(r14)
     cmp     r11, OW+OW_WE-2(r15)    ; we[j] >= wmin (< 2^16): kept
     jlo     10f
-    tst     r13
-    jnz     10f
     sub     #-1, r12
-    jmp     11f
-10: mov.b   #DROPPED, OW+OW_SM-1(r14)
 11: decd    r15
     add     #-1, r14
     jnz     8b
-9:  ret
-5:  mov     #1, r13
+    cmp     #NONE, r13
+    jeq     9f
+    clr     r12
+9:  pop     r10
+    ret
+10: mov.b   #DROPPED, OW+OW_SM-1(r14)
+    jmp     11b
+5:  mov     #DROPPED, r13
     jmp     7b
 
 /*
  * bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16):
  * R12 = a, R13 = b, R14 = w16 -> R12 (fastmath.c's steps). R10 = a, R9 = x8, R11 = rhi then
- * hi, R13 = rlo then lo, R15 = tol. Interrupts held off around each multiply.
+ * hi, R13 = rlo then lo, R15 = tol. Interrupts held off from the first product to the last
+ * (about 60 cycles).
  * optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18.
  */
     .section .text.optical_width_ok,"ax",@progbits
@@ -875,20 +974,18 @@ optical_width_ok:
     add     r9, r12
     jnc     2f
     mov     #-1, r12
-2:  mov     r12, r11                ; rhi = o + eps8, saturated
+2:  push    r2                      ; (one multiplier window for all the products)
+    dint
+    mov     r12, r11                ; rhi = o + eps8, saturated
+    mov     r12, &MPY               ; rlo = (o 58623) >> 16 - eps8, or 0
+    mov     #58623, &OP2
     add     12(r10), r11
     jnc     3f
     mov     #-1, r11
-3:  push    r2
-    dint
-    nop
-    mov     r12, &MPY               ; rlo = (o 58623) >> 16 - eps8, or 0
-    mov     #58623, &OP2
-    mov     &RESHI, r13
+3:  mov     &RESHI, r13
     mov     r11, &MPY               ; tol = tol8 + (rhi rel16) >> 16, saturated
     mov     16(r10), &OP2
     mov     &RESHI, r15
-    pop     r2
     sub     12(r10), r13
     jc      4f
     clr     r13
@@ -903,10 +1000,7 @@ optical_width_ok:
     mov     #-1, r11
 7:  cmp     #5216, r14
     jhs     wd_wide
-    push    r2                      ; p = lo w16, q = hi w16 (w16 stays in MPY)
-    dint
-    nop
-    mov     r14, &MPY
+    mov     r14, &MPY               ; p = lo w16, q = hi w16 (w16 stays in MPY)
     mov     r13, &OP2
     mov     &RESLO, r12
     mov     &RESHI, r13
@@ -949,9 +1043,6 @@ wd_true:
     pop     r10
     ret
 wd_wide:                            ; w16 > 5215: lo 5215 <= dk + (dk >> 4)
-    push    r2
-    dint
-    nop
     mov     r13, &MPY
     mov     #5215, &OP2
     mov     &RESLO, r9

@@ -33,7 +33,8 @@ uint16_t optical_angle16(int32_t dx, int32_t dy);
 
 /** round(2^30 / (2^15 + 512 i)), i = 0..64 (optical_angle16's reciprocal). */
 extern const uint16_t optical_recip_tab[65];
-/** round(atan(i / 64) * 2^18 / (2 pi)), i = 0..64 (optical_angle16's arctangent). */
+/** round(atan(i / 64) * 2^18 / (2 pi)) + 2, i = 0..64 (optical_angle16's arctangent, 2^-18
+ * turn, with the half of its rounding to 2^-16 turn). */
 extern const uint16_t optical_atan_tab[65];
 
 /** Identification margin of every window, 2^-16 turn (fix.c explains it). */
@@ -120,15 +121,18 @@ extern optical_work_t optical_work;
  * (optical_eval's test; the pairs in scan order, sightings from the bucket of each window's
  * start). Per beacon, with (x8, y8) its offset floored to 2^-8 m (beyond +-128 m, or a
  * magnitude beyond gate8: e = 0, gated out): psi = the angle of (x8, y8) - head, with the
- * octant's arctangent of optical_angle16; the window factor g of a beacon at range >= m8
- * sqrt(1 + t^2) (m8 the larger magnitude, t = smaller / larger): 0xFFFF when m8 < 77 or m8 <=
- * amax8, else g = h k 2^(l - 7) + 1 (rounded down, saturated at 0xFFFE), h = r C / 2^16 (r the
- * octant's 2^30 / u, u = m8 2^l in [2^15, 2^16), C = 2^15 / sqrt(1 + (i / 64)^2) rounded up,
- * i = floor(64 t)), k = 2/3 (ceil(2^(9 + l) 2/3) / 2^(9 + l)) when m8 >= 2 amax8, else 1;
- * e = optical_win(eps8, g) + margin. The offsets' flooring moves the angles by up to sqrt 2
- * units of 2^-8 m: the caller adds 2 to eps8. Clears bm and sm (except DROPPED) and marks
- * every pair as optical_eval. Returns 1 when a beacon coordinate lies outside
- * [-OPTICAL_COORD_LIMIT, OPTICAL_COORD_LIMIT) (the results are then meaningless), else 0.
+ * octant's arctangent of optical_angle16 (r its 2^30 / u, u = m8 2^l in [2^15, 2^16), m8 the
+ * larger magnitude, i = floor(64 t), t = smaller / larger). The window, when m8 >= 77 and
+ * m8 > amax8 (else g = 0xFFFF, e = 0x7FFF + margin): h = floor(r optical_ct_tab[i] / 2^16)
+ * (asin's factor k = 2/3 in the table), when m8 < 2 amax8 (k = 1) h + floor(h / 2) + 2;
+ * e = min(floor(h eps8 2^l / 2^16) + 1, 0x7FFF) + margin (eps8 2^l < 2^16 there); g =
+ * floor(h / 2^(8 - l)) + 1 (l <= 8), min(2 h + 1, 0xFFFE) (l = 9). So e - margin >= 2^16 /
+ * (2 pi) asin(eps8 / r8) and optical_win(l8, g) >= 2^16 / (2 pi) asin(l8 / r8) for l8 <=
+ * amax8, r8 = |(x8, y8)| (docs/optical.md "O2-O5" derives it; tests/unit/optical_test.cpp
+ * checks it). The offsets' flooring moves the angles by up to sqrt 2 units of 2^-8 m: the
+ * caller adds 2 to eps8. Clears bm and sm (except DROPPED) and marks every pair as
+ * optical_eval. Returns 1 when a beacon coordinate lies outside [-OPTICAL_COORD_LIMIT,
+ * OPTICAL_COORD_LIMIT) (the results are then meaningless), else 0.
  */
 uint8_t optical_expect_scan(int16_t mid, uint16_t half);
 
@@ -136,8 +140,8 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half);
  * The stored candidate pairs within the windows (mid, half): pair (j, k) when
  * |th[j] - psi[k] - mid| <= half + w, w = e[k] standing (lever8 = 0 or lev[j] = 0), else
  * optical_win(min(eps8 + lev[j], 0xFFFF), g[k]) + margin; marked: sm[j], bm[k] get the partner
- * (or MULTI when they had one), we[j] = w. Clears bm and sm (except DROPPED) first. half + w
- * must stay below 2^16; nc not 0xFF.
+ * (or MULTI when they had one), we[j] = w (the pairs taken from the last to the first). Clears
+ * bm and sm (except DROPPED) first. half + w must stay below 2^16; nc not 0xFF.
  */
 void optical_eval(int16_t mid, uint16_t half);
 
@@ -152,7 +156,8 @@ uint8_t optical_drop(uint32_t dk, uint32_t t8);
 /** Window part min(ceil(l g / 256), 0x7FFF) of lever l (2^-8 m); 0x7FFF when g = 0xFFFF. */
 uint16_t optical_win(uint16_t l, uint16_t g);
 
-/** ceil(2^15 / sqrt(1 + (i / 64)^2)), i = 0..63 (optical_expect_scan's range bound). */
+/** ceil(2^16 (2/3) / sqrt(1 + (i / 64)^2)), i = 0..63 (optical_expect_scan's range bound with
+ * asin's factor 2/3). */
 extern const uint16_t optical_ct_tab[64];
 
 /**
