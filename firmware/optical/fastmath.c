@@ -113,11 +113,16 @@ static bool coord_ok(int32_t v)
     return (uint32_t)v + 0x20000000u < 0x40000000u;
 }
 
-static void clear(void)
+static void clear_sm(void)
 {
     for (uint8_t j = 0; j < W.n; j++)
         if (W.sm[j] != OPTICAL_DROPPED)
             W.sm[j] = OPTICAL_NONE;
+}
+
+static void clear(void)
+{
+    clear_sm();
     for (uint8_t k = 0; k < W.nb; k++)
         W.u.id.bm[k] = OPTICAL_NONE;
 }
@@ -148,8 +153,15 @@ static bool test(uint8_t j, uint8_t k, int16_t mid, uint16_t half)
 
 uint8_t optical_expect_scan(int16_t mid, uint16_t half)
 {
+    clear_sm();
+    return optical_first_scan(mid, half);
+}
+
+uint8_t optical_first_scan(int16_t mid, uint16_t half)
+{
     uint8_t bad = 0;
-    clear();
+    for (uint8_t k = 0; k < W.nb; k++)
+        W.u.id.bm[k] = OPTICAL_NONE;
     W.nc = 0;
     for (uint8_t k = 0; k < W.nb; k++) {
         const optical_xy_t *b = &W.b[k];

@@ -708,7 +708,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
      * and the first identification pass (O3). */
     W.gate8 = sat15(((uint32_t)threshold(&x) + (uint32_t)cfg->window_pos) >> 8);
     uint16_t h0 = half0(cfg);
-    if (optical_expect_scan(0, h0))
+    if (optical_first_scan(0, h0)) /* (the marks as optical_drop left them) */
         return finish(out, OPTICAL_E_ARG);
     if (n < 3)
         return finish(out, OPTICAL_E_FEW);

@@ -230,6 +230,53 @@ static void print_marks(void)
     }
 }
 
+/* One scan's results (optical_expect_scan, optical_first_scan), printed. */
+static void print_scan(const char *what, uint8_t t, uint8_t st)
+{
+    cy_print(what);
+    cy_print_dec(t);
+    cy_print(" st ");
+    cy_print_dec(st);
+    for (uint8_t k = 0; k < KW.nb && !st; k++) {
+        cy_print(" ");
+        if (KW.u.id.e[k] == 0) {
+            cy_print("-");
+            continue;
+        }
+        cy_print_hex16(KW.u.id.psi[k]);
+        cy_print(":");
+        cy_print_hex16(KW.u.id.e[k]);
+        if (KW.lever8) { /* (standing: g is not stored) */
+            cy_print(":");
+            cy_print_hex16(KW.u.id.g[k]);
+        }
+    }
+    print_marks();
+    cy_print(" nc ");
+    cy_print_dec(KW.nc);
+    for (uint8_t c = 0; c < KW.nc && KW.nc != 0xFFu; c++) {
+        cy_print(" ");
+        cy_print_dec(KW.u.id.cand[2 * c]);
+        cy_print("/");
+        cy_print_dec(KW.u.id.cand[2 * c + 1]);
+    }
+    cy_println();
+}
+
+/* A hash of one scan's results (the marks, the windows, the pairs). */
+static uint32_t scan_hash(void)
+{
+    uint32_t h = KW.nc;
+    for (uint8_t j = 0; j < KW.n; j++)
+        h = h * 31u + KW.sm[j] + (KW.sm[j] < OPTICAL_DROPPED ? (uint32_t)KW.we[j] << 8 : 0u);
+    for (uint8_t k = 0; k < KW.nb; k++)
+        h = h * 31u + KW.u.id.bm[k] + ((uint32_t)KW.u.id.e[k] << 8) +
+            (KW.u.id.e[k] ? (uint32_t)KW.u.id.psi[k] << 12 : 0u);
+    for (uint8_t c = 0; KW.nc != 0xFFu && c < 2u * KW.nc; c++)
+        h = h * 31u + KW.u.id.cand[c];
+    return h;
+}
+
 /* A random scene for the identification kernels: a map (some beacons near the vehicle, some
  * beyond the gate or the 128 m of the kernels), sightings near some beacons' directions and
  * elsewhere, moving or not. */
@@ -342,34 +389,7 @@ static void kernels(void)
         uint16_t t1 = cy_bench_now();
         if ((t & 7) != 7 && !st)
             cy_bench_add(&st_exs, (uint16_t)(t1 - t0) / KW.nb);
-        cy_print("exs ");
-        cy_print_dec(t);
-        cy_print(" st ");
-        cy_print_dec(st);
-        for (uint8_t k = 0; k < KW.nb && !st; k++) {
-            cy_print(" ");
-            if (KW.u.id.e[k] == 0) {
-                cy_print("-");
-                continue;
-            }
-            cy_print_hex16(KW.u.id.psi[k]);
-            cy_print(":");
-            cy_print_hex16(KW.u.id.e[k]);
-            if (KW.lever8) { /* (standing: g is not stored) */
-                cy_print(":");
-                cy_print_hex16(KW.u.id.g[k]);
-            }
-        }
-        print_marks();
-        cy_print(" nc ");
-        cy_print_dec(KW.nc);
-        for (uint8_t c = 0; c < KW.nc && KW.nc != 0xFFu; c++) {
-            cy_print(" ");
-            cy_print_dec(KW.u.id.cand[2 * c]);
-            cy_print("/");
-            cy_print_dec(KW.u.id.cand[2 * c + 1]);
-        }
-        cy_println();
+        print_scan("exs ", t, st);
         if (st || KW.nc == 0xFFu)
             continue;
         half = (uint16_t)(half / 2u);
@@ -386,6 +406,31 @@ static void kernels(void)
     }
     cy_bench_report(&st_exs);
     cy_bench_report(&st_eval);
+    /* optical_first_scan: the marks as optical_drop leaves them (the scene's NONE and
+     * DROPPED), printed; optical_expect_scan must give the same after the marks were
+     * scrambled (stale matches, MULTI: it clears them, DROPPED stays). */
+    for (uint8_t t = 0; t < 24; t++) {
+        scene(t);
+        int16_t mid = (int16_t)((t & 1) ? rnd_in(600) : 0);
+        uint16_t half = (uint16_t)(rnd32() % ((t & 7) == 7 ? 0x7000u : 1200u));
+        uint8_t sm0[OPTICAL_MAX_SIGHTINGS];
+        for (uint8_t j = 0; j < KW.n; j++)
+            sm0[j] = KW.sm[j];
+        uint8_t st = optical_first_scan(mid, half);
+        print_scan("exf ", t, st);
+        if (st)
+            continue;
+        uint32_t h = scan_hash();
+        for (uint8_t j = 0; j < KW.n; j++) {
+            KW.sm[j] = sm0[j] == OPTICAL_DROPPED ? OPTICAL_DROPPED
+                                                 : (uint8_t)(rnd32() % (OPTICAL_MULTI + 1u));
+            KW.we[j] = (uint16_t)rnd32();
+        }
+        for (uint8_t k = 0; k < KW.nb; k++)
+            KW.u.id.bm[k] = (uint8_t)rnd32();
+        cy_check(optical_expect_scan(mid, half) == 0 && scan_hash() == h,
+                 "first scan: the results of optical_expect_scan");
+    }
     /* The coordinate limit's edges: [-2^29, 2^29) is accepted. */
     static const int32_t coord_edge[] = {-0x20000000l, -0x1FFFFFFFl, 0x1FFFFFFFl, 0x20000000l,
                                          -0x20000001l};

@@ -291,7 +291,8 @@ pair_test:
 4:  clrc
     ret
 
-/* Clear the marks: bm (clear_marks only) and sm (except DROPPED) to NONE. Clobbers R12..R15. */
+/* Clear the marks: bm (clear_marks only) and sm (except DROPPED) to NONE. Clobbers R11, R14,
+ * R15 (R12, R13: optical_expect_scan's arguments, kept). */
     .section .text.optical_clear,"ax",@progbits
 clear_marks:
     mov.b   &OW+OW_NB, r14
@@ -306,18 +307,29 @@ clear_sm:
     tst     r14
     jz      3f
     mov     #OW+OW_SM, r15
-    mov     #DROPPED, r13
-    mov     #NONE, r12
-2:  cmp.b   @r15+, r13
+    mov     #DROPPED, r11
+2:  cmp.b   @r15+, r11
     jeq     4f
-    mov.b   r12, -1(r15)
+    mov.b   #NONE, -1(r15)
 4:  add     #-1, r14
     jnz     2b
 3:  ret
 
 /*
- * uint8_t optical_expect_scan(int16_t mid, uint16_t half): R12 = mid, R13 = half -> R12 = 0,
- * or 1 when a beacon lies beyond the coordinate limit.
+ * uint8_t optical_expect_scan(int16_t mid, uint16_t half): the marks sm cleared (except
+ * DROPPED), then optical_first_scan (a tail call).
+ */
+    .section .text.optical_expect_scan,"ax",@progbits
+    .global optical_expect_scan
+    .type optical_expect_scan,@function
+optical_expect_scan:
+    call    #clear_sm
+    jmp     optical_first_scan
+
+/*
+ * uint8_t optical_first_scan(int16_t mid, uint16_t half): R12 = mid, R13 = half -> R12 = 0,
+ * or 1 when a beacon lies beyond the coordinate limit. The marks sm as optical_drop leaves
+ * them (NONE or DROPPED): not cleared.
  * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000: in the loop
  * only of the beacons beyond 2^23, the others lie within the limit when x, y lie within
  * 2^28; else all of them before the loop), R7 = k,
@@ -329,10 +341,9 @@ clear_sm:
  * taken as 0x7000 (every sighting, i.e. none).
  * Interrupts are held off from the reciprocal's product to the window's (about 100 cycles).
  */
-    .section .text.optical_expect_scan,"ax",@progbits
-    .global optical_expect_scan
-    .type optical_expect_scan,@function
-optical_expect_scan:
+    .global optical_first_scan
+    .type optical_first_scan,@function
+optical_first_scan:
     push    r10
     push    r9
     push    r8
@@ -363,7 +374,6 @@ optical_expect_scan:
     jnc     7f
     mov     #-1, r12
 7:  mov     r12, 2(r1)
-    call    #clear_sm
     clr     r8                      ; 2 nc
     mov     &OW+OW_AMAX8, r12       ; amax8 + 1, at least 77, saturated
     mov     r12, r13

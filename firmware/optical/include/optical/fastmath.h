@@ -137,6 +137,12 @@ extern optical_work_t optical_work;
 uint8_t optical_expect_scan(int16_t mid, uint16_t half);
 
 /**
+ * optical_expect_scan() without clearing sm first: for marks as optical_drop() leaves them
+ * (every sm[j] NONE or DROPPED), where the results are the same (optical_fix's first scan).
+ */
+uint8_t optical_first_scan(int16_t mid, uint16_t half);
+
+/**
  * The stored candidate pairs within the windows (mid, half): pair (j, k) when
  * |th[j] - psi[k] - mid| <= half + w, w = e[k] standing (lever8 = 0 or lev[j] = 0), else
  * optical_win(min(eps8 + lev[j], 0xFFFF), g[k]) + margin; marked: sm[j], bm[k] get the partner
