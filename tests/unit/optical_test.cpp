@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <random>
+#include <set>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -705,6 +706,95 @@ TEST(ExpectScan, WindowsBoundTheArcsineTightly)
     std::printf("optical_expect_scan: %ld windows and %ld lever windows bound the arcsine; the "
                 "position part at most %.4f times it (plus 2 units) from twice the lever on\n",
                 windows, levers, worst_ratio);
+}
+
+// optical_fix's first scan (optical_first_scan) leaves the marks alone: right after
+// optical_drop, which sets every one to NONE or DROPPED, it must give what optical_expect_scan
+// gives from any stale marks; and its pairs are exactly those within the windows (brute force
+// over every sighting and beacon, standing).
+TEST(ExpectScan, FirstScanAfterTheDropNeedsNoClearing)
+{
+    std::mt19937 rng(23);
+    static optical_xy_t map[OPTICAL_MAX_BEACONS];
+    optical_work_t &w = optical_work;
+    static optical_work_t first, before;
+    long pairs = 0;
+    for (int t = 0; t < 3000; t++) {
+        std::memset(&w, 0, sizeof w);
+        w.x = (int32_t)(rng() % 0x00400000u) - 0x00200000;
+        w.y = (int32_t)(rng() % 0x00400000u) - 0x00200000;
+        w.head = (uint16_t)rng();
+        w.eps8 = (uint16_t)(rng() % 200u);
+        w.amax8 = w.eps8;
+        w.gate8 = (t & 3) ? 0x7FFF : (uint16_t)(rng() % 0x2000u);
+        w.nb = (uint8_t)(1u + rng() % OPTICAL_MAX_BEACONS);
+        w.n = (uint8_t)(rng() % (OPTICAL_MAX_SIGHTINGS + 1u));
+        w.b = map;
+        for (int k = 0; k < w.nb; k++)
+            map[k] = {w.x + (int32_t)(rng() % 0x00400000u) - 0x00200000,
+                      w.y + (int32_t)(rng() % 0x00400000u) - 0x00200000};
+        std::vector<uint16_t> th(w.n);
+        for (auto &v : th) // half of them near a beacon's direction
+            v = (rng() & 1) ? (uint16_t)rng()
+                            : (uint16_t)(optical_angle16(map[rng() % w.nb].x - w.x,
+                                                         map[rng() % w.nb].y - w.y) -
+                                         w.head + rng() % 801u - 400u);
+        std::sort(th.begin(), th.end());
+        for (int j = 0; j < w.n; j++) {
+            w.th[j] = th[j];
+            w.we[j] = (uint16_t)(rng() % 40u); // widths: O4 drops the narrow ones
+        }
+        for (int b = 0, j = 0; b < 16; b++) {
+            while (j < w.n && (w.th[j] >> 12) < b)
+                j++;
+            w.bstart[b] = j < w.n ? (uint8_t)j : 0;
+        }
+        optical_drop(0x100000u, 0x8000u + rng() % 0x8000u);
+        int16_t mid = (t & 1) ? (int16_t)(rng() % 1201u - 600) : 0;
+        uint16_t half = (uint16_t)(rng() % ((t & 7) == 7 ? 0x7000u : 1200u));
+        before = w;
+        ASSERT_EQ(optical_first_scan(mid, half), 0);
+        first = w;
+        if (w.nc != 0xFF) {
+            std::set<std::pair<int, int>> got, want;
+            for (int c = 0; c < w.nc; c++)
+                got.insert({w.u.id.cand[2 * c], w.u.id.cand[2 * c + 1]});
+            for (int j = 0; j < w.n; j++)
+                for (int k = 0; k < w.nb && w.sm[j] != OPTICAL_DROPPED; k++) {
+                    uint16_t off = (uint16_t)(w.th[j] - w.u.id.psi[k] - (uint16_t)mid);
+                    if (w.u.id.e[k] && std::abs((int16_t)off) <= (int)half + w.u.id.e[k])
+                        want.insert({j, k});
+                }
+            ASSERT_EQ(got, want) << "scene " << t;
+            pairs += (long)got.size();
+        }
+        w = before; // stale marks: matches, MULTI, garbage in bm (DROPPED stays)
+        for (int j = 0; j < w.n; j++)
+            if (w.sm[j] != OPTICAL_DROPPED)
+                w.sm[j] = (rng() & 3) ? (uint8_t)(rng() % OPTICAL_MAX_BEACONS) : OPTICAL_MULTI;
+        for (int k = 0; k < w.nb; k++)
+            w.u.id.bm[k] = (uint8_t)rng();
+        ASSERT_EQ(optical_expect_scan(mid, half), 0);
+        ASSERT_EQ(w.nc, first.nc);
+        for (int j = 0; j < w.n; j++) {
+            ASSERT_EQ(w.sm[j], first.sm[j]) << "scene " << t << " sighting " << j;
+            if (w.sm[j] < OPTICAL_DROPPED) {
+                ASSERT_EQ(w.we[j], first.we[j]);
+            }
+        }
+        for (int k = 0; k < w.nb; k++) {
+            ASSERT_EQ(w.u.id.bm[k], first.u.id.bm[k]) << "scene " << t << " beacon " << k;
+            ASSERT_EQ(w.u.id.e[k], first.u.id.e[k]);
+            if (w.u.id.e[k]) {
+                ASSERT_EQ(w.u.id.psi[k], first.u.id.psi[k]);
+            }
+        }
+        for (int c = 0; w.nc != 0xFF && c < 2 * w.nc; c++)
+            ASSERT_EQ(w.u.id.cand[c], first.u.id.cand[c]);
+    }
+    std::printf("optical_first_scan: 3000 scenes, %ld pairs, the same as optical_expect_scan "
+                "from stale marks and as the windows by brute force\n",
+                pairs);
 }
 
 // ---------------------------------------------------------------- the pipeline (O2-O7)

@@ -423,7 +423,8 @@ static void kernels(void)
         uint32_t h = scan_hash();
         for (uint8_t j = 0; j < KW.n; j++) {
             KW.sm[j] = sm0[j] == OPTICAL_DROPPED ? OPTICAL_DROPPED
-                                                 : (uint8_t)(rnd32() % (OPTICAL_MULTI + 1u));
+                       : (rnd32() & 3u)          ? (uint8_t)(rnd32() % OPTICAL_MAX_BEACONS)
+                                                 : OPTICAL_MULTI;
             KW.we[j] = (uint16_t)rnd32();
         }
         for (uint8_t k = 0; k < KW.nb; k++)
