@@ -1,8 +1,9 @@
 /*
  * optical_fast.S - MSP430 versions of the identification kernels of firmware/optical:
- * optical_angle16, optical_expect_scan, optical_eval, optical_drop, optical_width_ok
- * (fastmath.c holds the portable C that defines the results; these perform the very same
- * integer steps, and tests/vectors/optical_vectors.c checks them bit for bit on both worlds).
+ * optical_angle16, optical_expect_scan (optical_first_scan), optical_eval, optical_drop,
+ * optical_width_ok (fastmath.c holds the portable C that defines the results; these perform
+ * the very same integer steps, and tests/vectors/optical_vectors.c checks them bit for bit on
+ * both worlds).
  *
  * Registers as clang emits calls (TI EABI): arguments in R12..R15 (32-bit ones in pairs, R12
  * the low word), results in R12; R11..R15 may be clobbered, R4..R10 are preserved. The
