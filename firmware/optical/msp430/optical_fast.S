@@ -438,30 +438,28 @@ es_beacon:
     bis     r10, r9
     cmp     #0x0100, r9
     jhs     es_far
-    swpb    r12                     ; x8 = floor(dx / 256), y8
-    mov.b   r12, r12
-    swpb    r13
-    and     #0xff00, r13
-    bis     r13, r12
-    swpb    r14
-    mov.b   r14, r14
+    clr     r11                     ; flags 4 dx < 0, 8 dy < 0, 2 swapped
+    swpb    r14                     ; y8 = floor(dy / 256), then x8 (the sum of the two
+    mov.b   r14, r14                ; bytes sets N, V = 0: the sign), each to its magnitude
     swpb    r15
     and     #0xff00, r15
-    bis     r15, r14
-    clr     r11                     ; magnitudes; flags 4 dx < 0, 8 dy < 0, 2 swapped
-    tst     r12
-    jge     1f
-    mov     r12, r9
-    clr     r12
-    sub     r9, r12
-    bis     #4, r11
-1:  tst     r14
+    add     r15, r14
     jge     2f
     mov     r14, r9
     clr     r14
     sub     r9, r14
     bis     #8, r11
-2:  cmp     r14, r12                ; the larger in R12
+2:  swpb    r12
+    mov.b   r12, r12
+    swpb    r13
+    and     #0xff00, r13
+    add     r13, r12
+    jge     1f
+    mov     r12, r9
+    clr     r12
+    sub     r9, r12
+    bis     #4, r11
+1:  cmp     r14, r12                ; the larger in R12
     jhs     3f
     xor     r12, r14
     xor     r14, r12
