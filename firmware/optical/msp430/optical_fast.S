@@ -589,9 +589,25 @@ es_walk:
     mov     @r13+, r11
     sub     r10, r11
     cmp     r11, r9                 ; rel <= span: a pair
-    jhs     es_pair
-    cmp     #0xf000, r11            ; (in lo's 1/16 turn, before lo: the next)
-    jlo     es_wend                 ; past the window
+    jlo     es_nopair
+    mov     r13, r11                ; R11 = j: marks, we[j] = e, the pair kept
+    sub     #OW+OW_TH+2, r11
+    rra     r11
+    cmp.b   #NONE, OW+OW_SM(r11)    ; sm[j]: k or MULTI (DROPPED: left alone)
+    jne     es_pmulti
+    mov.b   r7, OW+OW_SM(r11)
+es_pwe:
+    mov     r15, OW_WE-OW_TH-2(r13) ; we[j] = e
+    tst     r12
+    jn      1f
+    mov     #MULTI, r12
+    jmp     2f
+1:  mov     r11, r12
+2:  cmp     #2*MAXCAND, r8          ; keep (cand, nc)
+    jhs     es_pfull
+    mov.b   r11, OW+OW_CAND(r8)
+    mov.b   r7, OW+OW_CAND+1(r8)
+    incd    r8
 es_wnext:
     sub.b   #-1, r14
     jnz     es_walk
@@ -607,6 +623,9 @@ es_wnext:
     inv.b   r14
     sub.b   #-1, r14
     jmp     es_walk
+es_nopair:
+    cmp     #0xf000, r11            ; (in lo's 1/16 turn, before lo: the next)
+    jhs     es_wnext                ; else past the window
 es_wend:
     mov.b   r12, OW+OW_BM(r7)
 es_next:
@@ -679,31 +698,14 @@ es_gated:
     mov.b   #NONE, OW+OW_BM(r7)
     jmp     es_next
 
-es_pair:                            ; R11 = j: marks, we[j] = e, the pair kept
-    mov     r13, r11
-    sub     #OW+OW_TH+2, r11
-    rra     r11
-    cmp.b   #NONE, OW+OW_SM(r11)    ; sm[j]: k or MULTI (DROPPED: left alone)
-    jne     3f
-    mov.b   r7, OW+OW_SM(r11)
-4:  mov     r15, OW_WE-OW_TH-2(r13) ; we[j] = e
-    tst     r12
-    jn      1f
-    mov     #MULTI, r12
-    jmp     2f
-1:  mov     r11, r12
-2:  cmp     #2*MAXCAND, r8          ; keep (cand, nc)
-    jhs     5f
-    mov.b   r11, OW+OW_CAND(r8)
-    mov.b   r7, OW+OW_CAND+1(r8)
-    incd    r8
+es_pfull:                           ; more than MAXCAND: nc = 0xff
+    mov     #0x1fe, r8
     jmp     es_wnext
-5:  mov     #0x1fe, r8              ; more than MAXCAND: nc = 0xff
-    jmp     es_wnext
-3:  cmp.b   #DROPPED, OW+OW_SM(r11)
+es_pmulti:                          ; sm[j] had a match: MULTI (DROPPED: left alone)
+    cmp.b   #DROPPED, OW+OW_SM(r11)
     jeq     es_wnext
     mov.b   #MULTI, OW+OW_SM(r11)
-    jmp     4b
+    jmp     es_pwe
 
 /* R14 = bstart[R10 >> 12]: the first sighting in the bucket of the window's start lo. */
 es_bucket:
