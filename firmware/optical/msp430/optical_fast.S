@@ -331,14 +331,14 @@ optical_expect_scan:
  * uint8_t optical_first_scan(int16_t mid, uint16_t half): R12 = mid, R13 = half -> R12 = 0,
  * or 1 when a beacon lies beyond the coordinate limit. The marks sm as optical_drop leaves
  * them (NONE or DROPPED): not cleared.
- * R4 = 2k, R5 = &b[k], R6 = the coordinate check (OR of the high words + 0x2000: in the loop
- * only of the beacons beyond 2^23, the others lie within the limit when x, y lie within
- * 2^28; else all of them before the loop), R7 = k,
- * R8 = 2 nc; per beacon R9 = m8, R10 = eps8 shifted with u (2^l eps8), R11 = flags, then h.
- * The frame: 0 the map's end, 2 min(gate8 + 1, 0xffff) (m8 from there on: gated), 4 the
- * larger of min(2 amax8, 0xffff) and the next (m8 from there on: a window with k = 2/3), 6
- * max(77, amax8 + 1) (m8 from there on: a window; saturated), 8 mid - half, 10 2 half, 12 0x7000 - half, 0 when that is negative or
- * moving (e from there on: every sighting, or moving). Without sightings the half-width is
+ * R4 = 2k, R5 = &b[k], R6 = x's low word, R7 = k, R8 = 2 nc; per beacon R9 = m8, R10 = eps8
+ * shifted with u (2^l eps8), R11 = flags, then h. The frame: 0 the map's end, 2 min(gate8 + 1,
+ * 0xffff) (m8 from there on: gated), 4 the larger of min(2 amax8, 0xffff) and the next (m8 from
+ * there on: a window with k = 2/3), 6 max(77, amax8 + 1) (m8 from there on: a window;
+ * saturated), 8 mid - half, 10 2 half, 12 0x7000 - half, 0 when that is negative or moving (e
+ * from there on: every sighting, or moving), 14 the coordinate check (OR of the high words +
+ * 0x2000: in the loop only of the beacons beyond 2^23, the others lie within the limit when x,
+ * y lie within 2^28; else all of them before the loop). Without sightings the half-width is
  * taken as 0x7000 (every sighting, i.e. none).
  * Interrupts are held off from the reciprocal's product to the window's (about 100 cycles).
  */
@@ -352,7 +352,7 @@ optical_first_scan:
     push    r6
     push    r5
     push    r4
-    sub     #14, r1
+    sub     #16, r1
     mov     r12, &sc_mid
     tst.b   &OW+OW_N
     jnz     1f
@@ -420,14 +420,16 @@ optical_first_scan:
     bis     r14, r6
     add     #8, r13
     jmp     1b
-2:  cmp     @r1, r5
+2:  mov     r6, 14(r1)              ; (the check on the frame, R6 = x's low word)
+    mov     &OW+OW_X, r6
+    cmp     @r1, r5
     jhs     es_done
 es_beacon:
     mov     @r5+, r12               ; bx, by
     mov     @r5+, r13
     mov     @r5+, r14
     mov     @r5+, r15
-    sub     &OW+OW_X, r12           ; dx, dy
+    sub     r6, r12                 ; dx, dy
     subc    &OW+OW_X+2, r13
     sub     &OW+OW_Y, r14
     subc    &OW+OW_Y+2, r15
@@ -634,14 +636,14 @@ es_next:
     cmp     @r1, r5
     jlo     es_beacon
 es_done:
-    add     #14, r1
-    rra     r8                      ; nc
-    mov.b   r8, &OW+OW_NC
     clr     r12                     ; 1 when a coordinate is beyond the limit
-    cmp     #0x4000, r6
+    cmp     #0x4000, 14(r1)
     jlo     1f
     mov     #1, r12
-1:  pop     r4
+1:  add     #16, r1
+    rra     r8                      ; nc
+    mov.b   r8, &OW+OW_NC
+    pop     r4
     pop     r5
     pop     r6
     pop     r7
@@ -689,10 +691,10 @@ es_osat:                            ; (the octant) q = 0xffff: i = 63, f = 0xffc
 es_far:                             ; beyond 2^23: the coordinate check
     mov     -6(r5), r9
     add     #0x2000, r9
-    bis     r9, r6
+    bis     r9, 14(r1)
     mov     -2(r5), r9
     add     #0x2000, r9
-    bis     r9, r6
+    bis     r9, 14(r1)
 es_gated:
     clr     OW+OW_E(r4)
     mov.b   #NONE, OW+OW_BM(r7)
