@@ -433,13 +433,14 @@ es_beacon:
     subc    &OW+OW_X+2, r13
     sub     &OW+OW_Y, r14
     subc    &OW+OW_Y+2, r15
-    mov     r13, r9                 ; within +-2^23
-    add     #0x0080, r9
-    mov     r15, r10
-    add     #0x0080, r10
-    bis     r10, r9
-    cmp     #0x0100, r9
-    jhs     es_far
+    mov.b   r13, r9                 ; within +-2^23: each high word its low byte sign-extended
+    sxt     r9
+    xor     r13, r9
+    jnz     es_far
+    mov.b   r15, r9
+    sxt     r9
+    xor     r15, r9
+    jnz     es_far
     clr     r11                     ; flags 4 dx < 0, 8 dy < 0, 2 swapped
     swpb    r14                     ; y8 = floor(dy / 256), then x8 (the sum of the two
     mov.b   r14, r14                ; bytes sets N, V = 0: the sign), each to its magnitude
