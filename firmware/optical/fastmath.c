@@ -63,10 +63,11 @@ typedef struct {
  */
 static uint16_t octant(uint16_t u, uint16_t v, uint8_t flags, angle_parts_t *p)
 {
-    /* r = 2^30 / u (interpolated), q = 2^16 v / u */
-    uint16_t i = (uint16_t)((u >> 9) - 64u), f = (uint16_t)(u << 7), a;
-    uint16_t d = (uint16_t)(optical_recip_tab[i] - optical_recip_tab[i + 1u]);
-    p->r = (uint16_t)(optical_recip_tab[i] - (((uint32_t)d * f + 0x8000u) >> 16));
+    /* r = 2^30 / u (interpolated: the step (RT[i] - RT[i + 1]) 2^7 times u mod 2^9, i.e. the
+     * step times the fraction u << 7 mod 2^16), q = 2^16 v / u */
+    uint16_t i = (uint16_t)((u >> 9) - 64u), f, d, a;
+    p->r = (uint16_t)(optical_recip_tab[i] -
+                      (((uint32_t)optical_recip_d_tab[i] * (u & 0x1FFu) + 0x8000u) >> 16));
     uint16_t q = sat16(((uint32_t)v * p->r) >> 14);
     i = (uint16_t)(q >> 10);
     f = (uint16_t)(q << 6);

@@ -82,18 +82,13 @@ a16_octant:
     pop     r2
     ret
 a16_oct:
-    mov     r12, r15                ; f = u << 7: (u mod 2^8) << 7, bit 8 of u into bit 15
-    swpb    r15
-    bit     #1, r15
-    bic     #0x00ff, r15
-    rrc     r15
-    mov     r15, &MPY
-    mov     r12, r15                ; 2 (u >> 9): recip_tab - 128 based
+    mov     r12, r13                ; u mod 2^9 times the step 2^7: the step times u << 7
+    and     #0x01ff, r13
+    mov     r13, &MPY
+    mov     r12, r15                ; 2 (u >> 9): the tables - 128 based
     swpb    r15
     and     #0x00fe, r15
-    mov     optical_recip_tab-128(r15), r13
-    sub     optical_recip_tab-126(r15), r13 ; RT[i] - RT[i+1]
-    mov     r13, &OP2
+    mov     optical_recip_d_tab-128(r15), &OP2 ; (RT[i] - RT[i+1]) 2^7
     mov     optical_recip_tab-128(r15), r13
     mov     &RESLO, r15             ; r = RT[i] - RESHI - the rounding bit (carry: its inverse)
     inv     r15
@@ -509,18 +504,13 @@ es_beacon:
 7:  push    r2
     dint
 es_octant:                          ; the octant's arctangent: R12 angle, R13 r, R14 2i
-    mov     r12, r15                ; f = u << 7: (u mod 2^8) << 7, bit 8 of u into bit 15
-    swpb    r15
-    bit     #1, r15
-    bic     #0x00ff, r15
-    rrc     r15
-    mov     r15, &MPY
-    mov     r12, r15                ; 2 (u >> 9): recip_tab - 128 based
+    mov     r12, r13                ; u mod 2^9 times the step 2^7: the step times u << 7
+    and     #0x01ff, r13
+    mov     r13, &MPY
+    mov     r12, r15                ; 2 (u >> 9): the tables - 128 based
     swpb    r15
     and     #0x00fe, r15
-    mov     optical_recip_tab-128(r15), r13
-    sub     optical_recip_tab-126(r15), r13 ; RT[i] - RT[i+1]
-    mov     r13, &OP2
+    mov     optical_recip_d_tab-128(r15), &OP2 ; (RT[i] - RT[i+1]) 2^7
     mov     optical_recip_tab-128(r15), r13
     mov     &RESLO, r15             ; r = RT[i] - RESHI - the rounding bit (carry: its inverse)
     inv     r15

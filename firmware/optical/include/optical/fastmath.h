@@ -33,6 +33,9 @@ uint16_t optical_angle16(int32_t dx, int32_t dy);
 
 /** round(2^30 / (2^15 + 512 i)), i = 0..64 (optical_angle16's reciprocal). */
 extern const uint16_t optical_recip_tab[65];
+/** (optical_recip_tab[i] - optical_recip_tab[i + 1]) 2^7, i = 0..63: the reciprocal's
+ * interpolation step, scaled for a fraction of 9 bits (all below 2^16). */
+extern const uint16_t optical_recip_d_tab[64];
 /** round(atan(i / 64) * 2^18 / (2 pi)) + 2, i = 0..64 (optical_angle16's arctangent, 2^-18
  * turn, with the half of its rounding to 2^-16 turn). */
 extern const uint16_t optical_atan_tab[65];
