@@ -8,8 +8,9 @@
  * Registers as clang emits calls (TI EABI): arguments in R12..R15 (32-bit ones in pairs, R12
  * the low word), results in R12; R11..R15 may be clobbered, R4..R10 are preserved. The
  * 16 x 16 hardware multiplier (MPY 0x130, OP2 0x138, RESLO 0x13A, RESHI 0x13C) is used with
- * interrupts held off (SR saved, restored by POP SR) for at most about 100 cycles, as the
- * compiler's and fx's multiply helpers do; the instruction after DINT never touches it.
+ * interrupts held off (SR saved, restored by POP SR; the scan's loop restores the entry's GIE
+ * bit by BIS) for at most about 100 cycles, as the compiler's and fx's multiply helpers do;
+ * the instruction after DINT never touches it.
  * Cycle counts are mspdebug's: it charges the constant-generator immediates #1, #2, #4, #8 and
  * #-1 like memory operands (see firmware/fx/msp430/fx_trig.S).
  */
@@ -333,9 +334,10 @@ optical_expect_scan:
  * saturated), 8 mid - half, 10 2 half, 12 0x7000 - half, 0 when that is negative or moving (e
  * from there on: every sighting, or moving), 14 the coordinate check (OR of the high words +
  * 0x2000: in the loop only of the beacons beyond 2^23, the others lie within the limit when x,
- * y lie within 2^28; else all of them before the loop). Without sightings the half-width is
- * taken as 0x7000 (every sighting, i.e. none).
- * Interrupts are held off from the reciprocal's product to the window's (about 100 cycles).
+ * y lie within 2^28; else all of them before the loop), 16 the caller's GIE. Without
+ * sightings the half-width is taken as 0x7000 (every sighting, i.e. none).
+ * Interrupts are held off from the reciprocal's product to the window's (about 100 cycles):
+ * DINT, then BIS of frame slot 16, the caller's GIE bit (SR and 8), restores them.
  */
     .global optical_first_scan
     .type optical_first_scan,@function
@@ -347,7 +349,7 @@ optical_first_scan:
     push    r6
     push    r5
     push    r4
-    sub     #16, r1
+    sub     #18, r1
     mov     r12, &sc_mid
     tst.b   &OW+OW_N
     jnz     1f
@@ -394,6 +396,9 @@ optical_first_scan:
     rla     r12
     add     r5, r12
     mov     r12, 0(r1)
+    mov     r2, r12                 ; the interrupt enable (GIE) of the caller
+    and     #8, r12
+    mov     r12, 16(r1)
     clr     r4
     clr     r6
     clr     r7
@@ -501,8 +506,7 @@ es_beacon:
     rla     r12
     rla     r14
     rla     r10
-7:  push    r2
-    dint
+7:  dint                            ; (the caller's GIE on the frame)
 es_octant:                          ; the octant's arctangent: R12 angle, R13 r, R14 2i
     mov     r12, r13                ; u mod 2^9 times the step 2^7: the step times u << 7
     and     #0x01ff, r13
@@ -542,7 +546,7 @@ es_o1:
     rra     r12
     xor     oct_m(r11), r12         ; unfold
     add     oct_b(r11), r12
-    cmp     6(r1), r9               ; a window with k = 2/3 (SR on the frame)
+    cmp     4(r1), r9               ; a window with k = 2/3
     jlo     es_wk1
     sub     &OW+OW_HEAD, r12        ; psi
     mov     r12, OW+OW_PSI(r4)
@@ -552,7 +556,7 @@ es_o1:
     mov     r11, &MPY               ; e = (h 2^l eps8) >> 16 + 1 + margin (below 2^14 + 7)
     mov     r10, &OP2
     mov     &RESHI, r15
-    pop     r2
+    bis     16(r1), r2              ; interrupts as they were
     add     #1+MARGIN, r15
 es_e:                               ; R9 = m8, R11 = h (0xffff: none), R12 = psi, R15 = e
     mov     r15, OW+OW_E(r4)
@@ -631,7 +635,7 @@ es_done:
     cmp     #0x4000, 14(r1)
     jlo     1f
     mov     #1, r12
-1:  add     #16, r1
+1:  add     #18, r1
     rra     r8                      ; nc
     mov.b   r8, &OW+OW_NC
     pop     r4
@@ -643,7 +647,7 @@ es_done:
     pop     r10
     ret
 es_wk1:
-    cmp     8(r1), r9               ; a window: m8 >= max(77, amax8 + 1)
+    cmp     6(r1), r9               ; a window: m8 >= max(77, amax8 + 1)
     jlo     es_nowin
     sub     &OW+OW_HEAD, r12        ; psi
     mov     r12, OW+OW_PSI(r4)
@@ -658,7 +662,7 @@ es_wk1:
     mov     r11, &MPY
     mov     r10, &OP2
     mov     &RESHI, r15
-    pop     r2
+    bis     16(r1), r2
     cmp     #0x7fff, r15
     jhs     2f
     add     #1+MARGIN, r15
@@ -669,7 +673,7 @@ es_zero:
     clr     r12
     jmp     1f
 es_nowin:
-    pop     r2
+    bis     16(r1), r2
 1:  sub     &OW+OW_HEAD, r12        ; psi
     mov     r12, OW+OW_PSI(r4)
     mov     #-1, r11
