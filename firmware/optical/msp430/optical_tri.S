@@ -539,39 +539,96 @@ tri_core_body:
     LSIGN
     mov     r12, S_L+8(r9)
     mov     r13, S_L+10(r9)
-    ; Q = |U^|^2 / 2^32 in [2^22, 2^25); R = floor(2^52 / Q): 31 quotient bits
+    ; Q = |U^|^2 / 2^32 in [2^22, 2^25); R' = 2^(52 + g) / Q (recip_q in fastmath.c)
     mov     r6, r5                  ; (R6 = the pairs U as both lists)
     call    #dot2
-    mov     #0x0020, r15            ; the remainder: 2^52 / 2^31 (below Q)
-    clr     r14
-    mov     #2, r10                 ; the quotient, with a marker bit that leaves after 31
+    ; Qn = Q 2^n in [2^31, 2^32) (R13:R12), g = 9 - n (R11): Q 2^8 (R10:R13:R12), then one
+    ; bit back or on
+    swpb    r13
+    swpb    r12
+    mov.b   r12, r14
+    xor     r14, r12
+    mov.b   r13, r10
+    xor     r10, r13
+    bis     r14, r13
+    mov     #1, r11
+    rra     r10
+    jnc     1f
+    rrc     r13                     ; n = 7
+    rrc     r12
+    mov     #2, r11
+    jmp     2f
+1:  tst     r13
+    jn      2f
+    rla     r12                     ; n = 9
+    rlc     r13
     clr     r11
-4:  rla     r14                     ; non-restoring (the same bits): remainder >= 0,
-    rlc     r15                     ; doubled minus Q
-    sub     r12, r14
-    subc    r13, r15
-    jnc     7f
-5:  rlc     r10                     ; a 1
-    rlc     r11
-    jnc     4b
-    jmp     6f
-7:  rla     r10                     ; a 0, the remainder negative
-    rlc     r11
-    jc      6f
-8:  rla     r14                     ; remainder < 0: doubled plus Q
-    rlc     r15
-    add     r12, r14
-    addc    r13, r15
-    jc      5b                      ; (carry: no longer negative)
-    rla     r10                     ; a 0
-    rlc     r11
-    jnc     8b
-6:
-    ; R' = R 2^g in [2^29, 2^30]
-    mov     r10, r14
-    mov     r11, r15
-    mov     #0x2000, r13
-    call    #lead
+2:  mov     r13, r15                ; f = qh << 7
+    swpb    r15
+    bit     #1, r15
+    bic     #0x00ff, r15
+    rrc     r15
+    mov     r13, r14                ; 2 (qh >> 9): recip_tab - 128 based
+    swpb    r14
+    and     #0x00fe, r14
+    push    r2
+    dint
+    nop
+    mov     r15, &MPY               ; r0 = RT[i] - (d f) / 2^16, rounded
+    mov     optical_recip_tab-128(r14), r15
+    sub     optical_recip_tab-126(r14), r15
+    mov     r15, &OP2
+    mov     optical_recip_tab-128(r14), r14
+    mov     &RESLO, r15
+    rla     r15
+    mov     &RESHI, r15
+    adc     r15
+    sub     r15, r14                ; r0
+    mov     r14, &MPY               ; S = qh r0 + (ql r0) / 2^16
+    mov     r12, &OP2
+    mov     &RESHI, r10
+    mov     r13, &OP2
+    mov     &RESLO, r12
+    mov     &RESHI, r13
+    add     r10, r12
+    adc     r13
+    clr     r15                     ; E = 2^30 - S, E / 4 (16 bits: |E| < 2^17)
+    sub     r12, r15
+    mov     #0x4000, r10
+    subc    r13, r10
+    rra     r10
+    rrc     r15
+    rra     r10
+    rrc     r15
+    clrc                            ; h = r0 / 2 (R14), its bit 0 to R12's bit 15
+    rrc     r14
+    clr     r12
+    rrc     r12
+    mov     r14, &MPYS              ; P = h E / 4
+    mov     r15, &OP2
+    mov     &RESLO, r15
+    mov     &RESHI, r13
+    pop     r2
+    mov     r13, r10                ; floor(P / 2^12): R10:R13 (R10 the sign first)
+    rla     r10
+    subc    r10, r10
+    inv     r10
+    rla     r15
+    rlc     r13
+    rlc     r10
+    rla     r15
+    rlc     r13
+    rlc     r10
+    rla     r15
+    rlc     r13
+    rlc     r10
+    rla     r15
+    rlc     r13
+    rlc     r10
+    add     r13, r12                ; R' = r0 2^15 + floor(P / 2^12)
+    addc    r10, r14
+    mov     r14, r15
+    mov     r12, r14
     sub     r11, r8                 ; e - g
     mov     #12, r5                 ; 12 - g - f - t, for the moment in R5
     sub     r11, r5

@@ -55,7 +55,7 @@ typedef struct {
     int32_t off[2]; /**< the vehicle relative to beacon 2, Q16 m, rounded */
     int32_t w[2];   /**< the direction from the vehicle to beacon 2 (any scale) */
     int32_t l[3];   /**< the ranges to beacons 1, 2, 3 times |U^| / 2^32 (lambda units) */
-    uint32_t r;     /**< R' = floor(2^52 / Q) 2^g, Q = |U^|^2 / 2^32: in [2^29, 2^30 + 2^8] */
+    uint32_t r;     /**< R' = 2^(52 + g) / Q within 16 units, Q = |U^|^2 / 2^32: in [2^29, 2^30] */
     int8_t x;       /**< e - g - sigma: the quality's exponent */
 } optical_tsol_t;
 
