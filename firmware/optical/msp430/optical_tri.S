@@ -979,14 +979,31 @@ tri_quality_body:
     rlc     r13
     dec     r8
     jmp     8b
-9:  call    #fx_sqrt32
+9:  mov     r13, r15                ; the root: k = M / 2^27 - 8 (2 k + 16 in R14), the
+    swpb    r15                     ; fraction f = (M / 2^16) 2^5 mod 2^16 (R13)
+    mov.b   r15, r14
+    rra     r14
+    rra     r14
+    and     #0x003e, r14
+    rla     r13
+    rla     r13
+    rla     r13
+    rla     r13
+    rla     r13
+    mov     optical_sqrt_tab-14(r14), r15
+    sub     optical_sqrt_tab-16(r14), r15
+    push    r2
+    dint
+    nop
+    mov     r15, &MPY
+    mov     r13, &OP2
+    mov     optical_sqrt_tab-16(r14), r12
+    add     #0x8000, r12
+    add     &RESHI, r12
     mov     S_R(r9), r14            ; R' / 2^15
     mov     S_R+2(r9), r15
     rla     r14
     rlc     r15
-    push    r2
-    dint
-    nop
     mov     r12, &MPY               ; root 2^25 / 1000 / 2^16
     mov     #33554, &OP2
     mov     &RESHI, &MPY
