@@ -280,6 +280,11 @@ scale:
     .global optical_tri_core
     .type optical_tri_core,@function
 optical_tri_core:
+    mov     #tri_core_body, r11
+    br      #tri_keep
+
+/* Calls the body at R11 with R4..R10 kept (the public entries). */
+tri_keep:
     push    r10
     push    r9
     push    r8
@@ -287,7 +292,7 @@ optical_tri_core:
     push    r6
     push    r5
     push    r4
-    call    #tri_core_body
+    call    r11
     pop     r4
     pop     r5
     pop     r6
@@ -669,9 +674,25 @@ tri_core_body:
     inv     r15
     inc     r14
     adc     r15
-8:  mov     #0x2000, r13
-    call    #lead
-    mov     r14, r12
+    ; |T| in [2^26, 2^28] (K'' in [2^29, 2^30), R' in [2^29 + 16, 2^30]): t = 3, 2 or (at
+    ; 2^28) 1, as lead()
+8:  mov     #2, r11
+    rla     r14
+    rlc     r15
+    rla     r14
+    rlc     r15
+    cmp     #0x2000, r15
+    jhs     9f
+    rla     r14
+    rlc     r15
+    inc     r11
+9:  cmp     #0x4000, r15
+    jlo     9f
+    clrc
+    rrc     r15
+    rrc     r14
+    dec     r11
+9:  mov     r14, r12
     mov     r15, r13
     tst     r6
     jge     8f
@@ -784,22 +805,8 @@ offset:
     .global optical_tri_quality
     .type optical_tri_quality,@function
 optical_tri_quality:
-    push    r10
-    push    r9
-    push    r8
-    push    r7
-    push    r6
-    push    r5
-    push    r4
-    call    #tri_quality_body
-    pop     r4
-    pop     r5
-    pop     r6
-    pop     r7
-    pop     r8
-    pop     r9
-    pop     r10
-    ret
+    mov     #tri_quality_body, r11
+    br      #tri_keep
 
 /* The body: R4..R10 not kept (optical_triangulate calls it directly). */
 tri_quality_body:
