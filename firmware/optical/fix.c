@@ -568,26 +568,25 @@ static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t 
     if ((st != OPTICAL_E_SINGULAR && st != OPTICAL_E_INCONSISTENT) || W.m <= 3)
         return st;
     uint32_t best = UINT32_MAX;
-    uint8_t bt[3];
-    const optical_tri_t *cand = &W.u.sv.tri;
+    uint8_t br = 0, bq = 0; /* the best: t with t[br] = bq */
     for (uint8_t r = 0; r < 3; r++) {
         for (uint8_t q = 0; q < W.m; q++) {
             uint8_t u[3] = {t[0], t[1], t[2]};
             if (q == u[0] || q == u[1] || q == u[2])
                 continue;
             u[r] = q;
-            if (solve_triplet(x, u, passes, &W.u.sv.tri) == OPTICAL_OK && cand->quality < best) {
-                best = cand->quality;
-                for (uint8_t i = 0; i < 3; i++)
-                    bt[i] = u[i];
+            if (solve_triplet(x, u, passes, &W.u.sv.tri) == OPTICAL_OK &&
+                W.u.sv.tri.quality < best) {
+                best = W.u.sv.tri.quality;
+                br = r;
+                bq = q;
             }
         }
     }
     if (best == UINT32_MAX)
         return st;
     /* the best once more into *tri (the same inputs: the same solution, OPTICAL_OK) */
-    for (uint8_t i = 0; i < 3; i++)
-        t[i] = bt[i];
+    t[br] = bq;
     return solve_triplet(x, t, passes, tri);
 }
 
