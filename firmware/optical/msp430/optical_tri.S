@@ -1083,8 +1083,6 @@ optical_triangulate:
     mov     r13, &OW+T_PT+4
 .Ltr_body:
     mov     20(r1), r9              ; out
-    mov     #-1, 12(r9)             ; quality: none
-    mov     #-1, 14(r9)
     ; d1 = theta1 - theta0 (R11:R10), d2 = theta2 - theta0 (R15:R14)
     mov     &OW+T_PT, r15
     mov     @r15+, r6
@@ -1269,10 +1267,15 @@ optical_triangulate:
     mov     #5, r12
     jmp     .Ltr_ret
 .Ltr_pop:
-    add     #6, r1
-    jmp     .Ltr_ret
+    pop     r4
+    pop     r5
+    pop     r9
+    jmp     .Ltr_none
 .Ltr_degen:
     mov     #4, r12                 ; OPTICAL_E_DEGENERATE
+.Ltr_none:
+    mov     #-1, 12(r9)             ; quality: none
+    mov     #-1, 14(r9)
 .Ltr_ret:
     add     #4, r1
     pop     r4
