@@ -954,6 +954,10 @@ tri_quality_body:
     mov     &RESHI, r14
     mov     r7, &OP2
     mov     &RESHI, r15
+    pop     r2
+    push    r2
+    dint
+    nop
     mov     r10, &MPYS
     mov     r10, &OP2
     mov     r11, &MACS
