@@ -280,11 +280,6 @@ scale:
     .global optical_tri_core
     .type optical_tri_core,@function
 optical_tri_core:
-    mov     #tri_core_body, r11
-    br      #tri_keep
-
-/* Calls the body at R11 with R4..R10 kept (the public entries). */
-tri_keep:
     push    r10
     push    r9
     push    r8
@@ -292,7 +287,7 @@ tri_keep:
     push    r6
     push    r5
     push    r4
-    call    r11
+    call    #tri_core_body
     pop     r4
     pop     r5
     pop     r6
@@ -805,8 +800,22 @@ offset:
     .global optical_tri_quality
     .type optical_tri_quality,@function
 optical_tri_quality:
-    mov     #tri_quality_body, r11
-    br      #tri_keep
+    push    r10
+    push    r9
+    push    r8
+    push    r7
+    push    r6
+    push    r5
+    push    r4
+    call    #tri_quality_body
+    pop     r4
+    pop     r5
+    pop     r6
+    pop     r7
+    pop     r8
+    pop     r9
+    pop     r10
+    ret
 
 /* The body: R4..R10 not kept (optical_triangulate calls it directly). */
 tri_quality_body:
