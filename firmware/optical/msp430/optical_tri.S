@@ -627,15 +627,12 @@ tri_core_body:
     rlc     r10
     add     r13, r12                ; R' = r0 2^15 + floor(P / 2^12)
     addc    r10, r14
-    mov     r14, r15
-    mov     r12, r14
+    mov     r14, r13
     sub     r11, r8                 ; e - g
     mov     #12, r5                 ; 12 - g - f - t, for the moment in R5
     sub     r11, r5
-    mov     r14, S_R(r9)
-    mov     r15, S_R+2(r9)
-    mov     r14, r12
-    mov     r15, r13
+    mov     r12, S_R(r9)
+    mov     r13, S_R+2(r9)
     PUT     OW+F_R
     ; K'' = K' 2^f, |K''| in [2^29, 2^30)
     mov     S_L+4(r9), r14
