@@ -102,7 +102,7 @@
     adc     r13
     .endm
 
-    .section .text.optical_tri_core,"ax",@progbits
+    .section .text.optical_tri_kernels,"ax",@progbits
 
 /*
  * dot1, dot2: R5 -> x pairs, R6 -> y pairs -> R13:R12 = dot(x, y, n). dot3s: the same for
@@ -277,6 +277,7 @@ scale:
  * OPTICAL_E_SINGULAR or OPTICAL_E_INCONSISTENT. R9 = out, R8 = e (then e - g), R7 the high
  * word of K' (its sign), R5 and R6 the dot pointers; 16 K waits in out->l[1].
  */
+    .section .text.optical_tri_core,"ax",@progbits
     .global optical_tri_core
     .type optical_tri_core,@function
 optical_tri_core:
@@ -297,7 +298,9 @@ optical_tri_core:
     pop     r10
     ret
 
-/* The body: R4..R10 not kept (optical_triangulate calls it directly). */
+/* The body: R4..R10 not kept (optical_triangulate calls it directly). The public entry has
+ * its own section: the board, which only triangulates, links without it. */
+    .section .text.optical_tri_kernels,"ax",@progbits
 tri_core_body:
     mov     r14, r9
     mov     r12, &OW+F_V
@@ -814,7 +817,9 @@ optical_tri_quality:
     pop     r10
     ret
 
-/* The body: R4..R10 not kept (optical_triangulate calls it directly). */
+/* The body: R4..R10 not kept (optical_triangulate calls it directly; the entry in its own
+ * section, as optical_tri_core's). */
+    .section .text.optical_tri_qbody,"ax",@progbits
 tri_quality_body:
     mov     r13, r9
     ; the chords b1, b3 / 2^15 (floor; the high word after one left shift)
