@@ -512,17 +512,11 @@ static void gather(const ctx_t *x)
             W.u.sv.ang[i] += lat[W.ord[W.pos[i]]].heading - x->ap->heading;
 }
 
-/* Triangulate the triplet at positions t[] of the identified set; when moving, refine the
- * parallax with the ranges of the fix (O11). Standing (no lever among the three): one pass
- * with the angles as gathered. */
-static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, optical_tri_t *tri)
+/* solve_triplet() with a parallax lever among the three: the angles refined with the
+ * ranges of the fix (O11), @p passes at most. */
+__attribute__((noinline)) static int8_t solve_moving(const ctx_t *x, const uint8_t t[3],
+                                                     uint8_t passes, optical_tri_t *tri)
 {
-    bool moving = false;
-    if (x->latched != NULL) /* (standing: W.c unset) */
-        for (uint8_t i = 0; i < 3; i++)
-            moving |= W.c[W.pos[t[i]]] != 0;
-    if (!moving)
-        return optical_tri_take(x->map->b, t, x->cfg->quality_max, tri);
     optical_xy_t *b = W.u.sv.b;
     fx_angle_t th[3];
     for (uint8_t i = 0; i < 3; i++)
@@ -549,6 +543,18 @@ static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, 
     return st;
 }
 
+/* Triangulate the triplet at positions t[] of the identified set; when moving, refine the
+ * parallax with the ranges of the fix (O11). Standing (no lever among the three): one pass
+ * with the angles as gathered (the kernel straight away: no frame to set up). */
+static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, optical_tri_t *tri)
+{
+    if (x->latched != NULL) /* (standing: W.c unset) */
+        for (uint8_t i = 0; i < 3; i++)
+            if (W.c[W.pos[t[i]]] != 0)
+                return solve_moving(x, t, passes, tri);
+    return optical_tri_take(x->map->b, t, x->cfg->quality_max, tri);
+}
+
 /*
  * O7-O10: select three of the identified (the seed's rule) and triangulate. When that
  * triplet lies too close to its beacons' circle (refused as singular or inconsistent), the
@@ -562,29 +568,26 @@ static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t 
     if ((st != OPTICAL_E_SINGULAR && st != OPTICAL_E_INCONSISTENT) || W.m <= 3)
         return st;
     uint32_t best = UINT32_MAX;
-    uint8_t bt[3] = {t[0], t[1], t[2]};
-    optical_tri_t *cand = &W.u.sv.tri;
+    uint8_t br = 0, bq = 0; /* the best: t with t[br] = bq */
     for (uint8_t r = 0; r < 3; r++) {
         for (uint8_t q = 0; q < W.m; q++) {
-            if (q == t[0] || q == t[1] || q == t[2])
-                continue;
             uint8_t u[3] = {t[0], t[1], t[2]};
+            if (q == u[0] || q == u[1] || q == u[2])
+                continue;
             u[r] = q;
-            if (solve_triplet(x, u, passes, cand) == OPTICAL_OK && cand->quality < best) {
-                best = cand->quality;
-                bt[0] = u[0];
-                bt[1] = u[1];
-                bt[2] = u[2];
-                *tri = *cand;
+            if (solve_triplet(x, u, passes, &W.u.sv.tri) == OPTICAL_OK &&
+                W.u.sv.tri.quality < best) {
+                best = W.u.sv.tri.quality;
+                br = r;
+                bq = q;
             }
         }
     }
     if (best == UINT32_MAX)
         return st;
-    t[0] = bt[0];
-    t[1] = bt[1];
-    t[2] = bt[2];
-    return OPTICAL_OK;
+    /* the best once more into *tri (the same inputs: the same solution, OPTICAL_OK) */
+    t[br] = bq;
+    return solve_triplet(x, t, passes, tri);
 }
 
 /* O11: the sightings into the vehicle frame of the reference instant, sorted by angle, with

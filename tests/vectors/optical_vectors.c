@@ -874,11 +874,13 @@ static void selections(void)
 /*
  * optical_triangulate (triangulate.c; msp430/optical_tri.S on the target): random beacons and
  * vehicles (every O8 ordering and both sides of the circle, some 3 to 39 times farther out),
- * random angles (mostly refused), coincident sightings and beacons, a tight quality limit.
+ * random angles (mostly refused), coincident sightings and beacons, a tight quality limit;
+ * then vehicles straight and diagonally off the middle beacon, where |U^| reaches the ends of
+ * the reciprocal's range (Q near 2^22 on an axis, larger on a diagonal).
  */
 static void triangulations(void)
 {
-    for (uint16_t t = 0; t < 200; t++) {
+    for (uint16_t t = 0; t < 224; t++) {
         optical_xy_t b[3];
         static const uint32_t span[3] = {0x003FFFFFu, 0x000FFFFFu, 0x0000FFFFu};
         uint32_t lim = span[t % 3u];
@@ -892,12 +894,25 @@ static void triangulations(void)
             px *= (int32_t)(3u + t % 37u);
             py *= (int32_t)(3u + t % 37u);
         }
+        if (t >= 200u) { /* beacons (-5, 3), (0, 8), (5, 3) m; the vehicle 1 to 7 m off */
+            static const int8_t dir[8][2] = {{0, -1}, {-1, 0},  {1, 0}, {0, 1},
+                                             {1, -1}, {-1, -1}, {1, 1}, {-1, 1}};
+            const int8_t *d = dir[t % 8u];
+            int32_t k = (int32_t)(1u + (t - 200u) / 8u * 2u) * 65536;
+            b[0].x = -5l * 65536;
+            b[0].y = b[2].y = 3l * 65536;
+            b[1].x = 0;
+            b[1].y = 8l * 65536;
+            b[2].x = 5l * 65536;
+            px = d[0] * k + (t & 1u);
+            py = d[1] * k;
+        }
         fx_angle_t head = rnd32();
         for (uint8_t i = 0; i < 3; i++)
-            th[i] = t % 7u == 6u ? rnd32() : fx_atan2(b[i].y - py, b[i].x - px) - head;
-        if (t % 11u == 3u)
+            th[i] = t % 7u == 6u && t < 200u ? rnd32() : fx_atan2(b[i].y - py, b[i].x - px) - head;
+        if (t % 11u == 3u && t < 200u)
             th[2] = th[(t >> 4) & 1u];
-        if (t % 13u == 5u)
+        if (t % 13u == 5u && t < 200u)
             b[1] = b[0];
         uint32_t qmax = t % 5u == 4u ? 20000u : OPTICAL_QUALITY_LIMIT;
         optical_tri_t r = {{0, 0, 0}, 0};

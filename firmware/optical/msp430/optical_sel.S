@@ -15,6 +15,9 @@
  * (valid while R10 = R8). The kept are the smallest live index (head) and
  * the next two along the ring.
  *
+ * The first step's minimum is found by the loop that computes H, unless a high word ties
+ * with the smallest so far (then that step scans as the others).
+ *
  * Frame (stack, 62 bytes): H[0..n] at 0 (H[n] the sentinel), the links at 32. R4 = the frame
  * + 2, so an entry's "past" pointer P = R4 + o has H at -2(P), nx at 30(P), pv at 31(P).
  */
@@ -60,24 +63,29 @@ optical_select:
     push    r4
     sub     #62, r1
     mov     r1, r15                 ; H pointer
-    mov     r1, r4
-    add     #2, r4
-    mov     r13, r6
-    add     r6, r6
-    add     r4, r6                  ; P of the sentinel
     mov     r12, r11                ; angle pointer
     mov     #0xFE02, r10            ; links of entry 0 (pv patched below): nx 2, pv -2
     mov     #0x0202, r5             ; (constants in registers: cheaper in the loop)
     mov     #2, r14
-    mov     r6, r7
-    sub     #4, r7                  ; the H address of entry n - 1
-2:  mov     4(r11), r8              ; H[i] = high word of angle[i + 1] - angle[i]
-    sub     @r11+, r8
-    mov     4(r11), r9
+    mov     r13, r7
+    add     r7, r7
+    add     r1, r7
+    sub     #2, r7                  ; the H address of entry n - 1
+    mov     #-1, r6                 ; the first step's minimum on the way: the smallest high
+2:  mov     4(r11), r8              ; word so far (R6) at H address R4; a tie with it sets
+    sub     @r11+, r8               ; bit 8 of R13 (that step scans after all)
+    mov     4(r11), r9              ; H[i] = high word of angle[i + 1] - angle[i]
     subc    @r11+, r9
     mov     r9, 0(r15)
     mov     r10, 32(r15)
-    add     r5, r10
+    cmp     r9, r6
+    jlo     4f
+    jne     3f
+    bis     #0x100, r13
+    jmp     4f
+3:  mov     r9, r6
+    mov     r15, r4
+4:  add     r5, r10
     add     r14, r15
     cmp     r7, r15
     jne     2b
@@ -89,10 +97,26 @@ optical_select:
     and     #0xff00, r10            ; nx 0
     mov     r10, 32(r15)
     clr     2(r15)                  ; the sentinel
+    cmp     r9, r6
+    jlo     4f
+    jne     3f
+    bis     #0x100, r13
+    jmp     4f
+3:  mov     r15, r4
+4:  mov     r4, r8                  ; P of the smallest
+    incd    r8
     sub     r1, r15                 ; pv of entry 0: 2(n - 1)
     mov.b   r15, 33(r1)
+    mov     r1, r4
+    incd    r4
+    mov.b   r13, r6
+    add     r6, r6
+    add     r4, r6                  ; P of the sentinel
     mov     r4, r5                  ; head: entry 0
     sub     #3, r13                 ; the steps
+    bit     #0x100, r13
+    jz      .Lsel_found
+    bic     #0x100, r13
 
 .Lsel_step:
     mov     #-1, r9

@@ -102,7 +102,7 @@
     adc     r13
     .endm
 
-    .section .text.optical_tri_core,"ax",@progbits
+    .section .text.optical_tri_kernels,"ax",@progbits
 
 /*
  * dot1, dot2: R5 -> x pairs, R6 -> y pairs -> R13:R12 = dot(x, y, n). dot3s: the same for
@@ -277,6 +277,7 @@ scale:
  * OPTICAL_E_SINGULAR or OPTICAL_E_INCONSISTENT. R9 = out, R8 = e (then e - g), R7 the high
  * word of K' (its sign), R5 and R6 the dot pointers; 16 K waits in out->l[1].
  */
+    .section .text.optical_tri_core,"ax",@progbits
     .global optical_tri_core
     .type optical_tri_core,@function
 optical_tri_core:
@@ -297,7 +298,9 @@ optical_tri_core:
     pop     r10
     ret
 
-/* The body: R4..R10 not kept (optical_triangulate calls it directly). */
+/* The body: R4..R10 not kept (optical_triangulate calls it directly). The public entry has
+ * its own section: the board, which only triangulates, links without it. */
+    .section .text.optical_tri_kernels,"ax",@progbits
 tri_core_body:
     mov     r14, r9
     mov     r12, &OW+F_V
@@ -539,46 +542,100 @@ tri_core_body:
     LSIGN
     mov     r12, S_L+8(r9)
     mov     r13, S_L+10(r9)
-    ; Q = |U^|^2 / 2^32 in [2^22, 2^25); R = floor(2^52 / Q): 31 quotient bits
+    ; Q = |U^|^2 / 2^32 in [2^22, 2^25); R' = 2^(52 + g) / Q (recip_q in fastmath.c)
     mov     r6, r5                  ; (R6 = the pairs U as both lists)
     call    #dot2
-    mov     #0x0020, r15            ; the remainder: 2^52 / 2^31 (below Q)
-    clr     r14
-    mov     #2, r10                 ; the quotient, with a marker bit that leaves after 31
+    ; Qn = Q 2^n in [2^31, 2^32) (R13:R12), g = 9 - n (R11): Q 2^8 (R10:R13:R12), then one
+    ; bit back or on
+    swpb    r13
+    swpb    r12
+    mov.b   r12, r14
+    xor     r14, r12
+    mov.b   r13, r10
+    xor     r10, r13
+    bis     r14, r13
+    mov     #1, r11
+    rra     r10
+    jnc     1f
+    rrc     r13                     ; n = 7
+    rrc     r12
+    mov     #2, r11
+    jmp     2f
+1:  tst     r13
+    jn      2f
+    rla     r12                     ; n = 9
+    rlc     r13
     clr     r11
-4:  rla     r14                     ; non-restoring (the same bits): remainder >= 0,
-    rlc     r15                     ; doubled minus Q
-    sub     r12, r14
-    subc    r13, r15
-    jnc     7f
-5:  rlc     r10                     ; a 1
-    rlc     r11
-    jnc     4b
-    jmp     6f
-7:  rla     r10                     ; a 0, the remainder negative
-    rlc     r11
-    jc      6f
-8:  rla     r14                     ; remainder < 0: doubled plus Q
-    rlc     r15
-    add     r12, r14
-    addc    r13, r15
-    jc      5b                      ; (carry: no longer negative)
-    rla     r10                     ; a 0
-    rlc     r11
-    jnc     8b
-6:
-    ; R' = R 2^g in [2^29, 2^30]
-    mov     r10, r14
-    mov     r11, r15
-    mov     #0x2000, r13
-    call    #lead
+2:  mov     r13, r15                ; f = qh << 7
+    swpb    r15
+    bit     #1, r15
+    bic     #0x00ff, r15
+    rrc     r15
+    mov     r13, r14                ; 2 (qh >> 9): recip_tab - 128 based
+    swpb    r14
+    and     #0x00fe, r14
+    push    r2
+    dint
+    nop
+    mov     r15, &MPY               ; r0 = RT[i] - (d f) / 2^16, rounded
+    mov     optical_recip_tab-128(r14), r15
+    sub     optical_recip_tab-126(r14), r15
+    mov     r15, &OP2
+    mov     optical_recip_tab-128(r14), r14
+    mov     &RESLO, r15
+    rla     r15
+    mov     &RESHI, r15
+    adc     r15
+    sub     r15, r14                ; r0
+    mov     r14, &MPY               ; S = qh r0 + (ql r0) / 2^16
+    mov     r12, &OP2
+    mov     &RESHI, r10
+    mov     r13, &OP2
+    mov     &RESLO, r12
+    mov     &RESHI, r13
+    add     r10, r12
+    adc     r13
+    clr     r15                     ; E = 2^30 - S, E / 4 (16 bits: |E| < 2^17)
+    sub     r12, r15
+    mov     #0x4000, r10
+    subc    r13, r10
+    rra     r10
+    rrc     r15
+    rra     r10
+    rrc     r15
+    clrc                            ; h = r0 / 2 (R14), its bit 0 to R12's bit 15
+    rrc     r14
+    clr     r12
+    rrc     r12
+    mov     r14, &MPYS              ; P = h E / 4
+    mov     r15, &OP2
+    mov     &RESLO, r15
+    mov     &RESHI, r13
+    pop     r2
+    mov     r13, r10                ; floor(P / 2^12): R10:R13 (R10 the sign first)
+    rla     r10
+    subc    r10, r10
+    inv     r10
+    rla     r15
+    rlc     r13
+    rlc     r10
+    rla     r15
+    rlc     r13
+    rlc     r10
+    rla     r15
+    rlc     r13
+    rlc     r10
+    rla     r15
+    rlc     r13
+    rlc     r10
+    add     r13, r12                ; R' = r0 2^15 + floor(P / 2^12)
+    addc    r10, r14
+    mov     r14, r13
     sub     r11, r8                 ; e - g
     mov     #12, r5                 ; 12 - g - f - t, for the moment in R5
     sub     r11, r5
-    mov     r14, S_R(r9)
-    mov     r15, S_R+2(r9)
-    mov     r14, r12
-    mov     r15, r13
+    mov     r12, S_R(r9)
+    mov     r13, S_R+2(r9)
     PUT     OW+F_R
     ; K'' = K' 2^f, |K''| in [2^29, 2^30)
     mov     S_L+4(r9), r14
@@ -612,9 +669,25 @@ tri_core_body:
     inv     r15
     inc     r14
     adc     r15
-8:  mov     #0x2000, r13
-    call    #lead
-    mov     r14, r12
+    ; |T| in [2^26, 2^28] (K'' in [2^29, 2^30), R' in [2^29 + 16, 2^30]): t = 3, 2 or (at
+    ; 2^28) 1, as lead()
+8:  mov     #2, r11
+    rla     r14
+    rlc     r15
+    rla     r14
+    rlc     r15
+    cmp     #0x2000, r15
+    jhs     9f
+    rla     r14
+    rlc     r15
+    inc     r11
+9:  cmp     #0x4000, r15
+    jlo     9f
+    clrc
+    rrc     r15
+    rrc     r14
+    dec     r11
+9:  mov     r14, r12
     mov     r15, r13
     tst     r6
     jge     8f
@@ -744,7 +817,9 @@ optical_tri_quality:
     pop     r10
     ret
 
-/* The body: R4..R10 not kept (optical_triangulate calls it directly). */
+/* The body: R4..R10 not kept (optical_triangulate calls it directly; the entry in its own
+ * section, as optical_tri_core's). */
+    .section .text.optical_tri_qbody,"ax",@progbits
 tri_quality_body:
     mov     r13, r9
     ; the chords b1, b3 / 2^15 (floor; the high word after one left shift)
@@ -922,14 +997,31 @@ tri_quality_body:
     rlc     r13
     dec     r8
     jmp     8b
-9:  call    #fx_sqrt32
+9:  mov     r13, r15                ; the root: k = M / 2^27 - 8 (2 k + 16 in R14), the
+    swpb    r15                     ; fraction f = (M / 2^16) 2^5 mod 2^16 (R13)
+    mov.b   r15, r14
+    rra     r14
+    rra     r14
+    and     #0x003e, r14
+    rla     r13
+    rla     r13
+    rla     r13
+    rla     r13
+    rla     r13
+    mov     optical_sqrt_tab-14(r14), r15
+    sub     optical_sqrt_tab-16(r14), r15
+    push    r2
+    dint
+    nop
+    mov     r15, &MPY
+    mov     r13, &OP2
+    mov     optical_sqrt_tab-16(r14), r12
+    add     #0x8000, r12
+    add     &RESHI, r12
     mov     S_R(r9), r14            ; R' / 2^15
     mov     S_R+2(r9), r15
     rla     r14
     rlc     r15
-    push    r2
-    dint
-    nop
     mov     r12, &MPY               ; root 2^25 / 1000 / 2^16
     mov     #33554, &OP2
     mov     &RESHI, &MPY
@@ -1006,8 +1098,6 @@ optical_triangulate:
     mov     r13, &OW+T_PT+4
 .Ltr_body:
     mov     20(r1), r9              ; out
-    mov     #-1, 12(r9)             ; quality: none
-    mov     #-1, 14(r9)
     ; d1 = theta1 - theta0 (R11:R10), d2 = theta2 - theta0 (R15:R14)
     mov     &OW+T_PT, r15
     mov     @r15+, r6
@@ -1192,10 +1282,15 @@ optical_triangulate:
     mov     #5, r12
     jmp     .Ltr_ret
 .Ltr_pop:
-    add     #6, r1
-    jmp     .Ltr_ret
+    pop     r4
+    pop     r5
+    pop     r9
+    jmp     .Ltr_none
 .Ltr_degen:
     mov     #4, r12                 ; OPTICAL_E_DEGENERATE
+.Ltr_none:
+    mov     #-1, 12(r9)             ; quality: none
+    mov     #-1, 14(r9)
 .Ltr_ret:
     add     #4, r1
     pop     r4
