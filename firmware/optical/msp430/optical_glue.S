@@ -279,7 +279,8 @@ optical_buckets:
  * int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, int16_t *lohi):
  * R12 = wd, R13 = s, R14 = lohi (kept on the stack) -> R12 = the kept. R4 = wd, R5 = s,
  * R6 = n, R7 = kept, R8 = j, R9 = lo, R10 = hi (without lohi: narrowed all the same, and
- * dropped), R11 = k.
+ * dropped), R11 = k. O5 by optical_width_core (R4 = wd; it clobbers R11..R15 only). The
+ * cached verdict: c ^ k is 0 (fits) or 0x80 (a misfit) when c is k's.
  */
     .section .text.optical_unique,"ax",@progbits
     .global optical_unique
@@ -304,18 +305,17 @@ optical_unique:
     jz      1f
     mov     0(r14), r9
     mov     2(r14), r10
-1:  cmp     r6, r8                  ; j < n
-    jhs     9f
-    mov.b   OW+OW_SM(r8), r11       ; k
+1:  tst     r6                      ; (n = 0)
+    jz      9f
+2:  mov.b   OW+OW_SM(r8), r11       ; k
     cmp.b   #DROPPED, r11
     jhs     8f
     cmp.b   OW+OW_BM(r11), r8       ; bm[k] = j
     jne     7f
     mov.b   OW+OW_WCHK(r8), r12     ; c: the cached verdict when it is k's
-    mov.b   r12, r13
-    and.b   #0x7f, r13
-    cmp.b   r11, r13
-    jeq     3f
+    xor.b   r11, r12
+    rla.b   r12                     ; (C: bit 7, a misfit)
+    jz      3f
     mov     r11, r13                ; O5: &b[k], the width of s[ord[j]]
     rla     r13
     rla     r13
@@ -328,17 +328,14 @@ optical_unique:
     rla     r14
     add     r5, r14
     mov     4(r14), r14
-    mov     r4, r12
-    call    #optical_width_ok
-    mov.b   OW+OW_SM(r8), r11       ; (k again)
-    tst.b   r12
-    mov.b   r11, r12
-    jnz     2f
-    bis.b   #0x80, r12              ; a misfit
-2:  mov.b   r12, OW+OW_WCHK(r8)
-3:  tst.b   r12                     ; bit 7: a misfit
+    call    #optical_width_core
+    xor.b   OW+OW_SM(r8), r12       ; c = k | 0x80 for a misfit (N)
+    mov.b   r12, OW+OW_WCHK(r8)
     jn      7f
-    inc     r7
+    mov.b   r12, r11                ; (k)
+    jmp     4f
+3:  jc      7f
+4:  sub     #-1, r7
     mov     r8, r13                 ; off = th[j] - psi[k], e = we[j]
     rla     r13
     rla     r11
@@ -346,14 +343,14 @@ optical_unique:
     sub     OW+OW_PSI(r11), r15
     mov     OW+OW_WE(r13), r14
     cmp     r15, r9                 ; off > lo and off - lo > e: lo = off - e
-    jge     4f
+    jge     5f
     mov     r15, r13
     sub     r9, r13
     cmp     r13, r14
-    jhs     4f
+    jhs     5f
     mov     r15, r9
     sub     r14, r9
-4:  cmp     r10, r15                ; off < hi and hi - off > e: hi = off + e
+5:  cmp     r10, r15                ; off < hi and hi - off > e: hi = off + e
     jge     8f
     mov     r10, r13
     sub     r15, r13
@@ -362,9 +359,10 @@ optical_unique:
     mov     r15, r10
     add     r14, r10
     jmp     8f
-7:  mov.b   #NONE, OW+OW_SM(r8)
-8:  inc     r8
-    jmp     1b
+7:  mov.b   #-1, OW+OW_SM(r8)       ; NONE
+8:  sub     #-1, r8
+    cmp     r6, r8                  ; j < n
+    jlo     2b
 9:  pop     r14
     tst     r14
     jz      1f
