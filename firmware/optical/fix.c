@@ -202,7 +202,7 @@ void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx)
     out->pose = *approx;
 }
 
-void optical_sort(const optical_sighting_t *s)
+uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin)
 {
     for (uint8_t i = 0; i < W.n; i++, s++) {
         uint16_t t = a16(s->angle);
@@ -218,6 +218,7 @@ void optical_sort(const optical_sighting_t *s)
         W.we[j] = s->width;
     }
     optical_buckets();
+    return optical_drop(wmin);
 }
 
 void optical_buckets(void)
@@ -589,22 +590,27 @@ static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t 
 
 /* O11: the sightings into the vehicle frame of the reference instant, sorted by angle, with
  * their parallax levers (standing: none, and W.c / W.lev are not read: lever8 = 0, no
- * latched poses); false when a latched pose lies beyond the coordinate limit. */
-static bool prepare(ctx_t *x)
+ * latched poses), and O4's marks for the range T = cfg->range (threshold()); the sightings
+ * kept, or -1 when a latched pose lies beyond the coordinate limit. */
+static int8_t prepare(ctx_t *x)
 {
     const optical_pose_t *ap = x->ap, *lat = x->latched;
     const optical_sighting_t *si = x->s; /* (pointers: no index multiplies on the MSP430) */
     uint16_t lever8 = 0;
-    uint8_t n = W.n;
+    uint8_t n = W.n, kept;
+    uint32_t wmin = optical_wmin(x->wd.dk, (uint32_t)x->cfg->range >> 8);
     if (lat == NULL) {
-        optical_sort(si); /* and the buckets (until the first scan, we holds the widths) */
+        /* and the buckets (until the first scan, we holds the widths) */
+        kept = optical_sort(si, (uint16_t)wmin);
+        if (wmin > 0xFFFFu)
+            kept = optical_drop(wmin); /* (none kept) */
     } else {
         for (uint8_t i = 0; i < n; i++, si++, lat++) {
             fx_angle_t d = si->angle;
             int32_t c = 0;
             uint16_t l = 0;
             if (!coords_ok(lat->x, lat->y))
-                return false;
+                return -1;
             int32_t ex = lat->x - ap->x, ey = lat->y - ap->y;
             if (ex | ey) {
                 /* c = cross(u(d), R(-heading) e) = cross(u(heading + d), e): the sighting's
@@ -636,28 +642,30 @@ static bool prepare(ctx_t *x)
             W.we[j] = si->width;
         }
         optical_buckets();
+        kept = optical_drop(wmin);
     }
     W.lever8 = lever8;
     W.amax8 = sat16((uint32_t)W.eps8 + lever8);
-    return true;
+    return (int8_t)kept;
 }
 
-/* O4: drop sightings too narrow for a beacon within T; widen T when fewer than 3 stay.
- * A post at T looks 2 asin(D / 2T) >= D / T wide: the threshold D / T keeps those.
- * Returns T. */
-static fx_q16_t threshold(const ctx_t *x)
+/* O4: drop sightings too narrow for a beacon within T; widen T when fewer than 3 stay
+ * (@p kept of them at T = cfg->range: prepare() marked them). A post at T looks
+ * 2 asin(D / 2T) >= D / T wide: the threshold D / T keeps those. Returns T. */
+static fx_q16_t threshold(const ctx_t *x, uint8_t kept)
 {
     const optical_config_t *cfg = x->cfg;
     fx_q16_t t = cfg->range;
     for (uint8_t step = 0;; step++) {
-        /* (prepare left the widths in we) */
-        if (optical_drop(x->wd.dk, (uint32_t)t >> 8) >= 3 || step >= cfg->range_steps)
+        if (kept >= 3 || step >= cfg->range_steps)
             return t;
         /* (the division only when a widening is needed) */
         uint32_t tstep = step_of((uint32_t)cfg->range, (uint32_t)cfg->range_max, cfg->range_steps);
         if (tstep == 0)
             return t;
         t += (fx_q16_t)tstep;
+        /* (prepare left the widths in we) */
+        kept = optical_drop(optical_wmin(x->wd.dk, (uint32_t)t >> 8));
     }
 }
 
@@ -702,11 +710,12 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     W.n = n;
     optical_setup(map, cfg, approx, &x.wd);
 
-    if (!prepare(&x))
+    int8_t kept = prepare(&x);
+    if (kept < 0)
         return finish(out, OPTICAL_E_ARG);
     /* O4, then O2: expected angles of the beacons within T (+ the position uncertainty),
      * and the first identification pass (O3). */
-    W.gate8 = sat15(((uint32_t)threshold(&x) + (uint32_t)cfg->window_pos) >> 8);
+    W.gate8 = sat15(((uint32_t)threshold(&x, (uint8_t)kept) + (uint32_t)cfg->window_pos) >> 8);
     uint16_t h0 = half0(cfg);
     if (optical_expect_scan(0, h0))
         return finish(out, OPTICAL_E_ARG);

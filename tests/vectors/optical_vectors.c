@@ -496,10 +496,13 @@ static void kernels(void)
                        : w > 0xFFFFu       ? 0xFFFFu
                                            : (uint16_t)w;
         }
+        uint32_t wmin = optical_wmin(dk, t8);
         cy_print("drop ");
         cy_print_dec(t);
         cy_print(" ");
-        cy_print_dec(optical_drop(dk, t8));
+        cy_print_hex32(wmin);
+        cy_print(" ");
+        cy_print_dec(optical_drop(wmin));
         for (uint8_t j = 0; j < KW.n; j++) {
             cy_print(" ");
             cy_print_dec(KW.sm[j]);
@@ -558,9 +561,18 @@ static void glue_kernels(void)
             sight[i].angle = a;
             sight[i].width = (uint16_t)rnd32();
         }
-        optical_sort(sight);
+        /* O4's marks: widths around wmin (0: all kept, 0xFFFF: all but the widest dropped) */
+        uint16_t wmin = t % 7 == 1 ? 0u : t % 7 == 2 ? 0xFFFFu : (uint16_t)rnd32();
+        if (t % 7 == 3)
+            sight[0].width = 0xFFFFu;
+        for (uint8_t i = 0; t % 7 > 3 && i < KW.n; i++)
+            sight[i].width = (uint16_t)(wmin + (rnd32() % 5u) - 2u);
+        uint8_t kept = optical_sort(sight, wmin);
         cy_print("sort ");
         cy_print_dec(t);
+        cy_print(" ");
+        cy_print_dec(kept);
+        print_work(KW.n);
         for (uint8_t b = 0; b < 16; b++) {
             cy_print(" ");
             cy_print_dec(KW.bstart[b]);

@@ -857,62 +857,91 @@ optical_eval:
     jmp     4b
 
 /*
- * uint8_t optical_drop(uint32_t dk, uint32_t t8): R13:R12 = dk, R15:R14 = t8 -> R12 = the
- * sightings kept (fastmath.c). wmin = floor(dk / t8) into R11 (a 16-step restoring division
- * when t8 and the quotient fit 16 bits); when wmin >= 2^16 none is kept: R13, the mark of a
- * kept sighting (NONE), is then DROPPED too and the count cleared. R10 = 0x7f (wchk).
+ * uint32_t optical_wmin(uint32_t dk, uint32_t t8): R13:R12 = dk, R15:R14 = t8 -> R13:R12
+ * (fastmath.c). A restoring division when t8 and the quotient fit 16 bits (the quotient's bits
+ * into R12, the remainder in R13, R15 the steps): 8 steps when dk >> 8 < t8 (the quotient's
+ * upper byte 0: dk << 8 to start from), else 16; otherwise the library's.
+ */
+    .section .text.optical_wmin,"ax",@progbits
+    .global optical_wmin
+    .type optical_wmin,@function
+optical_wmin:
+    tst     r15
+    jnz     5f
+    tst     r14
+    jz      6f
+    cmp     r14, r13                ; dk >= t8 2^16: the library's
+    jhs     5f
+    mov     #16, r15
+    cmp     #0x0100, r13            ; dk >> 8 below t8: start from dk << 8
+    jhs     1f
+    mov     r13, r11
+    swpb    r11
+    mov     r12, r13
+    swpb    r13
+    mov.b   r13, r13
+    bis     r11, r13
+    cmp     r14, r13
+    jhs     4f
+    swpb    r12
+    and     #0xff00, r12
+    mov     #8, r15
+1:  rla     r12
+    rlc     r13
+    jc      2f
+    cmp     r14, r13
+    jlo     3f
+2:  sub     r14, r13
+    sub     #-1, r12                ; (the bit shifted in is 0)
+3:  add     #-1, r15
+    jnz     1b
+    clr     r13
+    ret
+4:  mov     r11, r13                ; (dk's high word again: r11 = its byte << 8)
+    swpb    r13
+    jmp     1b
+5:  br      #__mspabi_divul         ; t8 or the quotient 2^16 or more
+6:  mov     #-1, r12                ; t8 = 0: 0xffff
+    clr     r13
+    ret
+
+/*
+ * uint8_t optical_drop(uint32_t wmin): R13:R12 = wmin -> R12 = the sightings kept
+ * (fastmath.c). R11 = wmin's low word, R15 the mark of a kept sighting: NONE, or DROPPED too
+ * when wmin >= 2^16 (none kept: the count cleared). R10 = 0x7f (wchk).
  */
     .section .text.optical_drop,"ax",@progbits
     .global optical_drop
     .type optical_drop,@function
 optical_drop:
-    tst     r15
-    jnz     3f
-    mov     #-1, r11                ; t8 = 0: 0xffff
-    tst     r14
-    jz      4f
-    cmp     r14, r13                ; dk >= t8 2^16: none kept
-    jhs     5f
-    mov     #16, r15                ; the quotient's bits into R12, the remainder in R13
-1:  rla     r12
-    rlc     r13
-    jc      2f
-    cmp     r14, r13
-    jlo     6f
-2:  sub     r14, r13
-    sub     #-1, r12                ; (the bit shifted in is 0)
-6:  add     #-1, r15
-    jnz     1b
     mov     r12, r11
-    jmp     4f
-3:  call    #__mspabi_divul         ; t8 >= 2^16: the quotient fits 16 bits
-    mov     r12, r11
-4:  mov     #NONE, r13
+    mov     #NONE, r15
+    tst     r13
+    jz      7f
+    mov     #DROPPED, r15
 7:  push    r10
     mov     #0x7f, r10
     mov.b   &OW+OW_N, r14
     clr     r12                     ; kept
     tst     r14
     jz      9f
-    mov     r14, r15
-    add     r15, r15                ; R14 = j + 1, R15 = 2 (j + 1)
+    mov     r14, r13
+    add     r13, r13                ; R14 = j + 1, R13 = 2 (j + 1)
 8:  mov.b   r10, OW+OW_WCHK-1(r14)
-    mov.b   r13, OW+OW_SM-1(r14)
-    cmp     r11, OW+OW_WE-2(r15)    ; we[j] >= wmin (< 2^16): kept
+    mov.b   r15, OW+OW_SM-1(r14)
+    cmp     r11, OW+OW_WE-2(r13)    ; we[j] >= wmin: kept
     jlo     10f
     sub     #-1, r12
-11: decd    r15
+11: decd    r13
     add     #-1, r14
     jnz     8b
-    cmp     #NONE, r13
+    cmp     #NONE, r15
     jeq     9f
     clr     r12
 9:  pop     r10
     ret
 10: mov.b   #DROPPED, OW+OW_SM-1(r14)
     jmp     11b
-5:  mov     #DROPPED, r13
-    jmp     7b
 
 /*
  * bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16):

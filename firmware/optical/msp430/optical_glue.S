@@ -156,12 +156,14 @@ optical_fix_init:
     ret
 
 /*
- * void optical_sort(const optical_sighting_t *s): R12 = s. R13 = i, R14 = &th[i], R9 = n,
- * R10 = t, R15 = th[i - 1] (0 for i = 0: the largest so far). A sighting not below it is
- * placed at i; otherwise it is inserted (R11 = &th[j], R6 = j). While none has moved, the
- * buckets up to each one's start are filled as it is placed (R8 = 2^12 b, the start of the
- * next bucket b, R7 = &bstart[b], 0 when all 16 are set); after a move R8 = 1 and
- * optical_buckets does them.
+ * uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin): R12 = s, R13 = wmin ->
+ * R12 = the kept. R6 = i, R14 = &th[i], R9 = &th[n], R10 = t, R15 = th[i - 1] (0 for i = 0:
+ * the largest so far), R5 = kept, R4 = 0x7f (wchk). A sighting not below the largest so far
+ * is placed at i; otherwise it is inserted (R11 = &th[j], R9 = j, saved meanwhile). While none
+ * has moved, the buckets up to each one's start are filled as it is placed (R8 = 2^12 b, the
+ * start of the next bucket b, R7 = &bstart[b], 0 when all 16 are set); after a move R8 = 1
+ * and optical_buckets does them. O4's mark as it is placed: NONE when its width is wmin or
+ * more (counted), else DROPPED.
  */
     .section .text.optical_sort,"ax",@progbits
     .global optical_sort
@@ -172,53 +174,78 @@ optical_sort:
     push    r8
     push    r7
     push    r6
+    push    r5
+    push    r4
     mov.b   &OW+OW_N, r9
-    clr     r13
+    rla     r9
+    add     #OW+OW_TH, r9
+    clr     r6
+    clr     r5
+    mov     #0x7f, r4
     mov     #OW+OW_TH, r14
     clr     r15
     clr     r8
     mov     #OW+OW_BSTART, r7
-1:  cmp     r9, r13                 ; i < n
+    cmp     r9, r14                 ; (n = 0)
     jhs     9f
-    mov     @r12+, r11              ; t = (angle + 2^15) >> 16
+1:  mov     @r12+, r11              ; t = (angle + 2^15) >> 16
     mov     @r12+, r10
     rla     r11
     adc     r10
     cmp     r15, r10                ; below th[i - 1]: inserted
     jlo     20f
     mov     r10, 0(r14)
+    mov     r10, r15
+    mov.b   r6, OW+OW_ORD(r6)
     mov     @r12+, r11
     mov     r11, OW_WE-OW_TH(r14)
-    mov.b   r13, OW+OW_ORD(r13)
-    mov     r10, r15
-    tst     r7                      ; the buckets up to t's start at i
+    mov.b   r4, OW+OW_WCHK(r6)
+    cmp     r13, r11                ; O4: narrower than wmin, dropped
+    jlo     30f
+    mov.b   #-1, OW+OW_SM(r6)       ; NONE
+    sub     #-1, r5
+3:  tst     r7                      ; the buckets up to t's start at i
     jz      5f
 4:  cmp     r8, r10
     jlo     5f
-    mov.b   r13, 0(r7)
-    inc     r7
+    mov.b   r6, 0(r7)
+    sub     #-1, r7
     add     #0x1000, r8
     jnz     4b
     clr     r7                      ; all 16 set
-5:  inc     r13
+5:  sub     #-1, r6
     incd    r14
-    jmp     1b
-20: mov     r14, r11                ; j = i; while j > 0 and th[j - 1] > t: move up
-    mov     r13, r6
-21: tst     r6
+    cmp     r9, r14                 ; i < n
+    jlo     1b
+    jmp     9f
+30: mov.b   #DROPPED, OW+OW_SM(r6)
+    jmp     3b
+20: push    r9                      ; j = i; while j > 0 and th[j - 1] > t: move up
+    mov     r14, r11
+    mov     r6, r9
+21: tst     r9
     jz      22f
     cmp     -2(r11), r10
     jhs     22f
     mov     -2(r11), 0(r11)
     mov     OW_WE-OW_TH-2(r11), OW_WE-OW_TH(r11)
-    mov.b   OW+OW_ORD-1(r6), OW+OW_ORD(r6)
+    mov.b   OW+OW_ORD-1(r9), OW+OW_ORD(r9)
+    mov.b   OW+OW_SM-1(r9), OW+OW_SM(r9)
     decd    r11
-    add     #-1, r6
+    add     #-1, r9
     jmp     21b
 22: mov     r10, 0(r11)
     mov     @r12+, r10
     mov     r10, OW_WE-OW_TH(r11)
-    mov.b   r13, OW+OW_ORD(r6)
+    mov.b   r6, OW+OW_ORD(r9)
+    mov.b   r4, OW+OW_WCHK(r6)
+    mov.b   #-1, OW+OW_SM(r9)       ; NONE, or DROPPED when narrower than wmin
+    cmp     r13, r10
+    jhs     23f
+    mov.b   #DROPPED, OW+OW_SM(r9)
+    jmp     24f
+23: sub     #-1, r5
+24: pop     r9
     mov     #1, r8                  ; (moved: the buckets afterwards)
     clr     r7
     jmp     5b
@@ -229,10 +256,13 @@ optical_sort:
 6:  cmp     #OW+OW_BSTART+16, r7
     jhs     8f
     clr.b   0(r7)
-    inc     r7
+    sub     #-1, r7
     jmp     6b
 7:  call    #optical_buckets
-8:  pop     r6
+8:  mov     r5, r12
+    pop     r4
+    pop     r5
+    pop     r6
     pop     r7
     pop     r8
     pop     r9

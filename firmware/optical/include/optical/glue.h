@@ -38,10 +38,10 @@ void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx);
 /**
  * The standing preparation (no latched poses): sightings @p s[0..n) (n = optical_work.n) by
  * rounded 16-bit angle t = (angle + 2^15) >> 16 into th[], ascending (insertion: equal angles
- * keep their input order), ord[j] the input index of th[j], we[j] its width; then the bucket
- * index (optical_buckets).
+ * keep their input order), ord[j] the input index of th[j], we[j] its width; the bucket index
+ * (optical_buckets); and O4's marks as optical_drop(@p wmin). Returns the sightings kept.
  */
-void optical_sort(const optical_sighting_t *s);
+uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin);
 
 /**
  * The bucket index of the sorted th[0..n): bstart[b] = the first j with th[j] >> 12 >= b, 0
