@@ -172,9 +172,12 @@ _Static_assert(offsetof(optical_config_t, jump_max) == 38 &&
 #endif
 
 #ifndef OPTICAL_ASM
-void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
+bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *approx, optical_width_t *wd)
 {
+    if (map == NULL || map->n < 3 || map->n > OPTICAL_MAX_BEACONS ||
+        !coords_ok(approx->x, approx->y))
+        return false;
     W.b = map->b;
     W.nb = map->n;
     W.x = wd->x = approx->x;
@@ -190,6 +193,7 @@ void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
     wd->tol8 = sat16((uint32_t)cfg->dist_tol >> 8);
     wd->rel16 = sat16((uint32_t)cfg->dist_rel);
     wd->flat = cfg->beacon_flat;
+    return true;
 }
 
 void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx)
@@ -697,18 +701,15 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *latched, optical_fix_t *out)
 {
     optical_fix_init(out, approx);
-    if (map == NULL || map->n < 3 || map->n > OPTICAL_MAX_BEACONS || n > OPTICAL_MAX_SIGHTINGS ||
-        !coords_ok(approx->x, approx->y))
-        return finish(out, OPTICAL_E_ARG);
-
     ctx_t x;
+    if (n > OPTICAL_MAX_SIGHTINGS || !optical_setup(map, cfg, approx, &x.wd))
+        return finish(out, OPTICAL_E_ARG);
     x.map = map;
     x.cfg = cfg;
     x.ap = approx;
     x.s = s;
     x.latched = latched;
     W.n = n;
-    optical_setup(map, cfg, approx, &x.wd);
 
     int8_t kept = prepare(&x);
     if (kept < 0)

@@ -697,8 +697,26 @@ static void glue_kernels(void)
             c.dist_tol = (fx_q16_t)(rnd32() >> (rnd32() % 16u));
             c.dist_rel = (fx_q16_t)(rnd32() >> (rnd32() % 20u));
             optical_width_t w;
-            optical_setup(&mp, &c, &p, &w);
             cy_print(" s ");
+            /* the argument check: no map, too few or many beacons, a coordinate at or just
+             * within the limit (then the ordinary pose again) */
+            optical_pose_t q = p;
+            const optical_map_t *mq = t == 3 ? NULL : &mp;
+            uint8_t nb = mp.n;
+            if (t == 6 || t == 9)
+                mp.n = t == 6 ? 2u : 33u;
+            if (t % 3 == 0 && t >= 12) {
+                int32_t lim = (int32_t)OPTICAL_COORD_LIMIT - (int32_t)(rnd32() % 3u);
+                fx_q16_t v = (t & 4) ? -lim : lim;
+                if (t & 8)
+                    q.y = v;
+                else
+                    q.x = v;
+            }
+            cy_print_dec(optical_setup(mq, &c, &q, &w));
+            mp.n = nb;
+            optical_setup(&mp, &c, &p, &w);
+            cy_print(" ");
             cy_print_hex32(w.dk);
             field("", (uint32_t)w.x);
             field("", (uint32_t)w.y);

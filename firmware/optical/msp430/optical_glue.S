@@ -41,17 +41,42 @@
     .set DROPPED,  0xfd
 
 /*
- * void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
+ * bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
  * const optical_pose_t *approx, optical_width_t *wd): R12 = map, R13 = cfg, R14 = approx,
- * R15 = wd. optical_config_t: beacon_diameter 0, beacon_flat 4, window_pos 10, dist_tol 30,
- * dist_rel 34; optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18. The
- * product with interrupts held off (as fx's multiply helpers).
+ * R15 = wd -> R12. optical_config_t: beacon_diameter 0, beacon_flat 4, window_pos 10, dist_tol
+ * 30, dist_rel 34; optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18. A
+ * coordinate v lies within the limit when u = v + 2^29 - 1 < 2^30 - 1 (unsigned): u's high
+ * word hi + 0x1fff + (lo != 0) below 0x3fff, or equal to it with lo != 0. The product with
+ * interrupts held off (as fx's multiply helpers).
  */
     .section .text.optical_setup,"ax",@progbits
     .global optical_setup
     .type optical_setup,@function
 optical_setup:
-    mov     0(r12), &OW+OW_B
+    tst     r12                     ; the map: not NULL, 3..32 beacons
+    jz      8f
+    mov.b   2(r12), r11
+    cmp.b   #3, r11
+    jlo     8f
+    cmp.b   #33, r11
+    jhs     8f
+    cmp     #1, 0(r14)              ; approx x, y within the limit
+    mov     2(r14), r11
+    addc    #0x1fff, r11
+    cmp     #0x3fff, r11
+    jlo     1f
+    jne     8f
+    tst     0(r14)
+    jz      8f
+1:  cmp     #1, 4(r14)
+    mov     6(r14), r11
+    addc    #0x1fff, r11
+    cmp     #0x3fff, r11
+    jlo     1f
+    jne     8f
+    tst     4(r14)
+    jz      8f
+1:  mov     0(r12), &OW+OW_B
     mov.b   2(r12), &OW+OW_NB
     mov     0(r14), r12             ; x, y
     mov     r12, &OW+OW_X
@@ -125,6 +150,9 @@ optical_setup:
     mov.b   r11, r11
     mov     r12, 0(r15)
     mov     r11, 2(r15)
+    mov     #1, r12
+    ret
+8:  clr     r12
     ret
 
 /*

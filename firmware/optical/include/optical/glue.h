@@ -10,6 +10,7 @@
 #ifndef OPTICAL_GLUE_H
 #define OPTICAL_GLUE_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "optical/fastmath.h"
@@ -20,13 +21,16 @@ extern "C" {
 #endif
 
 /**
- * optical_fix()'s work area and O5 arguments from its inputs: b, nb from @p map; x, y and
+ * optical_fix()'s argument check and its work area and O5 arguments from its inputs: false
+ * (nothing written) when @p map is NULL, map->n lies outside [3, OPTICAL_MAX_BEACONS] or
+ * approx's x or y outside (-OPTICAL_COORD_LIMIT, OPTICAL_COORD_LIMIT); else true and: b, nb
+ * from @p map; x, y and
  * head = (heading + 2^15) >> 16 from @p approx; eps8 = min(m8 + 2, 0xFFFF) with m8 =
  * min(ceil(window_pos / 2^8), 0xFFFF) (2^-8 m); @p wd: dk = (beacon_diameter 10430 mod 2^32)
  * >> 8, x, y as approx, eps8 = m8, tol8 = min(dist_tol >> 8, 0xFFFF), rel16 = min(dist_rel,
  * 0xFFFF) (both as uint32), flat = beacon_flat.
  */
-void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
+bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *approx, optical_width_t *wd);
 
 /**
