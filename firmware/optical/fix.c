@@ -268,22 +268,17 @@ int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, in
     return found;
 }
 
-void optical_gather(const optical_sighting_t *s)
+void optical_gather(const optical_sighting_t *s, int8_t *ident)
 {
     uint8_t m = 0;
     for (uint8_t j = 0; j < W.n; j++) {
         if (W.sm[j] >= DROPPED)
             continue;
+        ident[W.ord[j]] = (int8_t)W.sm[j];
         W.u.sv.ang[m] = s[W.ord[j]].angle;
         W.pos[m++] = j;
     }
     W.m = m;
-}
-
-void optical_ident(int8_t *ident)
-{
-    for (uint8_t i = 0; i < W.m; i++)
-        ident[W.ord[W.pos[i]]] = (int8_t)W.sm[W.pos[i]];
 }
 
 int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap, const optical_config_t *cfg)
@@ -323,6 +318,7 @@ typedef struct {
     const optical_pose_t *ap;
     const optical_sighting_t *s;
     const optical_pose_t *latched;
+    int8_t *ident;      /* the result's */
     optical_width_t wd; /* O5 */
 } ctx_t;
 
@@ -500,17 +496,25 @@ static fx_angle_t corrected(fx_angle_t d, uint8_t j, uint32_t r)
     return d + fx_asin(ratio);
 }
 
+/* The result's ident back to none identified (before the identified are gathered again). */
+static void clear_ident(int8_t *ident)
+{
+    for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++)
+        ident[i] = -1;
+}
+
 static int8_t finish(optical_fix_t *out, int8_t status)
 {
     out->status = (uint8_t)status;
     return status;
 }
 
-/* The identified (W.sm) into W.pos / W.m and their reference-frame angles (the sighting's
- * angle turned by its latched heading's change to the reference instant). */
+/* The identified (W.sm) into W.pos / W.m and the result's ident, and their reference-frame
+ * angles (the sighting's angle turned by its latched heading's change to the reference
+ * instant). */
 static void gather(const ctx_t *x)
 {
-    optical_gather(x->s);
+    optical_gather(x->s, x->ident);
     const optical_pose_t *lat = x->latched;
     if (lat != NULL)
         for (uint8_t i = 0; i < W.m; i++)
@@ -709,6 +713,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     x.ap = approx;
     x.s = s;
     x.latched = latched;
+    x.ident = out->ident;
     W.n = n;
 
     int8_t kept = prepare(&x);
@@ -731,6 +736,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         return finish(out, OPTICAL_E_INCONSISTENT);
     gather(&x);
     if (W.m < 3) {
+        clear_ident(out->ident);
         out->n_ident = W.m;
         return finish(out, OPTICAL_E_FEW);
     }
@@ -753,6 +759,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         for (uint8_t j = 0; j < n; j++)
             W.wchk[j] = 0x7Fu;
         optical_expect_scan(0, rmax);
+        clear_ident(out->ident);
         if (optical_unique(&x.wd, x.s, NULL) < 5) {
             for (uint8_t j = 0; j < n; j++)
                 if (W.sm[j] < DROPPED)
@@ -764,7 +771,6 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         gather(&x);
         st = solve(&x, passes, t3, &tri);
     }
-    optical_ident(out->ident);
     out->n_ident = W.m;
     if (st == OPTICAL_OK || st == OPTICAL_E_SINGULAR) {
         out->pose.x = tri.pose.x; /* (field by field, unrolled: no memcpy, no counter) */

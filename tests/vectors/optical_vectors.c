@@ -644,7 +644,10 @@ static void glue_kernels(void)
         cy_print(" ");
         cy_print_dec(lohi[1]);
         print_work(KW.n);
-        optical_gather(sight);
+        int8_t id[OPTICAL_MAX_SIGHTINGS];
+        for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++)
+            id[i] = (int8_t)(-1 - (int8_t)(t & 1u));
+        optical_gather(sight, id);
         cy_print(" g ");
         cy_print_dec(KW.m);
         for (uint8_t i = 0; i < KW.m; i++) {
@@ -652,6 +655,10 @@ static void glue_kernels(void)
             cy_print_dec(KW.pos[i]);
             cy_print(":");
             cy_print_hex32(KW.u.sv.ang[i]);
+        }
+        for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++) {
+            cy_print(" ");
+            cy_print_dec(id[i]);
         }
         cy_println();
     }
@@ -738,12 +745,6 @@ static void glue_kernels(void)
             cy_print(" j ");
             cy_print_dec(optical_jump(&p, &ap, &c));
         }
-        int8_t id[OPTICAL_MAX_SIGHTINGS];
-        for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++) {
-            id[i] = -1;
-            KW.ord[i] = (uint8_t)(rnd32() % OPTICAL_MAX_SIGHTINGS);
-        }
-        optical_ident(id);
         if (t % 10 == 0) { /* the result's initial state (over whatever was there) */
             optical_fix_t f;
             for (uint8_t i = 0; i <= offsetof(optical_fix_t, status); i++)
@@ -754,10 +755,6 @@ static void glue_kernels(void)
                 cy_print(" ");
                 cy_print_dec(((const uint8_t *)&f)[i]);
             }
-        }
-        for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++) {
-            cy_print(" ");
-            cy_print_dec(id[i]);
         }
         cy_println();
     }

@@ -437,8 +437,9 @@ optical_unique:
     ret
 
 /*
- * void optical_gather(const optical_sighting_t *s): R12 = s. R13 = &sm[j + 1] (walked),
- * R10 = &sm[n], R14 = &pos[m], R15 = &ang[m], R11 and R9 the sighting's address, then j.
+ * void optical_gather(const optical_sighting_t *s, int8_t *ident): R12 = s, R13 = ident.
+ * R13 = &sm[j + 1] (walked), R8 = ident, R10 = &sm[n], R14 = &pos[m], R15 = &ang[m], R11 =
+ * sm[j], R9 = ord[j], then the sighting's address, then j; R7 = &ident[ord[j]].
  */
     .section .text.optical_gather,"ax",@progbits
     .global optical_gather
@@ -446,6 +447,9 @@ optical_unique:
 optical_gather:
     push    r10
     push    r9
+    push    r8
+    push    r7
+    mov     r13, r8
     mov     #OW+OW_SM, r13
     mov.b   &OW+OW_N, r10
     add     r13, r10
@@ -456,44 +460,30 @@ optical_gather:
     mov.b   @r13+, r11
     cmp.b   #DROPPED, r11
     jhs     1b
-    mov.b   OW_ORD-OW_SM-1(r13), r11 ; s + 6 ord[j]
-    rla     r11
-    mov     r11, r9
-    rla     r11
-    add     r9, r11
-    add     r12, r11
-    mov     0(r11), 0(r15)
-    mov     2(r11), 2(r15)
+    mov.b   OW_ORD-OW_SM-1(r13), r9 ; ident[ord[j]] = sm[j]
+    mov     r9, r7
+    add     r8, r7
+    mov.b   r11, 0(r7)
+    rla     r9                      ; s + 6 ord[j]
+    mov     r9, r11
+    rla     r9
+    add     r11, r9
+    add     r12, r9
+    mov     0(r9), 0(r15)
+    mov     2(r9), 2(r15)
     add     #4, r15
     mov     r13, r9                 ; j
     sub     #OW+OW_SM+1, r9
     mov.b   r9, 0(r14)
-    inc     r14
+    sub     #-1, r14
     jmp     1b
 9:  sub     #OW+OW_POS, r14
     mov.b   r14, &OW+OW_M
+    pop     r7
+    pop     r8
     pop     r9
     pop     r10
     ret
-
-/*
- * void optical_ident(int8_t *ident): R12 = ident. R14 = &pos[i], R15 = &pos[m], R13 = j.
- */
-    .section .text.optical_ident,"ax",@progbits
-    .global optical_ident
-    .type optical_ident,@function
-optical_ident:
-    mov.b   &OW+OW_M, r15
-    add     #OW+OW_POS, r15
-    mov     #OW+OW_POS, r14
-1:  cmp     r15, r14
-    jhs     9f
-    mov.b   @r14+, r13
-    mov.b   OW+OW_ORD(r13), r11
-    add     r12, r11
-    mov.b   OW+OW_SM(r13), 0(r11)
-    jmp     1b
-9:  ret
 
 /*
  * int8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol): R12 = p,

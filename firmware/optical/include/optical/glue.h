@@ -67,12 +67,10 @@ int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, in
 
 /**
  * The identified: every sorted sighting j with sm[j] below OPTICAL_DROPPED, in order, into
- * pos[0..m) and its angle s[ord[j]].angle into u.sv.ang[0..m); m into optical_work.m.
+ * pos[0..m), its angle s[ord[j]].angle into u.sv.ang[0..m) and its beacon into the result's
+ * @p ident[ord[j]] = sm[j] (the others left alone); m into optical_work.m.
  */
-void optical_gather(const optical_sighting_t *s);
-
-/** The identified into @p ident (input order): ident[ord[pos[i]]] = sm[pos[i]], i < m. */
-void optical_ident(int8_t *ident);
+void optical_gather(const optical_sighting_t *s, int8_t *ident);
 
 /**
  * O6's plausibility of the fix @p p against the approximate pose @p ap: OPTICAL_E_JUMP when
