@@ -208,21 +208,19 @@ void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx)
 
 uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin)
 {
-    for (uint8_t i = 0; i < W.n; i++, s++) {
-        uint16_t t = a16(s->angle);
+    for (uint8_t i = 0; i < W.n; i++) {
+        uint16_t t = a16(s[i].angle);
         uint8_t j = i;
         while (j > 0 && W.th[j - 1] > t) {
             W.th[j] = W.th[j - 1];
             W.ord[j] = W.ord[j - 1];
-            W.we[j] = W.we[j - 1];
             j--;
         }
         W.th[j] = t;
         W.ord[j] = i;
-        W.we[j] = s->width;
     }
     optical_buckets();
-    return optical_drop(wmin);
+    return optical_drop(s, wmin);
 }
 
 void optical_buckets(void)
@@ -608,10 +606,9 @@ static int8_t prepare(ctx_t *x)
     uint8_t n = W.n, kept;
     uint32_t wmin = optical_wmin(x->wd.dk, (uint32_t)x->cfg->range >> 8);
     if (lat == NULL) {
-        /* and the buckets (until the first scan, we holds the widths) */
-        kept = optical_sort(si, (uint16_t)wmin);
+        kept = optical_sort(si, (uint16_t)wmin); /* and the buckets */
         if (wmin > 0xFFFFu)
-            kept = optical_drop(wmin); /* (none kept) */
+            kept = optical_drop(si, wmin); /* (none kept) */
     } else {
         for (uint8_t i = 0; i < n; i++, si++, lat++) {
             fx_angle_t d = si->angle;
@@ -639,7 +636,6 @@ static int8_t prepare(ctx_t *x)
                 W.th[j] = W.th[j - 1];
                 W.c[j] = W.c[j - 1];
                 W.ord[j] = W.ord[j - 1];
-                W.we[j] = W.we[j - 1];
                 W.lev[j] = W.lev[j - 1];
                 j--;
             }
@@ -647,10 +643,9 @@ static int8_t prepare(ctx_t *x)
             W.lev[j] = l;
             W.th[j] = t;
             W.ord[j] = i;
-            W.we[j] = si->width;
         }
         optical_buckets();
-        kept = optical_drop(wmin);
+        kept = optical_drop(x->s, wmin);
     }
     W.lever8 = lever8;
     W.amax8 = sat16((uint32_t)W.eps8 + lever8);
@@ -672,8 +667,7 @@ static fx_q16_t threshold(const ctx_t *x, uint8_t kept)
         if (tstep == 0)
             return t;
         t += (fx_q16_t)tstep;
-        /* (prepare left the widths in we) */
-        kept = optical_drop(optical_wmin(x->wd.dk, (uint32_t)t >> 8));
+        kept = optical_drop(x->s, optical_wmin(x->wd.dk, (uint32_t)t >> 8));
     }
 }
 

@@ -492,9 +492,10 @@ static void kernels(void)
         KW.n = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
         for (uint8_t j = 0; j < KW.n; j++) {
             uint32_t w = q + (rnd32() % 5u) - 2u;
-            KW.we[j] = (rnd32() & 3u) == 0 ? (uint16_t)rnd32()
-                       : w > 0xFFFFu       ? 0xFFFFu
-                                           : (uint16_t)w;
+            sight[j].width = (rnd32() & 3u) == 0 ? (uint16_t)rnd32()
+                             : w > 0xFFFFu       ? 0xFFFFu
+                                                 : (uint16_t)w;
+            KW.ord[j] = (uint8_t)(rnd32() % KW.n);
         }
         uint32_t wmin = optical_wmin(dk, t8);
         cy_print("drop ");
@@ -502,7 +503,7 @@ static void kernels(void)
         cy_print(" ");
         cy_print_hex32(wmin);
         cy_print(" ");
-        cy_print_dec(optical_drop(wmin));
+        cy_print_dec(optical_drop(sight, wmin));
         for (uint8_t j = 0; j < KW.n; j++) {
             cy_print(" ");
             cy_print_dec(KW.sm[j]);
@@ -584,8 +585,6 @@ static void glue_kernels(void)
             cy_print_dec(KW.th[j]);
             cy_print(":");
             cy_print_dec(KW.ord[j]);
-            cy_print(":");
-            cy_print_dec(KW.we[j]);
         }
         cy_print(" b");
         for (uint8_t b = 0; b < 16; b++) {

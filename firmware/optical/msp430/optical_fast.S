@@ -906,39 +906,46 @@ optical_wmin:
     ret
 
 /*
- * uint8_t optical_drop(uint32_t wmin): R13:R12 = wmin -> R12 = the sightings kept
- * (fastmath.c). R11 = wmin's low word, R15 the mark of a kept sighting: NONE, or DROPPED too
- * when wmin >= 2^16 (none kept: the count cleared). R10 = 0x7f (wchk).
+ * uint8_t optical_drop(const optical_sighting_t *s, uint32_t wmin): R12 = s, R14:R13 = wmin ->
+ * R12 = the sightings kept (fastmath.c). R11 = wmin's low word, R15 the mark of a kept
+ * sighting: NONE, or DROPPED too when wmin >= 2^16 (none kept: the count cleared). R14 = j + 1,
+ * R13 = kept, R10 = &s[ord[j]] (R9 scratch).
  */
+    .set OW_ORD,    205             ; (optical_work_t.ord: static-asserted in fix.c)
     .section .text.optical_drop,"ax",@progbits
     .global optical_drop
     .type optical_drop,@function
 optical_drop:
-    mov     r12, r11
+    push    r10
+    push    r9
+    mov     r13, r11
     mov     #NONE, r15
-    tst     r13
-    jz      7f
+    tst     r14
+    jz      1f
     mov     #DROPPED, r15
-7:  push    r10
-    mov     #0x7f, r10
+1:  clr     r13
     mov.b   &OW+OW_N, r14
-    clr     r12                     ; kept
     tst     r14
     jz      9f
-    mov     r14, r13
-    add     r13, r13                ; R14 = j + 1, R13 = 2 (j + 1)
-8:  mov.b   r10, OW+OW_WCHK-1(r14)
+8:  mov.b   #0x7f, OW+OW_WCHK-1(r14)
     mov.b   r15, OW+OW_SM-1(r14)
-    cmp     r11, OW+OW_WE-2(r13)    ; we[j] >= wmin: kept
+    mov.b   OW+OW_ORD-1(r14), r10   ; s[ord[j]].width >= wmin: kept
+    rla     r10
+    mov     r10, r9
+    rla     r10
+    add     r9, r10
+    add     r12, r10
+    cmp     r11, 4(r10)
     jlo     10f
-    sub     #-1, r12
-11: decd    r13
-    add     #-1, r14
+    sub     #-1, r13
+11: add     #-1, r14
     jnz     8b
     cmp     #NONE, r15
     jeq     9f
-    clr     r12
-9:  pop     r10
+    clr     r13
+9:  mov     r13, r12
+    pop     r9
+    pop     r10
     ret
 10: mov.b   #DROPPED, OW+OW_SM-1(r14)
     jmp     11b

@@ -226,7 +226,6 @@ optical_sort:
     mov     r10, r15
     mov.b   r6, OW+OW_ORD(r6)
     mov     @r12+, r11
-    mov     r11, OW_WE-OW_TH(r14)
     mov.b   r4, OW+OW_WCHK(r6)
     cmp     r13, r11                ; O4: narrower than wmin, dropped
     jlo     30f
@@ -256,7 +255,6 @@ optical_sort:
     cmp     -2(r11), r10
     jhs     22f
     mov     -2(r11), 0(r11)
-    mov     OW_WE-OW_TH-2(r11), OW_WE-OW_TH(r11)
     mov.b   OW+OW_ORD-1(r9), OW+OW_ORD(r9)
     mov.b   OW+OW_SM-1(r9), OW+OW_SM(r9)
     decd    r11
@@ -264,7 +262,6 @@ optical_sort:
     jmp     21b
 22: mov     r10, 0(r11)
     mov     @r12+, r10
-    mov     r10, OW_WE-OW_TH(r11)
     mov.b   r6, OW+OW_ORD(r9)
     mov.b   r4, OW+OW_WCHK(r6)
     mov.b   #-1, OW+OW_SM(r9)       ; NONE, or DROPPED when narrower than wmin

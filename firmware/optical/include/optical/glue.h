@@ -42,8 +42,8 @@ void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx);
 /**
  * The standing preparation (no latched poses): sightings @p s[0..n) (n = optical_work.n) by
  * rounded 16-bit angle t = (angle + 2^15) >> 16 into th[], ascending (insertion: equal angles
- * keep their input order), ord[j] the input index of th[j], we[j] its width; the bucket index
- * (optical_buckets); and O4's marks as optical_drop(@p wmin). Returns the sightings kept.
+ * keep their input order), ord[j] the input index of th[j]; the bucket index
+ * (optical_buckets); and O4's marks as optical_drop(@p s, @p wmin). Returns the sightings kept.
  */
 uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin);
 
