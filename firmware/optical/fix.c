@@ -494,13 +494,6 @@ static fx_angle_t corrected(fx_angle_t d, uint8_t j, uint32_t r)
     return d + fx_asin(ratio);
 }
 
-/* The result's ident back to none identified (before the identified are gathered again). */
-static void clear_ident(int8_t *ident)
-{
-    for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++)
-        ident[i] = -1;
-}
-
 static int8_t finish(optical_fix_t *out, int8_t status)
 {
     out->status = (uint8_t)status;
@@ -728,12 +721,11 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     out->widened = widened;
     if (found < 0)
         return finish(out, OPTICAL_E_INCONSISTENT);
-    gather(&x);
-    if (W.m < 3) {
-        clear_ident(out->ident);
-        out->n_ident = W.m;
+    if (found < 3) { /* (found: the identified, as gather would count them) */
+        out->n_ident = (uint8_t)found;
         return finish(out, OPTICAL_E_FEW);
     }
+    gather(&x);
 
     /* O7-O11 */
     uint8_t passes = cfg->motion_passes ? cfg->motion_passes : 1u;
@@ -753,15 +745,10 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         for (uint8_t j = 0; j < n; j++)
             W.wchk[j] = 0x7Fu;
         optical_expect_scan(0, rmax);
-        clear_ident(out->ident);
-        if (optical_unique(&x.wd, x.s, NULL) < 5) {
-            for (uint8_t j = 0; j < n; j++)
-                if (W.sm[j] < DROPPED)
-                    W.sm[j] = NONE;
-            gather(&x);
-            out->n_ident = W.m;
+        optical_fix_init(out, approx); /* (none identified: gather wrote ident) */
+        out->widened = widened;
+        if (optical_unique(&x.wd, x.s, NULL) < 5)
             return finish(out, OPTICAL_E_UNCONFIRMED);
-        }
         gather(&x);
         st = solve(&x, passes, t3, &tri);
     }
