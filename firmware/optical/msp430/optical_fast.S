@@ -981,25 +981,24 @@ optical_width_core:
     mov     @r13+, r12              ; x8 = the magnitude of b.x - a.x, 2^-8 m, capped
     mov     @r13+, r15
     sub     4(r4), r12
-    subc    6(r4), r15
-    tst     r15
+    subc    6(r4), r15              ; (no overflow within the coordinate limit: N^V = N)
     jge     1f
     inv     r12
     inv     r15
     sub     #-1, r12                ; (+1, carry as add)
     adc     r15
-1:  mov     #-1, r11
-    cmp     #0x0100, r15
-    jhs     2f
-    swpb    r12
+1:  cmp     #0x0100, r15
+    jlo     2f
+    mov     #-1, r11
+    jmp     3f
+2:  swpb    r12
     mov.b   r12, r11
     swpb    r15
     bis     r15, r11
-2:  mov     @r13+, r12              ; y8
+3:  mov     @r13+, r12              ; y8
     mov     @r13, r15
     sub     8(r4), r12
     subc    10(r4), r15
-    tst     r15
     jge     1f
     inv     r12
     inv     r15
