@@ -495,7 +495,7 @@ static void kernels(void)
             sight[j].width = (rnd32() & 3u) == 0 ? (uint16_t)rnd32()
                              : w > 0xFFFFu       ? 0xFFFFu
                                                  : (uint16_t)w;
-            KW.ord[j] = (uint8_t)(rnd32() % KW.n);
+            KW.ord[j] = (uint8_t)((7u * j + t) % KW.n); /* (no draw: the stream as before) */
         }
         uint32_t wmin = optical_wmin(dk, t8);
         cy_print("drop ");
@@ -563,11 +563,13 @@ static void glue_kernels(void)
             sight[i].width = (uint16_t)rnd32();
         }
         /* O4's marks: widths around wmin (0: all kept, 0xFFFF: all but the widest dropped) */
-        uint16_t wmin = t % 7 == 1 ? 0u : t % 7 == 2 ? 0xFFFFu : (uint16_t)rnd32();
+        uint16_t wmin = t % 7 == 1   ? 0u
+                        : t % 7 == 2 ? 0xFFFFu
+                                     : (uint16_t)(KW.n ? sight[t % KW.n].width : 0u);
         if (t % 7 == 3)
             sight[0].width = 0xFFFFu;
         for (uint8_t i = 0; t % 7 > 3 && i < KW.n; i++)
-            sight[i].width = (uint16_t)(wmin + (rnd32() % 5u) - 2u);
+            sight[i].width = (uint16_t)(wmin + (7u * i + t) % 5u - 2u);
         uint8_t kept = optical_sort(sight, wmin);
         cy_print("sort ");
         cy_print_dec(t);
@@ -712,7 +714,7 @@ static void glue_kernels(void)
             if (t == 6 || t == 9)
                 mp.n = t == 6 ? 2u : 33u;
             if (t % 3 == 0 && t >= 12) {
-                int32_t lim = (int32_t)OPTICAL_COORD_LIMIT - (int32_t)(rnd32() % 3u);
+                int32_t lim = (int32_t)OPTICAL_COORD_LIMIT - (int32_t)(t / 3u % 3u);
                 fx_q16_t v = (t & 4) ? -lim : lim;
                 if (t & 8)
                     q.y = v;
@@ -744,6 +746,13 @@ static void glue_kernels(void)
             cy_print(" j ");
             cy_print_dec(optical_jump(&p, &ap, &c));
         }
+        /* the identified output through random orders (the gather of whatever sm holds) */
+        int8_t id[OPTICAL_MAX_SIGHTINGS];
+        for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++) {
+            id[i] = -1;
+            KW.ord[i] = (uint8_t)(rnd32() % OPTICAL_MAX_SIGHTINGS);
+        }
+        optical_gather(sight, id);
         if (t % 10 == 0) { /* the result's initial state (over whatever was there) */
             optical_fix_t f;
             for (uint8_t i = 0; i <= offsetof(optical_fix_t, status); i++)
@@ -754,6 +763,10 @@ static void glue_kernels(void)
                 cy_print(" ");
                 cy_print_dec(((const uint8_t *)&f)[i]);
             }
+        }
+        for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++) {
+            cy_print(" ");
+            cy_print_dec(id[i]);
         }
         cy_println();
     }
