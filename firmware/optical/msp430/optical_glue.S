@@ -388,8 +388,6 @@ optical_unique:
     mov.b   r12, OW+OW_WCHK(r8)
     jn      7f
     mov.b   r12, r11                ; (k)
-    jmp     4f
-3:  jc      7f
 4:  sub     #-1, r7
     mov     r8, r13                 ; off = th[j] - psi[k], e = we[j]
     rla     r13
@@ -414,6 +412,8 @@ optical_unique:
     mov     r15, r10
     add     r14, r10
     jmp     8f
+3:  jc      7f                      ; (the cached verdict: a misfit, or kept)
+    jmp     4b
 7:  mov.b   #-1, OW+OW_SM(r8)       ; NONE
 8:  sub     #-1, r8
     cmp     r6, r8                  ; j < n
@@ -466,7 +466,7 @@ optical_gather:
     rla     r9
     add     r11, r9
     add     r12, r9
-    mov     0(r9), 0(r15)
+    mov     @r9, 0(r15)
     mov     2(r9), 2(r15)
     add     #4, r15
     mov     r13, r9                 ; j
