@@ -248,12 +248,16 @@ uint8_t optical_first_scan(int16_t mid, uint16_t half)
     return bad;
 }
 
-uint8_t optical_drop(uint32_t dk, uint32_t t8)
+uint32_t optical_wmin(uint32_t dk, uint32_t t8)
 {
-    uint32_t wmin = t8 ? dk / t8 : 0xFFFFu; /* 2^-16 turn */
+    return t8 ? dk / t8 : 0xFFFFu; /* 2^-16 turn */
+}
+
+uint8_t optical_drop(const optical_sighting_t *s, uint32_t wmin)
+{
     uint8_t kept = 0;
     for (uint8_t j = 0; j < W.n; j++) {
-        bool keep = W.we[j] >= wmin;
+        bool keep = s[W.ord[j]].width >= wmin;
         W.sm[j] = keep ? OPTICAL_NONE : OPTICAL_DROPPED;
         W.wchk[j] = 0x7Fu;
         kept += keep;

@@ -172,9 +172,12 @@ _Static_assert(offsetof(optical_config_t, jump_max) == 38 &&
 #endif
 
 #ifndef OPTICAL_ASM
-void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
+bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *approx, optical_width_t *wd)
 {
+    if (map == NULL || map->n < 3 || map->n > OPTICAL_MAX_BEACONS ||
+        !coords_ok(approx->x, approx->y))
+        return false;
     W.b = map->b;
     W.nb = map->n;
     W.x = wd->x = approx->x;
@@ -190,6 +193,7 @@ void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
     wd->tol8 = sat16((uint32_t)cfg->dist_tol >> 8);
     wd->rel16 = sat16((uint32_t)cfg->dist_rel);
     wd->flat = cfg->beacon_flat;
+    return true;
 }
 
 void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx)
@@ -202,22 +206,21 @@ void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx)
     out->pose = *approx;
 }
 
-void optical_sort(const optical_sighting_t *s)
+uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin)
 {
-    for (uint8_t i = 0; i < W.n; i++, s++) {
-        uint16_t t = a16(s->angle);
+    for (uint8_t i = 0; i < W.n; i++) {
+        uint16_t t = a16(s[i].angle);
         uint8_t j = i;
         while (j > 0 && W.th[j - 1] > t) {
             W.th[j] = W.th[j - 1];
             W.ord[j] = W.ord[j - 1];
-            W.we[j] = W.we[j - 1];
             j--;
         }
         W.th[j] = t;
         W.ord[j] = i;
-        W.we[j] = s->width;
     }
     optical_buckets();
+    return optical_drop(s, wmin);
 }
 
 void optical_buckets(void)
@@ -263,22 +266,17 @@ int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, in
     return found;
 }
 
-void optical_gather(const optical_sighting_t *s)
+void optical_gather(const optical_sighting_t *s, int8_t *ident)
 {
     uint8_t m = 0;
     for (uint8_t j = 0; j < W.n; j++) {
         if (W.sm[j] >= DROPPED)
             continue;
+        ident[W.ord[j]] = (int8_t)W.sm[j];
         W.u.sv.ang[m] = s[W.ord[j]].angle;
         W.pos[m++] = j;
     }
     W.m = m;
-}
-
-void optical_ident(int8_t *ident)
-{
-    for (uint8_t i = 0; i < W.m; i++)
-        ident[W.ord[W.pos[i]]] = (int8_t)W.sm[W.pos[i]];
 }
 
 int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap, const optical_config_t *cfg)
@@ -318,6 +316,7 @@ typedef struct {
     const optical_pose_t *ap;
     const optical_sighting_t *s;
     const optical_pose_t *latched;
+    int8_t *ident;      /* the result's */
     optical_width_t wd; /* O5 */
 } ctx_t;
 
@@ -501,11 +500,12 @@ static int8_t finish(optical_fix_t *out, int8_t status)
     return status;
 }
 
-/* The identified (W.sm) into W.pos / W.m and their reference-frame angles (the sighting's
- * angle turned by its latched heading's change to the reference instant). */
+/* The identified (W.sm) into W.pos / W.m and the result's ident, and their reference-frame
+ * angles (the sighting's angle turned by its latched heading's change to the reference
+ * instant). */
 static void gather(const ctx_t *x)
 {
-    optical_gather(x->s);
+    optical_gather(x->s, x->ident);
     const optical_pose_t *lat = x->latched;
     if (lat != NULL)
         for (uint8_t i = 0; i < W.m; i++)
@@ -592,22 +592,26 @@ static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t 
 
 /* O11: the sightings into the vehicle frame of the reference instant, sorted by angle, with
  * their parallax levers (standing: none, and W.c / W.lev are not read: lever8 = 0, no
- * latched poses); false when a latched pose lies beyond the coordinate limit. */
-static bool prepare(ctx_t *x)
+ * latched poses), and O4's marks for the range T = cfg->range (threshold()); the sightings
+ * kept, or -1 when a latched pose lies beyond the coordinate limit. */
+static int8_t prepare(ctx_t *x)
 {
     const optical_pose_t *ap = x->ap, *lat = x->latched;
     const optical_sighting_t *si = x->s; /* (pointers: no index multiplies on the MSP430) */
     uint16_t lever8 = 0;
-    uint8_t n = W.n;
+    uint8_t n = W.n, kept;
+    uint32_t wmin = optical_wmin(x->wd.dk, (uint32_t)x->cfg->range >> 8);
     if (lat == NULL) {
-        optical_sort(si); /* and the buckets (until the first scan, we holds the widths) */
+        kept = optical_sort(si, (uint16_t)wmin); /* and the buckets */
+        if (wmin > 0xFFFFu)
+            kept = optical_drop(si, wmin); /* (none kept) */
     } else {
         for (uint8_t i = 0; i < n; i++, si++, lat++) {
             fx_angle_t d = si->angle;
             int32_t c = 0;
             uint16_t l = 0;
             if (!coords_ok(lat->x, lat->y))
-                return false;
+                return -1;
             int32_t ex = lat->x - ap->x, ey = lat->y - ap->y;
             if (ex | ey) {
                 /* c = cross(u(d), R(-heading) e) = cross(u(heading + d), e): the sighting's
@@ -628,7 +632,6 @@ static bool prepare(ctx_t *x)
                 W.th[j] = W.th[j - 1];
                 W.c[j] = W.c[j - 1];
                 W.ord[j] = W.ord[j - 1];
-                W.we[j] = W.we[j - 1];
                 W.lev[j] = W.lev[j - 1];
                 j--;
             }
@@ -636,31 +639,31 @@ static bool prepare(ctx_t *x)
             W.lev[j] = l;
             W.th[j] = t;
             W.ord[j] = i;
-            W.we[j] = si->width;
         }
         optical_buckets();
+        kept = optical_drop(x->s, wmin);
     }
     W.lever8 = lever8;
     W.amax8 = sat16((uint32_t)W.eps8 + lever8);
-    return true;
+    return (int8_t)kept;
 }
 
-/* O4: drop sightings too narrow for a beacon within T; widen T when fewer than 3 stay.
- * A post at T looks 2 asin(D / 2T) >= D / T wide: the threshold D / T keeps those.
- * Returns T. */
-static fx_q16_t threshold(const ctx_t *x)
+/* O4: drop sightings too narrow for a beacon within T; widen T when fewer than 3 stay
+ * (@p kept of them at T = cfg->range: prepare() marked them). A post at T looks
+ * 2 asin(D / 2T) >= D / T wide: the threshold D / T keeps those. Returns T. */
+static fx_q16_t threshold(const ctx_t *x, uint8_t kept)
 {
     const optical_config_t *cfg = x->cfg;
     fx_q16_t t = cfg->range;
     for (uint8_t step = 0;; step++) {
-        /* (prepare left the widths in we) */
-        if (optical_drop(x->wd.dk, (uint32_t)t >> 8) >= 3 || step >= cfg->range_steps)
+        if (kept >= 3 || step >= cfg->range_steps)
             return t;
         /* (the division only when a widening is needed) */
         uint32_t tstep = step_of((uint32_t)cfg->range, (uint32_t)cfg->range_max, cfg->range_steps);
         if (tstep == 0)
             return t;
         t += (fx_q16_t)tstep;
+        kept = optical_drop(x->s, optical_wmin(x->wd.dk, (uint32_t)t >> 8));
     }
 }
 
@@ -692,24 +695,23 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *latched, optical_fix_t *out)
 {
     optical_fix_init(out, approx);
-    if (map == NULL || map->n < 3 || map->n > OPTICAL_MAX_BEACONS || n > OPTICAL_MAX_SIGHTINGS ||
-        !coords_ok(approx->x, approx->y))
-        return finish(out, OPTICAL_E_ARG);
-
     ctx_t x;
+    if (n > OPTICAL_MAX_SIGHTINGS || !optical_setup(map, cfg, approx, &x.wd))
+        return finish(out, OPTICAL_E_ARG);
     x.map = map;
     x.cfg = cfg;
     x.ap = approx;
     x.s = s;
     x.latched = latched;
+    x.ident = out->ident;
     W.n = n;
-    optical_setup(map, cfg, approx, &x.wd);
 
-    if (!prepare(&x))
+    int8_t kept = prepare(&x);
+    if (kept < 0)
         return finish(out, OPTICAL_E_ARG);
     /* O4, then O2: expected angles of the beacons within T (+ the position uncertainty),
      * and the first identification pass (O3). */
-    W.gate8 = sat15(((uint32_t)threshold(&x) + (uint32_t)cfg->window_pos) >> 8);
+    W.gate8 = sat15(((uint32_t)threshold(&x, (uint8_t)kept) + (uint32_t)cfg->window_pos) >> 8);
     uint16_t h0 = half0(cfg);
     if (optical_first_scan(0, h0)) /* (the marks as optical_drop left them) */
         return finish(out, OPTICAL_E_ARG);
@@ -722,11 +724,11 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     out->widened = widened;
     if (found < 0)
         return finish(out, OPTICAL_E_INCONSISTENT);
-    gather(&x);
-    if (W.m < 3) {
-        out->n_ident = W.m;
+    if (found < 3) { /* (found: the identified, as gather would count them) */
+        out->n_ident = (uint8_t)found;
         return finish(out, OPTICAL_E_FEW);
     }
+    gather(&x);
 
     /* O7-O11 */
     uint8_t passes = cfg->motion_passes ? cfg->motion_passes : 1u;
@@ -746,18 +748,13 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         for (uint8_t j = 0; j < n; j++)
             W.wchk[j] = 0x7Fu;
         optical_expect_scan(0, rmax);
-        if (optical_unique(&x.wd, x.s, NULL) < 5) {
-            for (uint8_t j = 0; j < n; j++)
-                if (W.sm[j] < DROPPED)
-                    W.sm[j] = NONE;
-            gather(&x);
-            out->n_ident = W.m;
+        optical_fix_init(out, approx); /* (none identified: gather wrote ident) */
+        out->widened = widened;
+        if (optical_unique(&x.wd, x.s, NULL) < 5)
             return finish(out, OPTICAL_E_UNCONFIRMED);
-        }
         gather(&x);
         st = solve(&x, passes, t3, &tri);
     }
-    optical_ident(out->ident);
     out->n_ident = W.m;
     if (st == OPTICAL_OK || st == OPTICAL_E_SINGULAR) {
         out->pose.x = tri.pose.x; /* (field by field, unrolled: no memcpy, no counter) */

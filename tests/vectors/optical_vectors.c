@@ -541,14 +541,18 @@ static void kernels(void)
         KW.n = (uint8_t)(rnd32() % (OPTICAL_MAX_SIGHTINGS + 1u));
         for (uint8_t j = 0; j < KW.n; j++) {
             uint32_t w = q + (rnd32() % 5u) - 2u;
-            KW.we[j] = (rnd32() & 3u) == 0 ? (uint16_t)rnd32()
-                       : w > 0xFFFFu       ? 0xFFFFu
-                                           : (uint16_t)w;
+            sight[j].width = (rnd32() & 3u) == 0 ? (uint16_t)rnd32()
+                             : w > 0xFFFFu       ? 0xFFFFu
+                                                 : (uint16_t)w;
+            KW.ord[j] = (uint8_t)((7u * j + t) % KW.n); /* (no draw: the stream as before) */
         }
+        uint32_t wmin = optical_wmin(dk, t8);
         cy_print("drop ");
         cy_print_dec(t);
         cy_print(" ");
-        cy_print_dec(optical_drop(dk, t8));
+        cy_print_hex32(wmin);
+        cy_print(" ");
+        cy_print_dec(optical_drop(sight, wmin));
         for (uint8_t j = 0; j < KW.n; j++) {
             cy_print(" ");
             cy_print_dec(KW.sm[j]);
@@ -607,9 +611,20 @@ static void glue_kernels(void)
             sight[i].angle = a;
             sight[i].width = (uint16_t)rnd32();
         }
-        optical_sort(sight);
+        /* O4's marks: widths around wmin (0: all kept, 0xFFFF: all but the widest dropped) */
+        uint16_t wmin = t % 7 == 1   ? 0u
+                        : t % 7 == 2 ? 0xFFFFu
+                                     : (uint16_t)(KW.n ? sight[t % KW.n].width : 0u);
+        if (t % 7 == 3)
+            sight[0].width = 0xFFFFu;
+        for (uint8_t i = 0; t % 7 > 3 && i < KW.n; i++)
+            sight[i].width = (uint16_t)(wmin + (7u * i + t) % 5u - 2u);
+        uint8_t kept = optical_sort(sight, wmin);
         cy_print("sort ");
         cy_print_dec(t);
+        cy_print(" ");
+        cy_print_dec(kept);
+        print_work(KW.n);
         for (uint8_t b = 0; b < 16; b++) {
             cy_print(" ");
             cy_print_dec(KW.bstart[b]);
@@ -621,8 +636,6 @@ static void glue_kernels(void)
             cy_print_dec(KW.th[j]);
             cy_print(":");
             cy_print_dec(KW.ord[j]);
-            cy_print(":");
-            cy_print_dec(KW.we[j]);
         }
         cy_print(" b");
         for (uint8_t b = 0; b < 16; b++) {
@@ -681,7 +694,10 @@ static void glue_kernels(void)
         cy_print(" ");
         cy_print_dec(lohi[1]);
         print_work(KW.n);
-        optical_gather(sight);
+        int8_t id[OPTICAL_MAX_SIGHTINGS];
+        for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++)
+            id[i] = (int8_t)(-1 - (int8_t)(t & 1u));
+        optical_gather(sight, id);
         cy_print(" g ");
         cy_print_dec(KW.m);
         for (uint8_t i = 0; i < KW.m; i++) {
@@ -689,6 +705,10 @@ static void glue_kernels(void)
             cy_print_dec(KW.pos[i]);
             cy_print(":");
             cy_print_hex32(KW.u.sv.ang[i]);
+        }
+        for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++) {
+            cy_print(" ");
+            cy_print_dec(id[i]);
         }
         cy_println();
     }
@@ -734,8 +754,26 @@ static void glue_kernels(void)
             c.dist_tol = (fx_q16_t)(rnd32() >> (rnd32() % 16u));
             c.dist_rel = (fx_q16_t)(rnd32() >> (rnd32() % 20u));
             optical_width_t w;
-            optical_setup(&mp, &c, &p, &w);
             cy_print(" s ");
+            /* the argument check: no map, too few or many beacons, a coordinate at or just
+             * within the limit (then the ordinary pose again) */
+            optical_pose_t q = p;
+            const optical_map_t *mq = t == 3 ? NULL : &mp;
+            uint8_t nb = mp.n;
+            if (t == 6 || t == 9)
+                mp.n = t == 6 ? 2u : 33u;
+            if (t % 3 == 0 && t >= 12) {
+                int32_t lim = (int32_t)OPTICAL_COORD_LIMIT - (int32_t)(t / 3u % 3u);
+                fx_q16_t v = (t & 4) ? -lim : lim;
+                if (t & 8)
+                    q.y = v;
+                else
+                    q.x = v;
+            }
+            cy_print_dec(optical_setup(mq, &c, &q, &w));
+            mp.n = nb;
+            optical_setup(&mp, &c, &p, &w);
+            cy_print(" ");
             cy_print_hex32(w.dk);
             field("", (uint32_t)w.x);
             field("", (uint32_t)w.y);
@@ -757,12 +795,13 @@ static void glue_kernels(void)
             cy_print(" j ");
             cy_print_dec(optical_jump(&p, &ap, &c));
         }
+        /* the identified output through random orders (the gather of whatever sm holds) */
         int8_t id[OPTICAL_MAX_SIGHTINGS];
         for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++) {
             id[i] = -1;
             KW.ord[i] = (uint8_t)(rnd32() % OPTICAL_MAX_SIGHTINGS);
         }
-        optical_ident(id);
+        optical_gather(sight, id);
         if (t % 10 == 0) { /* the result's initial state (over whatever was there) */
             optical_fix_t f;
             for (uint8_t i = 0; i <= offsetof(optical_fix_t, status); i++)

@@ -865,199 +865,248 @@ optical_eval:
     jmp     4b
 
 /*
- * uint8_t optical_drop(uint32_t dk, uint32_t t8): R13:R12 = dk, R15:R14 = t8 -> R12 = the
- * sightings kept (fastmath.c). wmin = floor(dk / t8) into R11 (a 16-step restoring division
- * when t8 and the quotient fit 16 bits); when wmin >= 2^16 none is kept: R13, the mark of a
- * kept sighting (NONE), is then DROPPED too and the count cleared. R10 = 0x7f (wchk).
+ * uint32_t optical_wmin(uint32_t dk, uint32_t t8): R13:R12 = dk, R15:R14 = t8 -> R13:R12
+ * (fastmath.c). A restoring division when t8 and the quotient fit 16 bits (the quotient's bits
+ * into R12, the remainder in R13, R15 the steps): 8 steps when dk >> 8 < t8 (the quotient's
+ * upper byte 0: dk << 8 to start from), else 16; otherwise the library's.
  */
-    .section .text.optical_drop,"ax",@progbits
-    .global optical_drop
-    .type optical_drop,@function
-optical_drop:
+    .section .text.optical_wmin,"ax",@progbits
+    .global optical_wmin
+    .type optical_wmin,@function
+optical_wmin:
     tst     r15
-    jnz     3f
-    mov     #-1, r11                ; t8 = 0: 0xffff
+    jnz     5f
     tst     r14
-    jz      4f
-    cmp     r14, r13                ; dk >= t8 2^16: none kept
+    jz      6f
+    cmp     r14, r13                ; dk >= t8 2^16: the library's
     jhs     5f
-    mov     #16, r15                ; the quotient's bits into R12, the remainder in R13
+    mov     #16, r15
+    cmp     #0x0100, r13            ; dk >> 8 below t8: start from dk << 8
+    jhs     1f
+    mov     r13, r11
+    swpb    r11
+    mov     r12, r13
+    swpb    r13
+    mov.b   r13, r13
+    bis     r11, r13
+    cmp     r14, r13
+    jhs     4f
+    swpb    r12
+    and     #0xff00, r12
+    mov     #8, r15
 1:  rla     r12
     rlc     r13
     jc      2f
     cmp     r14, r13
-    jlo     6f
+    jlo     3f
 2:  sub     r14, r13
     sub     #-1, r12                ; (the bit shifted in is 0)
-6:  add     #-1, r15
+3:  add     #-1, r15
     jnz     1b
-    mov     r12, r11
-    jmp     4f
-3:  call    #__mspabi_divul         ; t8 >= 2^16: the quotient fits 16 bits
-    mov     r12, r11
-4:  mov     #NONE, r13
-7:  push    r10
-    mov     #0x7f, r10
+    clr     r13
+    ret
+4:  mov     r11, r13                ; (dk's high word again: r11 = its byte << 8)
+    swpb    r13
+    jmp     1b
+5:  br      #__mspabi_divul         ; t8 or the quotient 2^16 or more
+6:  mov     #-1, r12                ; t8 = 0: 0xffff
+    clr     r13
+    ret
+
+/*
+ * uint8_t optical_drop(const optical_sighting_t *s, uint32_t wmin): R12 = s, R14:R13 = wmin ->
+ * R12 = the sightings kept (fastmath.c). R11 = wmin's low word, R15 the mark of a kept
+ * sighting: NONE, or DROPPED too when wmin >= 2^16 (none kept: the count cleared). R14 = j + 1,
+ * R13 = kept, R10 = &s[ord[j]] (R9 scratch).
+ */
+    .set OW_ORD,    205             ; (optical_work_t.ord: static-asserted in fix.c)
+    .section .text.optical_drop,"ax",@progbits
+    .global optical_drop
+    .type optical_drop,@function
+optical_drop:
+    push    r10
+    push    r9
+    mov     r13, r11
+    mov     #NONE, r15
+    tst     r14
+    jz      1f
+    mov     #DROPPED, r15
+1:  clr     r13
     mov.b   &OW+OW_N, r14
-    clr     r12                     ; kept
     tst     r14
     jz      9f
-    mov     r14, r15
-    add     r15, r15                ; R14 = j + 1, R15 = 2 (j + 1)
-8:  mov.b   r10, OW+OW_WCHK-1(r14)
-    mov.b   r13, OW+OW_SM-1(r14)
-    cmp     r11, OW+OW_WE-2(r15)    ; we[j] >= wmin (< 2^16): kept
+8:  mov.b   #0x7f, OW+OW_WCHK-1(r14)
+    mov.b   r15, OW+OW_SM-1(r14)
+    mov.b   OW+OW_ORD-1(r14), r10   ; s[ord[j]].width >= wmin: kept
+    rla     r10
+    mov     r10, r9
+    rla     r10
+    add     r9, r10
+    add     r12, r10
+    cmp     r11, 4(r10)
     jlo     10f
-    sub     #-1, r12
-11: decd    r15
-    add     #-1, r14
+    sub     #-1, r13
+11: add     #-1, r14
     jnz     8b
-    cmp     #NONE, r13
+    cmp     #NONE, r15
     jeq     9f
-    clr     r12
-9:  pop     r10
+    clr     r13
+9:  mov     r13, r12
+    pop     r9
+    pop     r10
     ret
 10: mov.b   #DROPPED, OW+OW_SM-1(r14)
     jmp     11b
-5:  mov     #DROPPED, r13
-    jmp     7b
 
 /*
  * bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16):
- * R12 = a, R13 = b, R14 = w16 -> R12 (fastmath.c's steps). R10 = a, R9 = x8, R11 = rhi then
- * hi, R13 = rlo then lo, R15 = tol. Interrupts held off from the first product to the last
- * (about 60 cycles).
- * optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18.
+ * R12 = a, R13 = b, R14 = w16 -> R12: optical_width_core with R4 = a.
  */
     .section .text.optical_width_ok,"ax",@progbits
     .global optical_width_ok
     .type optical_width_ok,@function
 optical_width_ok:
-    push    r10
-    push    r9
-    mov     r12, r10
-    mov     0(r13), r12             ; x8 = the magnitude of b.x - a.x, 2^-8 m, capped
-    mov     2(r13), r15
-    sub     4(r10), r12
-    subc    6(r10), r15
-    tst     r15
+    push    r4
+    mov     r12, r4
+    call    #optical_width_core
+    pop     r4
+    rla.b   r12                     ; 0x80 (a misfit): C = 1
+    subc    r12, r12                ; C - 1: 0 for a misfit, -1 when it fits
+    and     #1, r12
+    ret
+
+/*
+ * O5's test for optical_width_ok and optical_unique (fastmath.c's steps), an internal entry:
+ * R4 = a (optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18), R13 = b,
+ * R14 = w16 -> R12 = 0 (fits) or 0x80 (a misfit). Clobbers R11..R15 only. R11 = x8 then rhi,
+ * hi; R13 = rlo then lo; R15 = tol. Interrupts held off from the first product to the last
+ * (about 70 cycles).
+ */
+    .section .text.optical_width_core,"ax",@progbits
+    .global optical_width_core
+    .type optical_width_core,@function
+optical_width_core:
+    mov     @r13+, r12              ; x8 = the magnitude of b.x - a.x, 2^-8 m, capped
+    mov     @r13+, r15
+    sub     4(r4), r12
+    subc    6(r4), r15              ; (no overflow within the coordinate limit: N^V = N)
     jge     1f
     inv     r12
     inv     r15
     sub     #-1, r12                ; (+1, carry as add)
     adc     r15
-1:  mov     #-1, r9
-    cmp     #0x0100, r15
-    jhs     2f
-    swpb    r12
-    mov.b   r12, r9
+1:  cmp     #0x0100, r15
+    jlo     2f
+    mov     #-1, r11
+    jmp     3f
+2:  swpb    r12
+    mov.b   r12, r11
     swpb    r15
-    bis     r15, r9
-2:  mov     4(r13), r12             ; y8
-    mov     6(r13), r15
-    sub     8(r10), r12
-    subc    10(r10), r15
-    tst     r15
+    bis     r15, r11
+3:  mov     @r13+, r12              ; y8
+    mov     @r13, r15
+    sub     8(r4), r12
+    subc    10(r4), r15
     jge     1f
     inv     r12
     inv     r15
     sub     #-1, r12
     adc     r15
 1:  cmp     #0x0100, r15
-    jhs     2f
-    swpb    r12
+    jlo     2f
+    mov     #-1, r12
+    jmp     3f
+2:  swpb    r12
     mov.b   r12, r12
     swpb    r15
     bis     r15, r12
-    jmp     3f
-2:  mov     #-1, r12
-3:
-    cmp     r9, r12                 ; o = max + min / 2, saturated
-    jhs     1f
-    xor     r12, r9
-    xor     r9, r12
-    xor     r12, r9
-1:  clrc
-    rrc     r9
-    add     r9, r12
-    jnc     2f
+3:  cmp     r11, r12                ; o = max + min / 2, saturated
+    jhs     4f
+    xor     r12, r11
+    xor     r11, r12
+    xor     r12, r11
+4:  clrc
+    rrc     r11
+    add     r11, r12
+    jnc     5f
     mov     #-1, r12
-2:  push    r2                      ; (one multiplier window for all the products)
+5:  push    r2                      ; (one multiplier window for all the products)
     dint
     mov     r12, r11                ; rhi = o + eps8, saturated
     mov     r12, &MPY               ; rlo = (o 58623) >> 16 - eps8, or 0
     mov     #58623, &OP2
-    add     12(r10), r11
-    jnc     3f
+    add     12(r4), r11
+    jnc     1f
     mov     #-1, r11
-3:  mov     &RESHI, r13
+1:  mov     &RESHI, r13
     mov     r11, &MPY               ; tol = tol8 + (rhi rel16) >> 16, saturated
-    mov     16(r10), &OP2
-    mov     &RESHI, r15
-    sub     12(r10), r13
-    jc      4f
+    mov     16(r4), &OP2
+    sub     12(r4), r13
+    jc      1f
     clr     r13
-4:  add     14(r10), r15
-    jnc     5f
+1:  mov     &RESHI, r15
+    add     14(r4), r15
+    jnc     1f
     mov     #-1, r15
-5:  sub     r15, r13                ; lo = rlo - tol, or 0
-    jc      6f
+1:  sub     r15, r13                ; lo = rlo - tol, or 0
+    jc      1f
     clr     r13
-6:  add     r15, r11                ; hi = rhi + tol, saturated
-    jnc     7f
+1:  add     r15, r11                ; hi = rhi + tol, saturated
+    jnc     1f
     mov     #-1, r11
-7:  cmp     #5216, r14
+1:  cmp     #5216, r14
     jhs     wd_wide
-    mov     r14, &MPY               ; p = lo w16, q = hi w16 (w16 stays in MPY)
+    mov     r14, &MPY               ; p = lo w16 (w16 stays in MPY for q)
     mov     r13, &OP2
     mov     &RESLO, r12
     mov     &RESHI, r13
-    mov     r11, &OP2
-    mov     &RESLO, r14
-    mov     &RESHI, r11
-    pop     r2
-    mov     r12, r9                 ; p - (p >> 5) > dk: false (p < 2^29: rra shifts in 0)
+    mov     r12, r14                ; p - (p >> 5) > dk: a misfit (p < 2^29: rra shifts in 0)
     mov     r13, r15
     rra     r15
-    rrc     r9
+    rrc     r14
     rra     r15
-    rrc     r9
+    rrc     r14
     rra     r15
-    rrc     r9
+    rrc     r14
     rra     r15
-    rrc     r9
+    rrc     r14
     rra     r15
-    rrc     r9
-    sub     r9, r12
+    rrc     r14
+    sub     r14, r12
     subc    r15, r13
-    cmp     r13, 2(r10)
-    jne     8f
-    cmp     r12, 0(r10)
-8:  jlo     wd_false
-    tst.b   18(r10)                 ; flat: only that bound
-    jnz     wd_true
-    cmp     2(r10), r11             ; q >= dk
-    jne     9f
-    cmp     0(r10), r14
-9:  jhs     wd_true
-wd_false:
-    clr     r12
-    pop     r9
-    pop     r10
+    cmp     r13, 2(r4)
+    jne     1f
+    cmp     r12, 0(r4)
+1:  jlo     wd_misfit
+    tst.b   18(r4)                  ; flat: only that bound
+    jnz     wd_fit
+    mov     r11, &OP2               ; q = hi w16 >= dk: fits
+    mov     &RESLO, r12
+    mov     &RESHI, r13
+    pop     r2
+    cmp     2(r4), r13
+    jne     1f
+    cmp     0(r4), r12
+1:  jhs     wd_fits
+    mov     #0x80, r12
     ret
-wd_true:
-    mov     #1, r12
-    pop     r9
-    pop     r10
+wd_misfit:
+    pop     r2
+    mov     #0x80, r12
+    ret
+wd_fit:
+    pop     r2
+wd_fits:
+    clr     r12
     ret
 wd_wide:                            ; w16 > 5215: lo 5215 <= dk + (dk >> 4)
     mov     r13, &MPY
     mov     #5215, &OP2
-    mov     &RESLO, r9
+    mov     &RESLO, r14
     mov     &RESHI, r11
     pop     r2
-    mov     0(r10), r12
-    mov     2(r10), r13
+    mov     0(r4), r12
+    mov     2(r4), r13
     clrc
     rrc     r13
     rrc     r12
@@ -1070,11 +1119,11 @@ wd_wide:                            ; w16 > 5215: lo 5215 <= dk + (dk >> 4)
     clrc
     rrc     r13
     rrc     r12
-    add     0(r10), r12
-    addc    2(r10), r13
-    cmp     r11, r13                ; s >= p: true
+    add     0(r4), r12
+    addc    2(r4), r13
+    cmp     r11, r13                ; s >= p: fits
     jne     1f
-    cmp     r9, r12
-1:  jhs     wd_true
-    jmp     wd_false
-
+    cmp     r14, r12
+1:  jhs     wd_fits
+    mov     #0x80, r12
+    ret

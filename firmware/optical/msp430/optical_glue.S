@@ -41,17 +41,42 @@
     .set DROPPED,  0xfd
 
 /*
- * void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
+ * bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
  * const optical_pose_t *approx, optical_width_t *wd): R12 = map, R13 = cfg, R14 = approx,
- * R15 = wd. optical_config_t: beacon_diameter 0, beacon_flat 4, window_pos 10, dist_tol 30,
- * dist_rel 34; optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18. The
- * product with interrupts held off (as fx's multiply helpers).
+ * R15 = wd -> R12. optical_config_t: beacon_diameter 0, beacon_flat 4, window_pos 10, dist_tol
+ * 30, dist_rel 34; optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18. A
+ * coordinate v lies within the limit when u = v + 2^29 - 1 < 2^30 - 1 (unsigned): u's high
+ * word hi + 0x1fff + (lo != 0) below 0x3fff, or equal to it with lo != 0. The product with
+ * interrupts held off (as fx's multiply helpers).
  */
     .section .text.optical_setup,"ax",@progbits
     .global optical_setup
     .type optical_setup,@function
 optical_setup:
-    mov     0(r12), &OW+OW_B
+    tst     r12                     ; the map: not NULL, 3..32 beacons
+    jz      8f
+    mov.b   2(r12), r11
+    cmp.b   #3, r11
+    jlo     8f
+    cmp.b   #33, r11
+    jhs     8f
+    cmp     #1, 0(r14)              ; approx x, y within the limit
+    mov     2(r14), r11
+    addc    #0x1fff, r11
+    cmp     #0x3fff, r11
+    jlo     1f
+    jne     8f
+    tst     0(r14)
+    jz      8f
+1:  cmp     #1, 4(r14)
+    mov     6(r14), r11
+    addc    #0x1fff, r11
+    cmp     #0x3fff, r11
+    jlo     1f
+    jne     8f
+    tst     4(r14)
+    jz      8f
+1:  mov     0(r12), &OW+OW_B
     mov.b   2(r12), &OW+OW_NB
     mov     0(r14), r12             ; x, y
     mov     r12, &OW+OW_X
@@ -125,6 +150,9 @@ optical_setup:
     mov.b   r11, r11
     mov     r12, 0(r15)
     mov     r11, 2(r15)
+    mov     #1, r12
+    ret
+8:  clr     r12
     ret
 
 /*
@@ -156,12 +184,14 @@ optical_fix_init:
     ret
 
 /*
- * void optical_sort(const optical_sighting_t *s): R12 = s. R13 = i, R14 = &th[i], R9 = n,
- * R10 = t, R15 = th[i - 1] (0 for i = 0: the largest so far). A sighting not below it is
- * placed at i; otherwise it is inserted (R11 = &th[j], R6 = j). While none has moved, the
- * buckets up to each one's start are filled as it is placed (R8 = 2^12 b, the start of the
- * next bucket b, R7 = &bstart[b], 0 when all 16 are set); after a move R8 = 1 and
- * optical_buckets does them.
+ * uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin): R12 = s, R13 = wmin ->
+ * R12 = the kept. R6 = i, R14 = &th[i], R9 = &th[n], R10 = t, R15 = th[i - 1] (0 for i = 0:
+ * the largest so far), R5 = kept, R4 = 0x7f (wchk). A sighting not below the largest so far
+ * is placed at i; otherwise it is inserted (R11 = &th[j], R9 = j, saved meanwhile). While none
+ * has moved, the buckets up to each one's start are filled as it is placed (R8 = 2^12 b, the
+ * start of the next bucket b, R7 = &bstart[b], 0 when all 16 are set); after a move R8 = 1
+ * and optical_buckets does them. O4's mark as it is placed: NONE when its width is wmin or
+ * more (counted), else DROPPED.
  */
     .section .text.optical_sort,"ax",@progbits
     .global optical_sort
@@ -172,53 +202,75 @@ optical_sort:
     push    r8
     push    r7
     push    r6
+    push    r5
+    push    r4
     mov.b   &OW+OW_N, r9
-    clr     r13
+    rla     r9
+    add     #OW+OW_TH, r9
+    clr     r6
+    clr     r5
+    mov     #0x7f, r4
     mov     #OW+OW_TH, r14
     clr     r15
     clr     r8
     mov     #OW+OW_BSTART, r7
-1:  cmp     r9, r13                 ; i < n
+    cmp     r9, r14                 ; (n = 0)
     jhs     9f
-    mov     @r12+, r11              ; t = (angle + 2^15) >> 16
+1:  mov     @r12+, r11              ; t = (angle + 2^15) >> 16
     mov     @r12+, r10
     rla     r11
     adc     r10
     cmp     r15, r10                ; below th[i - 1]: inserted
     jlo     20f
     mov     r10, 0(r14)
-    mov     @r12+, r11
-    mov     r11, OW_WE-OW_TH(r14)
-    mov.b   r13, OW+OW_ORD(r13)
     mov     r10, r15
-    tst     r7                      ; the buckets up to t's start at i
+    mov.b   r6, OW+OW_ORD(r6)
+    mov     @r12+, r11
+    mov.b   r4, OW+OW_WCHK(r6)
+    cmp     r13, r11                ; O4: narrower than wmin, dropped
+    jlo     30f
+    mov.b   #-1, OW+OW_SM(r6)       ; NONE
+    sub     #-1, r5
+3:  tst     r7                      ; the buckets up to t's start at i
     jz      5f
 4:  cmp     r8, r10
     jlo     5f
-    mov.b   r13, 0(r7)
-    inc     r7
+    mov.b   r6, 0(r7)
+    sub     #-1, r7
     add     #0x1000, r8
     jnz     4b
     clr     r7                      ; all 16 set
-5:  inc     r13
+5:  sub     #-1, r6
     incd    r14
-    jmp     1b
-20: mov     r14, r11                ; j = i; while j > 0 and th[j - 1] > t: move up
-    mov     r13, r6
-21: tst     r6
+    cmp     r9, r14                 ; i < n
+    jlo     1b
+    jmp     9f
+30: mov.b   #DROPPED, OW+OW_SM(r6)
+    jmp     3b
+20: push    r9                      ; j = i; while j > 0 and th[j - 1] > t: move up
+    mov     r14, r11
+    mov     r6, r9
+21: tst     r9
     jz      22f
     cmp     -2(r11), r10
     jhs     22f
     mov     -2(r11), 0(r11)
-    mov     OW_WE-OW_TH-2(r11), OW_WE-OW_TH(r11)
-    mov.b   OW+OW_ORD-1(r6), OW+OW_ORD(r6)
+    mov.b   OW+OW_ORD-1(r9), OW+OW_ORD(r9)
+    mov.b   OW+OW_SM-1(r9), OW+OW_SM(r9)
     decd    r11
-    add     #-1, r6
+    add     #-1, r9
     jmp     21b
 22: mov     r10, 0(r11)
     mov     @r12+, r10
-    mov     r10, OW_WE-OW_TH(r11)
-    mov.b   r13, OW+OW_ORD(r6)
+    mov.b   r6, OW+OW_ORD(r9)
+    mov.b   r4, OW+OW_WCHK(r6)
+    mov.b   #-1, OW+OW_SM(r9)       ; NONE, or DROPPED when narrower than wmin
+    cmp     r13, r10
+    jhs     23f
+    mov.b   #DROPPED, OW+OW_SM(r9)
+    jmp     24f
+23: sub     #-1, r5
+24: pop     r9
     mov     #1, r8                  ; (moved: the buckets afterwards)
     clr     r7
     jmp     5b
@@ -229,10 +281,13 @@ optical_sort:
 6:  cmp     #OW+OW_BSTART+16, r7
     jhs     8f
     clr.b   0(r7)
-    inc     r7
+    sub     #-1, r7
     jmp     6b
 7:  call    #optical_buckets
-8:  pop     r6
+8:  mov     r5, r12
+    pop     r4
+    pop     r5
+    pop     r6
     pop     r7
     pop     r8
     pop     r9
@@ -279,7 +334,8 @@ optical_buckets:
  * int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, int16_t *lohi):
  * R12 = wd, R13 = s, R14 = lohi (kept on the stack) -> R12 = the kept. R4 = wd, R5 = s,
  * R6 = n, R7 = kept, R8 = j, R9 = lo, R10 = hi (without lohi: narrowed all the same, and
- * dropped), R11 = k.
+ * dropped), R11 = k. O5 by optical_width_core (R4 = wd; it clobbers R11..R15 only). The
+ * cached verdict: c ^ k is 0 (fits) or 0x80 (a misfit) when c is k's.
  */
     .section .text.optical_unique,"ax",@progbits
     .global optical_unique
@@ -304,18 +360,17 @@ optical_unique:
     jz      1f
     mov     0(r14), r9
     mov     2(r14), r10
-1:  cmp     r6, r8                  ; j < n
-    jhs     9f
-    mov.b   OW+OW_SM(r8), r11       ; k
+1:  tst     r6                      ; (n = 0)
+    jz      9f
+2:  mov.b   OW+OW_SM(r8), r11       ; k
     cmp.b   #DROPPED, r11
     jhs     8f
     cmp.b   OW+OW_BM(r11), r8       ; bm[k] = j
     jne     7f
     mov.b   OW+OW_WCHK(r8), r12     ; c: the cached verdict when it is k's
-    mov.b   r12, r13
-    and.b   #0x7f, r13
-    cmp.b   r11, r13
-    jeq     3f
+    xor.b   r11, r12
+    rla.b   r12                     ; (C: bit 7, a misfit)
+    jz      3f
     mov     r11, r13                ; O5: &b[k], the width of s[ord[j]]
     rla     r13
     rla     r13
@@ -328,17 +383,12 @@ optical_unique:
     rla     r14
     add     r5, r14
     mov     4(r14), r14
-    mov     r4, r12
-    call    #optical_width_ok
-    mov.b   OW+OW_SM(r8), r11       ; (k again)
-    tst.b   r12
-    mov.b   r11, r12
-    jnz     2f
-    bis.b   #0x80, r12              ; a misfit
-2:  mov.b   r12, OW+OW_WCHK(r8)
-3:  tst.b   r12                     ; bit 7: a misfit
+    call    #optical_width_core
+    xor.b   OW+OW_SM(r8), r12       ; c = k | 0x80 for a misfit (N)
+    mov.b   r12, OW+OW_WCHK(r8)
     jn      7f
-    inc     r7
+    mov.b   r12, r11                ; (k)
+4:  sub     #-1, r7
     mov     r8, r13                 ; off = th[j] - psi[k], e = we[j]
     rla     r13
     rla     r11
@@ -346,14 +396,14 @@ optical_unique:
     sub     OW+OW_PSI(r11), r15
     mov     OW+OW_WE(r13), r14
     cmp     r15, r9                 ; off > lo and off - lo > e: lo = off - e
-    jge     4f
+    jge     5f
     mov     r15, r13
     sub     r9, r13
     cmp     r13, r14
-    jhs     4f
+    jhs     5f
     mov     r15, r9
     sub     r14, r9
-4:  cmp     r10, r15                ; off < hi and hi - off > e: hi = off + e
+5:  cmp     r10, r15                ; off < hi and hi - off > e: hi = off + e
     jge     8f
     mov     r10, r13
     sub     r15, r13
@@ -362,9 +412,12 @@ optical_unique:
     mov     r15, r10
     add     r14, r10
     jmp     8f
-7:  mov.b   #NONE, OW+OW_SM(r8)
-8:  inc     r8
-    jmp     1b
+3:  jc      7f                      ; (the cached verdict: a misfit, or kept)
+    jmp     4b
+7:  mov.b   #-1, OW+OW_SM(r8)       ; NONE
+8:  sub     #-1, r8
+    cmp     r6, r8                  ; j < n
+    jlo     2b
 9:  pop     r14
     tst     r14
     jz      1f
@@ -381,8 +434,9 @@ optical_unique:
     ret
 
 /*
- * void optical_gather(const optical_sighting_t *s): R12 = s. R13 = &sm[j + 1] (walked),
- * R10 = &sm[n], R14 = &pos[m], R15 = &ang[m], R11 and R9 the sighting's address, then j.
+ * void optical_gather(const optical_sighting_t *s, int8_t *ident): R12 = s, R13 = ident.
+ * R13 = &sm[j + 1] (walked), R8 = ident, R10 = &sm[n], R14 = &pos[m], R15 = &ang[m], R11 =
+ * sm[j], R9 = ord[j], then the sighting's address, then j; R7 = &ident[ord[j]].
  */
     .section .text.optical_gather,"ax",@progbits
     .global optical_gather
@@ -390,6 +444,9 @@ optical_unique:
 optical_gather:
     push    r10
     push    r9
+    push    r8
+    push    r7
+    mov     r13, r8
     mov     #OW+OW_SM, r13
     mov.b   &OW+OW_N, r10
     add     r13, r10
@@ -400,44 +457,30 @@ optical_gather:
     mov.b   @r13+, r11
     cmp.b   #DROPPED, r11
     jhs     1b
-    mov.b   OW_ORD-OW_SM-1(r13), r11 ; s + 6 ord[j]
-    rla     r11
-    mov     r11, r9
-    rla     r11
-    add     r9, r11
-    add     r12, r11
-    mov     0(r11), 0(r15)
-    mov     2(r11), 2(r15)
+    mov.b   OW_ORD-OW_SM-1(r13), r9 ; ident[ord[j]] = sm[j]
+    mov     r9, r7
+    add     r8, r7
+    mov.b   r11, 0(r7)
+    rla     r9                      ; s + 6 ord[j]
+    mov     r9, r11
+    rla     r9
+    add     r11, r9
+    add     r12, r9
+    mov     @r9, 0(r15)
+    mov     2(r9), 2(r15)
     add     #4, r15
     mov     r13, r9                 ; j
     sub     #OW+OW_SM+1, r9
     mov.b   r9, 0(r14)
-    inc     r14
+    sub     #-1, r14
     jmp     1b
 9:  sub     #OW+OW_POS, r14
     mov.b   r14, &OW+OW_M
+    pop     r7
+    pop     r8
     pop     r9
     pop     r10
     ret
-
-/*
- * void optical_ident(int8_t *ident): R12 = ident. R14 = &pos[i], R15 = &pos[m], R13 = j.
- */
-    .section .text.optical_ident,"ax",@progbits
-    .global optical_ident
-    .type optical_ident,@function
-optical_ident:
-    mov.b   &OW+OW_M, r15
-    add     #OW+OW_POS, r15
-    mov     #OW+OW_POS, r14
-1:  cmp     r15, r14
-    jhs     9f
-    mov.b   @r14+, r13
-    mov.b   OW+OW_ORD(r13), r11
-    add     r12, r11
-    mov.b   OW+OW_SM(r13), 0(r11)
-    jmp     1b
-9:  ret
 
 /*
  * int8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol): R12 = p,

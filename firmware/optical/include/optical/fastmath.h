@@ -70,7 +70,7 @@ typedef struct {
  * out), g[k] its window factor (optical_win), bm[k] the sighting it matched (NONE, MULTI).
  * Per sorted sighting j: th[j] its angle (2^-16 turn, ascending), lev[j] its parallax lever
  * (2^-8 m), sm[j] the beacon it matched (NONE, MULTI, DROPPED: left alone), we[j] the position
- * part of that match (before the first scan: the sighting's width, fix.c). cand holds the candidate
+ * part of that match. cand holds the candidate
  * pairs (sighting, beacon: two bytes each) of the last optical_expect_scan, nc of them (0xFF: more
  * than OPTICAL_MAX_CAND). The rest belongs to fix.c. The per-beacon arrays share their bytes with
  * the solve's (u.sv): identification is over before the identified angles are gathered.
@@ -155,12 +155,18 @@ uint8_t optical_first_scan(int16_t mid, uint16_t half);
 void optical_eval(int16_t mid, uint16_t half);
 
 /**
- * O4 (fix.c's threshold): every sighting j narrower than wmin = floor(@p dk / @p t8) (0xFFFF
- * when t8 = 0), its width in we[j] (2^-16 turn), is dropped: sm[j] = DROPPED, the others NONE;
- * wchk[j] = 0x7F (no O5 verdict yet). @p dk: the post diameter as optical_width_t.dk, @p t8
- * the range threshold in 2^-8 m. Returns the sightings kept.
+ * O4 (fix.c's threshold): the narrowest width kept, floor(@p dk / @p t8) (0xFFFF when t8 = 0),
+ * 2^-16 turn. @p dk: the post diameter as optical_width_t.dk, @p t8 the range threshold in
+ * 2^-8 m.
  */
-uint8_t optical_drop(uint32_t dk, uint32_t t8);
+uint32_t optical_wmin(uint32_t dk, uint32_t t8);
+
+/**
+ * O4's marks: every sorted sighting j narrower than @p wmin (optical_wmin), its width
+ * @p s[ord[j]].width (2^-16 turn), is dropped: sm[j] = DROPPED, the others NONE; wchk[j] = 0x7F
+ * (no O5 verdict yet). Returns the sightings kept.
+ */
+uint8_t optical_drop(const optical_sighting_t *s, uint32_t wmin);
 
 /** Window part min(ceil(l g / 256), 0x7FFF) of lever l (2^-8 m); 0x7FFF when g = 0xFFFF. */
 uint16_t optical_win(uint16_t l, uint16_t g);

@@ -10,6 +10,7 @@
 #ifndef OPTICAL_GLUE_H
 #define OPTICAL_GLUE_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "optical/fastmath.h"
@@ -20,13 +21,16 @@ extern "C" {
 #endif
 
 /**
- * optical_fix()'s work area and O5 arguments from its inputs: b, nb from @p map; x, y and
+ * optical_fix()'s argument check and its work area and O5 arguments from its inputs: false
+ * (nothing written) when @p map is NULL, map->n lies outside [3, OPTICAL_MAX_BEACONS] or
+ * approx's x or y outside (-OPTICAL_COORD_LIMIT, OPTICAL_COORD_LIMIT); else true and: b, nb
+ * from @p map; x, y and
  * head = (heading + 2^15) >> 16 from @p approx; eps8 = min(m8 + 2, 0xFFFF) with m8 =
  * min(ceil(window_pos / 2^8), 0xFFFF) (2^-8 m); @p wd: dk = (beacon_diameter 10430 mod 2^32)
  * >> 8, x, y as approx, eps8 = m8, tol8 = min(dist_tol >> 8, 0xFFFF), rel16 = min(dist_rel,
  * 0xFFFF) (both as uint32), flat = beacon_flat.
  */
-void optical_setup(const optical_map_t *map, const optical_config_t *cfg,
+bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *approx, optical_width_t *wd);
 
 /**
@@ -38,10 +42,10 @@ void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx);
 /**
  * The standing preparation (no latched poses): sightings @p s[0..n) (n = optical_work.n) by
  * rounded 16-bit angle t = (angle + 2^15) >> 16 into th[], ascending (insertion: equal angles
- * keep their input order), ord[j] the input index of th[j], we[j] its width; then the bucket
- * index (optical_buckets).
+ * keep their input order), ord[j] the input index of th[j]; the bucket index
+ * (optical_buckets); and O4's marks as optical_drop(@p s, @p wmin). Returns the sightings kept.
  */
-void optical_sort(const optical_sighting_t *s);
+uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin);
 
 /**
  * The bucket index of the sorted th[0..n): bstart[b] = the first j with th[j] >> 12 >= b, 0
@@ -63,12 +67,10 @@ int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, in
 
 /**
  * The identified: every sorted sighting j with sm[j] below OPTICAL_DROPPED, in order, into
- * pos[0..m) and its angle s[ord[j]].angle into u.sv.ang[0..m); m into optical_work.m.
+ * pos[0..m), its angle s[ord[j]].angle into u.sv.ang[0..m) and its beacon into the result's
+ * @p ident[ord[j]] = sm[j] (the others left alone); m into optical_work.m.
  */
-void optical_gather(const optical_sighting_t *s);
-
-/** The identified into @p ident (input order): ident[ord[pos[i]]] = sm[pos[i]], i < m. */
-void optical_ident(int8_t *ident);
+void optical_gather(const optical_sighting_t *s, int8_t *ident);
 
 /**
  * O6's plausibility of the fix @p p against the approximate pose @p ap: OPTICAL_E_JUMP when
