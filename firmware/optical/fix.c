@@ -5,8 +5,9 @@
  * of beacon k for sighting i is
  *     heading interval  +-  asin((eps + |c_i|) / r_k)  + margin
  * with eps the position uncertainty of the approximate pose, c_i the sighting's parallax
- * lever (vehicle moving) and r_k the beacon's range from the approximate position (its
- * reciprocal bounded from above cheaply, optical_gbound: at most 1.16 times too wide). A
+ * lever (vehicle moving) and r_k the beacon's range from the approximate position (bounded
+ * from below cheaply, and asin(x) from above by k (pi / 2) x, k = 2/3 where x <= 1/2, else 1:
+ * optical_expect_scan). A
  * sighting of beacon j then always lies in j's window, so a match that is unique both ways
  * (one beacon for the sighting, one sighting for the beacon) is safe. Every safe match shrinks
  * the heading interval (the true heading offset lies within its position part of its own
@@ -20,7 +21,8 @@
  * (0.7), and spare.
  *
  * Cost on the MSP430: the per-beacon work (expected angle, range bound, window) and the
- * window scans are the assembly kernels optical_expect and optical_scan (fastmath.h), and so
+ * window scans are the assembly kernels optical_first_scan / optical_expect_scan and
+ * optical_eval (fastmath.h), and so
  * are the glue's loops over the sightings (glue.h: defined in C below, msp430/optical_glue.S);
  * the precise fixed-point work is left to the selected triplet (triangulate.c).
  * docs/optical.md lists the measured cycles.
@@ -713,7 +715,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
      * and the first identification pass (O3). */
     W.gate8 = sat15(((uint32_t)threshold(&x, (uint8_t)kept) + (uint32_t)cfg->window_pos) >> 8);
     uint16_t h0 = half0(cfg);
-    if (optical_first_scan(0, h0)) /* (the marks as optical_drop left them) */
+    if (optical_first_scan(0, h0)) /* (O4 left every mark NONE or DROPPED) */
         return finish(out, OPTICAL_E_ARG);
     if (n < 3)
         return finish(out, OPTICAL_E_FEW);

@@ -740,16 +740,18 @@ TEST(ExpectScan, FirstScanAfterTheDropNeedsNoClearing)
                                                          map[rng() % w.nb].y - w.y) -
                                          w.head + rng() % 801u - 400u);
         std::sort(th.begin(), th.end());
+        static optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
         for (int j = 0; j < w.n; j++) {
             w.th[j] = th[j];
-            w.we[j] = (uint16_t)(rng() % 40u); // widths: O4 drops the narrow ones
+            w.ord[j] = (uint8_t)j;
+            s[j].width = (uint16_t)(rng() % 40u); // widths: O4 drops the narrow ones
         }
         for (int b = 0, j = 0; b < 16; b++) {
             while (j < w.n && (w.th[j] >> 12) < b)
                 j++;
             w.bstart[b] = j < w.n ? (uint8_t)j : 0;
         }
-        optical_drop(0x100000u, 0x8000u + rng() % 0x8000u);
+        optical_drop(s, optical_wmin(0x100000u, 0x8000u + rng() % 0x8000u));
         int16_t mid = (t & 1) ? (int16_t)(rng() % 1201u - 600) : 0;
         uint16_t half = (uint16_t)(rng() % ((t & 7) == 7 ? 0x7000u : 1200u));
         before = w;

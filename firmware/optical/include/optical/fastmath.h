@@ -140,8 +140,9 @@ extern optical_work_t optical_work;
 uint8_t optical_expect_scan(int16_t mid, uint16_t half);
 
 /**
- * optical_expect_scan() without clearing sm first: for marks as optical_drop() leaves them
- * (every sm[j] NONE or DROPPED), where the results are the same (optical_fix's first scan).
+ * optical_expect_scan() without clearing sm first: for marks as O4 leaves them (optical_drop()
+ * or glue.h's optical_sort(): every sm[j] NONE or DROPPED), where the results are the same
+ * (optical_fix's first scan).
  */
 uint8_t optical_first_scan(int16_t mid, uint16_t half);
 
