@@ -217,8 +217,12 @@ def stack_used(md_lines, lo, top):
     return top - low
 
 
-def merge_cycles(path, entries, images_dir, stack=None):
-    """Merge entries (by name) into the cycle report, under a lock (ctest runs in parallel)."""
+def merge_cycles(path, entries, images_dir, stack=None, source=None):
+    """Merge entries (by name) into the cycle report, under a lock (ctest runs in parallel).
+
+    Entries carry the image that measured them (`source`): a run replaces all of that image's
+    earlier entries, so an entry the image no longer prints does not linger in a reused build
+    directory."""
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     with open(path + ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
@@ -229,8 +233,11 @@ def merge_cycles(path, entries, images_dir, stack=None):
                     report = json.load(f)
             except (OSError, ValueError):
                 pass
-        by_name = {e["name"]: e for e in report.get("entries", [])}
+        by_name = {e["name"]: e for e in report.get("entries", [])
+                   if source is None or e.get("image") != source}
         for e in entries:
+            if source is not None:
+                e["image"] = source
             by_name[e["name"]] = e
         report["entries"] = [by_name[k] for k in sorted(by_name)]
         images = []
@@ -451,7 +458,8 @@ def main():
         if entries or stack:
             images_dir = args.images_dir or os.path.join(
                 os.path.dirname(os.path.abspath(args.cycles_json)), "images")
-            merge_cycles(args.cycles_json, entries, images_dir, stack)
+            merge_cycles(args.cycles_json, entries, images_dir, stack,
+                         os.path.splitext(name)[0])
             for e in entries:
                 st = f", stack {e['stack_bytes']} B" if "stack_bytes" in e else ""
                 print(f"  cycles {e['name']:<20} max {e['cycles_max']:>7}  mean "
