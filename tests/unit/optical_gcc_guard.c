@@ -7,7 +7,8 @@
  * base. Local pure-const analysis takes that for a NULL dereference (undefined behaviour),
  * stops scanning the block, never sees the store, and declares rotate() pure; the caller then
  * deletes the call as one without effect. fix.c's heading rotation (gather()) has this shape.
- * Built with cy_optical's compile options, this program must see the store.
+ * Built with the project's compile options (CY_GCC_WORKAROUNDS), this program must see the
+ * store.
  */
 #include <stdint.h>
 #include <stdio.h>
