@@ -12,21 +12,80 @@ optical_work_t optical_work;
 #define W (optical_work)
 
 #ifdef __MSP430__
-/* The assembly addresses the work area by these offsets (msp430/optical_fast.S). */
-_Static_assert(offsetof(optical_work_t, x) == 2 && offsetof(optical_work_t, head) == 10 &&
-                   offsetof(optical_work_t, nb) == 20 && offsetof(optical_work_t, th) == 24 &&
-                   offsetof(optical_work_t, lev) == 54 && offsetof(optical_work_t, we) == 84 &&
-                   offsetof(optical_work_t, sm) == 174 && offsetof(optical_work_t, bstart) == 189 &&
-                   offsetof(optical_work_t, wchk) == 220 && offsetof(optical_work_t, u) == 250 &&
-                   offsetof(optical_work_t, u.id.e) == 314 &&
-                   offsetof(optical_work_t, u.id.g) == 378 &&
-                   offsetof(optical_work_t, u.id.bm) == 442 &&
-                   offsetof(optical_work_t, u.id.cand) == 474 &&
-                   offsetof(optical_work_t, u.sv.frame) == 350,
-               "optical_work_t layout (optical_fast.S, optical_tri.S)");
-_Static_assert(offsetof(optical_tsol_t, l) == 16 && offsetof(optical_tsol_t, r) == 28 &&
-                   offsetof(optical_tsol_t, x) == 32 && sizeof optical_work.u.sv.frame >= 110,
-               "optical_tsol_t layout and frame size (optical_tri.S)");
+/* msp430/layout.h: the numbers the assembly (msp430/optical_*.S) works with. */
+#include "msp430/layout.h"
+_Static_assert(
+    offsetof(optical_work_t, b) == OW_B && offsetof(optical_work_t, x) == OW_X &&
+        offsetof(optical_work_t, y) == OW_Y && offsetof(optical_work_t, head) == OW_HEAD &&
+        offsetof(optical_work_t, eps8) == OW_EPS8 &&
+        offsetof(optical_work_t, lever8) == OW_LEVER8 &&
+        offsetof(optical_work_t, amax8) == OW_AMAX8 &&
+        offsetof(optical_work_t, gate8) == OW_GATE8 && offsetof(optical_work_t, nb) == OW_NB &&
+        offsetof(optical_work_t, n) == OW_N && offsetof(optical_work_t, nc) == OW_NC &&
+        offsetof(optical_work_t, m) == OW_M && offsetof(optical_work_t, th) == OW_TH &&
+        offsetof(optical_work_t, lev) == OW_LEV && offsetof(optical_work_t, we) == OW_WE &&
+        offsetof(optical_work_t, sm) == OW_SM && offsetof(optical_work_t, bstart) == OW_BSTART &&
+        offsetof(optical_work_t, ord) == OW_ORD && offsetof(optical_work_t, wchk) == OW_WCHK &&
+        offsetof(optical_work_t, pos) == OW_POS,
+    "layout.h: optical_work_t");
+_Static_assert(offsetof(optical_work_t, u.id.psi) == OW_PSI &&
+                   offsetof(optical_work_t, u.id.e) == OW_E &&
+                   offsetof(optical_work_t, u.id.g) == OW_G &&
+                   offsetof(optical_work_t, u.id.bm) == OW_BM &&
+                   offsetof(optical_work_t, u.id.cand) == OW_CAND &&
+                   offsetof(optical_work_t, u.sv.ang) == OW_ANG &&
+                   offsetof(optical_work_t, u.sv.frame) == OW_FRAME &&
+                   sizeof optical_work.u.sv.frame >= OW_FRAME_SIZE &&
+                   offsetof(optical_work_t, u.sv.v) == OW_SV_V &&
+                   offsetof(optical_work_t, u.sv.sc) == OW_SV_SC &&
+                   offsetof(optical_work_t, u.sv.ts) == OW_SV_TS,
+               "layout.h: optical_work_t.u");
+_Static_assert(offsetof(optical_tsol_t, off) == TSOL_OFF && offsetof(optical_tsol_t, w) == TSOL_W &&
+                   offsetof(optical_tsol_t, l) == TSOL_L && offsetof(optical_tsol_t, r) == TSOL_R &&
+                   offsetof(optical_tsol_t, x) == TSOL_X,
+               "layout.h: optical_tsol_t");
+_Static_assert(offsetof(optical_xy_t, x) == XY_X && offsetof(optical_xy_t, y) == XY_Y &&
+                   sizeof(optical_xy_t) == XY_SIZE && offsetof(optical_pose_t, x) == POSE_X &&
+                   offsetof(optical_pose_t, y) == POSE_Y &&
+                   offsetof(optical_pose_t, heading) == POSE_HEADING &&
+                   sizeof(optical_pose_t) == POSE_SIZE &&
+                   offsetof(optical_sighting_t, angle) == SIGHT_ANGLE &&
+                   offsetof(optical_sighting_t, width) == SIGHT_WIDTH &&
+                   sizeof(optical_sighting_t) == SIGHT_SIZE &&
+                   offsetof(optical_map_t, b) == MAP_B && offsetof(optical_map_t, n) == MAP_N,
+               "layout.h: optical_xy_t, optical_pose_t, optical_sighting_t, optical_map_t");
+_Static_assert(offsetof(optical_config_t, beacon_diameter) == CFG_DIAMETER &&
+                   offsetof(optical_config_t, beacon_flat) == CFG_FLAT &&
+                   offsetof(optical_config_t, window_pos) == CFG_WIN_POS &&
+                   offsetof(optical_config_t, dist_tol) == CFG_DIST_TOL &&
+                   offsetof(optical_config_t, dist_rel) == CFG_DIST_REL &&
+                   offsetof(optical_config_t, jump_max) == CFG_JUMP_MAX &&
+                   offsetof(optical_config_t, turn_max) == CFG_TURN_MAX,
+               "layout.h: optical_config_t");
+_Static_assert(offsetof(optical_width_t, dk) == WD_DK && offsetof(optical_width_t, x) == WD_X &&
+                   offsetof(optical_width_t, y) == WD_Y &&
+                   offsetof(optical_width_t, eps8) == WD_EPS8 &&
+                   offsetof(optical_width_t, tol8) == WD_TOL8 &&
+                   offsetof(optical_width_t, rel16) == WD_REL16 &&
+                   offsetof(optical_width_t, flat) == WD_FLAT,
+               "layout.h: optical_width_t");
+_Static_assert(offsetof(optical_tri_t, pose) == TRI_POSE &&
+                   offsetof(optical_tri_t, quality) == TRI_QUALITY &&
+                   offsetof(optical_fix_t, pose) == FIX_POSE &&
+                   offsetof(optical_fix_t, quality) == FIX_QUALITY &&
+                   offsetof(optical_fix_t, ident) == FIX_IDENT &&
+                   offsetof(optical_fix_t, n_ident) == FIX_N_IDENT &&
+                   offsetof(optical_fix_t, widened) == FIX_WIDENED &&
+                   OPTICAL_MAX_SIGHTINGS == MAX_SIGHTINGS && OPTICAL_MAX_BEACONS == MAX_BEACONS,
+               "layout.h: optical_tri_t, optical_fix_t, limits");
+_Static_assert(OPTICAL_E_DEGENERATE == E_DEGENERATE && OPTICAL_E_SINGULAR == E_SINGULAR &&
+                   OPTICAL_E_JUMP == E_JUMP && OPTICAL_E_TURN == E_TURN &&
+                   OPTICAL_E_DISAGREE == E_DISAGREE,
+               "layout.h: status codes");
+_Static_assert((MATCH_NONE & 0xFF) == OPTICAL_NONE && MATCH_MULTI == OPTICAL_MULTI &&
+                   MATCH_DROPPED == OPTICAL_DROPPED && MARGIN == OPTICAL_MARGIN &&
+                   MAX_CAND == OPTICAL_MAX_CAND,
+               "layout.h: match codes, margin, candidates");
 #endif
 
 uint16_t optical_win(uint16_t l, uint16_t g)

@@ -145,34 +145,6 @@ int8_t optical_rev_order(const optical_rev_t *rev, uint16_t counts_per_turn,
 
 /* ------------------------------------------------------------------ glue kernels */
 
-#ifdef __MSP430__
-/* msp430/optical_glue.S addresses the work area and the sightings by these offsets. */
-_Static_assert(offsetof(optical_work_t, n) == 21 && offsetof(optical_work_t, m) == 23 &&
-                   offsetof(optical_work_t, ord) == 205 && offsetof(optical_work_t, pos) == 235 &&
-                   offsetof(optical_work_t, u.id.psi) == 250 &&
-                   offsetof(optical_work_t, u.sv.ang) == 250 &&
-                   offsetof(optical_work_t, u.id.bm) == 442 && sizeof(optical_sighting_t) == 6 &&
-                   offsetof(optical_sighting_t, width) == 4 && sizeof(optical_xy_t) == 8,
-               "optical_work_t layout (optical_glue.S)");
-_Static_assert(offsetof(optical_fix_t, quality) == 12 && offsetof(optical_fix_t, ident) == 16 &&
-                   offsetof(optical_fix_t, n_ident) == 34 &&
-                   offsetof(optical_fix_t, widened) == 35 && sizeof(optical_pose_t) == 12 &&
-                   OPTICAL_MAX_SIGHTINGS == 15,
-               "optical_fix_t layout (optical_glue.S)");
-_Static_assert(offsetof(optical_config_t, beacon_flat) == 4 &&
-                   offsetof(optical_config_t, window_pos) == 10 &&
-                   offsetof(optical_config_t, dist_tol) == 30 &&
-                   offsetof(optical_config_t, dist_rel) == 34 &&
-                   offsetof(optical_width_t, eps8) == 12 && offsetof(optical_width_t, flat) == 18 &&
-                   offsetof(optical_work_t, eps8) == 12 && offsetof(optical_work_t, nb) == 20 &&
-                   offsetof(optical_map_t, n) == 2,
-               "optical_config_t, optical_width_t, optical_map_t layout (optical_glue.S)");
-_Static_assert(offsetof(optical_config_t, jump_max) == 38 &&
-                   offsetof(optical_config_t, turn_max) == 42 && OPTICAL_E_JUMP == 6 &&
-                   OPTICAL_E_TURN == 7 && OPTICAL_E_DISAGREE == 8,
-               "optical_config_t layout, status codes (optical_glue.S)");
-#endif
-
 #ifndef OPTICAL_ASM
 bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *approx, optical_width_t *wd)

@@ -20,25 +20,12 @@
  * too (msp430/optical_tri.S, OPTICAL_ASM), the same steps as the C below.
  */
 #include <stdbool.h>
-#include <stddef.h>
 
 #include "optical/fastmath.h"
 #include "optical/optical.h"
 
 /* The work memory (optical_fix's, in a part that is free while it triangulates). */
 #define T (optical_work.u.sv)
-
-#ifdef __MSP430__
-/* msp430/optical_tri.S addresses them by these offsets. */
-_Static_assert(offsetof(optical_work_t, u.sv.v) == 460 &&
-                   offsetof(optical_work_t, u.sv.sc) == 476 &&
-                   offsetof(optical_work_t, u.sv.ts) == 492 &&
-                   offsetof(optical_tri_t, quality) == 12,
-               "optical_work_t layout (optical_tri.S)");
-_Static_assert(offsetof(optical_work_t, sm) == 174 && offsetof(optical_work_t, pos) == 235 &&
-                   offsetof(optical_work_t, u.sv.ang) == 250 && sizeof(optical_xy_t) == 8,
-               "optical_work_t layout (optical_tri.S: optical_tri_take)");
-#endif
 
 #ifndef OPTICAL_ASM
 

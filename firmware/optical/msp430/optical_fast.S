@@ -7,48 +7,16 @@
  *
  * Registers as clang emits calls (TI EABI): arguments in R12..R15 (32-bit ones in pairs, R12
  * the low word), results in R12; R11..R15 may be clobbered, R4..R10 are preserved. The
- * 16 x 16 hardware multiplier (MPY 0x130, OP2 0x138, RESLO 0x13A, RESHI 0x13C) is used with
+ * 16 x 16 hardware multiplier (layout.h: MPY, OP2, RESLO, RESHI) is used with
  * interrupts held off (SR saved, restored by POP SR; the scan's loop restores the entry's GIE
  * bit by BIS) for at most about 100 cycles, as the compiler's and fx's multiply helpers do;
  * the instruction after DINT never touches it.
  * Cycle counts are mspdebug's: it charges the constant-generator immediates #1, #2, #4, #8 and
  * #-1 like memory operands (see firmware/fx/msp430/fx_trig.S).
+ * Structure offsets and sizes, match codes and the multiplier's registers come from layout.h
+ * (checked against the C in fastmath.c).
  */
-    .set MPY,   0x0130
-    .set OP2,   0x0138
-    .set RESLO, 0x013a
-    .set RESHI, 0x013c
-
-/* optical_work_t (fastmath.h; offsets checked by static assertions in fastmath.c) */
-    .set OW,        optical_work
-    .set OW_B,      0
-    .set OW_X,      2
-    .set OW_Y,      6
-    .set OW_HEAD,   10
-    .set OW_EPS8,   12
-    .set OW_LEVER8, 14
-    .set OW_AMAX8,  16
-    .set OW_GATE8,  18
-    .set OW_NB,     20
-    .set OW_N,      21
-    .set OW_NC,     22
-    .set OW_TH,     24
-    .set OW_LEV,    54
-    .set OW_WE,     84
-    .set OW_SM,     174
-    .set OW_BSTART, 189
-    .set OW_WCHK,   220
-    .set OW_PSI,    250
-    .set OW_E,      314
-    .set OW_G,      378
-    .set OW_BM,     442
-    .set OW_CAND,   474
-
-    .set NONE,     -1              ; (0xff in byte operations: the constant generator)
-    .set MULTI,    0xfe
-    .set DROPPED,  0xfd
-    .set MARGIN,   6
-    .set MAXCAND,  40
+#include "layout.h"
 
 /* The current window centre and half-width (optical_expect_scan, optical_eval). */
     .section .bss.optical_scan_args,"aw",@nobits
@@ -223,24 +191,24 @@ mark:
     mov     r15, OW+OW_WE(r13)
     mov     r4, r9
     rra     r9
-    cmp.b   #NONE, OW+OW_SM(r12)
+    cmp.b   #MATCH_NONE, OW+OW_SM(r12)
     jne     1f
     mov.b   r9, OW+OW_SM(r12)
     jmp     2f
-1:  mov.b   #MULTI, OW+OW_SM(r12)
-2:  cmp.b   #NONE, OW+OW_BM(r9)
+1:  mov.b   #MATCH_MULTI, OW+OW_SM(r12)
+2:  cmp.b   #MATCH_NONE, OW+OW_BM(r9)
     jne     3f
     mov.b   r12, OW+OW_BM(r9)
     ret
-3:  mov.b   #MULTI, OW+OW_BM(r9)
+3:  mov.b   #MATCH_MULTI, OW+OW_BM(r9)
     ret
 
 /*
  * Keep the pair (j, k) (optical_expect_scan): R12 = j, R4 = 2k, R8 = 2 nc (0x1fe: more than
- * MAXCAND pairs, none kept any more). Clobbers R9.
+ * MAX_CAND pairs, none kept any more). Clobbers R9.
  */
 keep:
-    cmp     #2*MAXCAND, r8
+    cmp     #2*MAX_CAND, r8
     jhs     1f
     mov.b   r12, OW+OW_CAND(r8)
     mov     r4, r9
@@ -304,10 +272,10 @@ clear_sm:
     tst     r14
     jz      3f
     mov     #OW+OW_SM, r15
-    mov     #DROPPED, r11
+    mov     #MATCH_DROPPED, r11
 2:  cmp.b   @r15+, r11
     jeq     4f
-    mov.b   #NONE, -1(r15)
+    mov.b   #MATCH_NONE, -1(r15)
 4:  add     #-1, r14
     jnz     2b
 3:  ret
@@ -590,17 +558,17 @@ es_walk:
     mov     r13, r11                ; R11 = j: marks, we[j] = e, the pair kept
     sub     #OW+OW_TH+2, r11
     rra     r11
-    cmp.b   #NONE, OW+OW_SM(r11)    ; sm[j]: k or MULTI (DROPPED: left alone)
+    cmp.b   #MATCH_NONE, OW+OW_SM(r11) ; sm[j]: k or MULTI (DROPPED: left alone)
     jne     es_pmulti
     mov.b   r7, OW+OW_SM(r11)
 es_pwe:
     mov     r15, OW_WE-OW_TH-2(r13) ; we[j] = e
     tst     r12
     jn      1f
-    mov     #MULTI, r12
+    mov     #MATCH_MULTI, r12
     jmp     2f
 1:  mov     r11, r12
-2:  cmp     #2*MAXCAND, r8          ; keep (cand, nc)
+2:  cmp     #2*MAX_CAND, r8         ; keep (cand, nc)
     jhs     es_pfull
     mov.b   r11, OW+OW_CAND(r8)
     mov.b   r7, OW+OW_CAND+1(r8)
@@ -692,16 +660,16 @@ es_far:                             ; beyond 2^23: the coordinate check
     bis     r9, 14(r1)
 es_gated:
     clr     OW+OW_E(r4)
-    mov.b   #NONE, OW+OW_BM(r7)
+    mov.b   #MATCH_NONE, OW+OW_BM(r7)
     jmp     es_next
 
-es_pfull:                           ; more than MAXCAND: nc = 0xff
+es_pfull:                           ; more than MAX_CAND: nc = 0xff
     mov     #0x1fe, r8
     jmp     es_wnext
 es_pmulti:                          ; sm[j] had a match: MULTI (DROPPED: left alone)
-    cmp.b   #DROPPED, OW+OW_SM(r11)
+    cmp.b   #MATCH_DROPPED, OW+OW_SM(r11)
     jeq     es_wnext
-    mov.b   #MULTI, OW+OW_SM(r11)
+    mov.b   #MATCH_MULTI, OW+OW_SM(r11)
     jmp     es_pwe
 
 /* R14 = bstart[R10 >> 12]: the first sighting in the bucket of the window's start lo. */
@@ -743,7 +711,7 @@ es_mov:                             ; moving: g, then each sighting's window
     jmp     4f
 5:  mov     #0xfffe, r11
 4:  mov     r11, OW+OW_G(r4)
-    mov.b   #NONE, OW+OW_BM(r7)
+    mov.b   #MATCH_NONE, OW+OW_BM(r7)
     mov     &OW+OW_AMAX8, r13       ; the widest window: the largest lever's, + half
     call    #win6
     add     &sc_half, r15
@@ -766,7 +734,7 @@ es_mov:                             ; moving: g, then each sighting's window
     jhs     32f
     cmp     r11, r9
     jlo     es_next
-    cmp.b   #DROPPED, OW+OW_SM(r12)
+    cmp.b   #MATCH_DROPPED, OW+OW_SM(r12)
     jeq     32f
     push    r9
     push    r14
@@ -783,7 +751,7 @@ es_mov:                             ; moving: g, then each sighting's window
     jnz     31b
     jmp     es_next
 es_all:                             ; that wide: every sighting
-    mov.b   #NONE, OW+OW_BM(r7)
+    mov.b   #MATCH_NONE, OW+OW_BM(r7)
 es_all2:
     mov.b   &OW+OW_N, r14
     tst     r14
@@ -791,7 +759,7 @@ es_all2:
     clr     r12
 35: mov     r12, r13
     add     r13, r13
-    cmp.b   #DROPPED, OW+OW_SM(r12)
+    cmp.b   #MATCH_DROPPED, OW+OW_SM(r12)
     jeq     36f
     push    r14
     call    #pair_test
@@ -919,7 +887,6 @@ optical_wmin:
  * sighting: NONE, or DROPPED too when wmin >= 2^16 (none kept: the count cleared). R14 = j + 1,
  * R13 = kept, R10 = &s[ord[j]] (R9 scratch).
  */
-    .set OW_ORD,    205             ; (optical_work_t.ord: static-asserted in fix.c)
     .section .text.optical_drop,"ax",@progbits
     .global optical_drop
     .type optical_drop,@function
@@ -927,10 +894,10 @@ optical_drop:
     push    r10
     push    r9
     mov     r13, r11
-    mov     #NONE, r15
+    mov     #MATCH_NONE, r15
     tst     r14
     jz      1f
-    mov     #DROPPED, r15
+    mov     #MATCH_DROPPED, r15
 1:  clr     r13
     mov.b   &OW+OW_N, r14
     tst     r14
@@ -943,19 +910,19 @@ optical_drop:
     rla     r10
     add     r9, r10
     add     r12, r10
-    cmp     r11, 4(r10)
+    cmp     r11, SIGHT_WIDTH(r10)
     jlo     10f
     sub     #-1, r13
 11: add     #-1, r14
     jnz     8b
-    cmp     #NONE, r15
+    cmp     #MATCH_NONE, r15
     jeq     9f
     clr     r13
 9:  mov     r13, r12
     pop     r9
     pop     r10
     ret
-10: mov.b   #DROPPED, OW+OW_SM-1(r14)
+10: mov.b   #MATCH_DROPPED, OW+OW_SM-1(r14)
     jmp     11b
 
 /*
@@ -977,10 +944,9 @@ optical_width_ok:
 
 /*
  * O5's test for optical_width_ok and optical_unique (fastmath.c's steps), an internal entry:
- * R4 = a (optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18), R13 = b,
- * R14 = w16 -> R12 = 0 (fits) or 0x80 (a misfit). Clobbers R11..R15 only. R11 = x8 then rhi,
- * hi; R13 = rlo then lo; R15 = tol. Interrupts held off from the first product to the last
- * (about 70 cycles).
+ * R4 = a (optical_width_t), R13 = b, R14 = w16 -> R12 = 0 (fits) or 0x80 (a misfit). Clobbers
+ * R11..R15 only. R11 = x8 then rhi, hi; R13 = rlo then lo; R15 = tol. Interrupts held off
+ * from the first product to the last (about 70 cycles).
  */
     .section .text.optical_width_core,"ax",@progbits
     .global optical_width_core
@@ -988,8 +954,8 @@ optical_width_ok:
 optical_width_core:
     mov     @r13+, r12              ; x8 = the magnitude of b.x - a.x, 2^-8 m, capped
     mov     @r13+, r15
-    sub     4(r4), r12
-    subc    6(r4), r15              ; (no overflow within the coordinate limit: N^V = N)
+    sub     WD_X(r4), r12
+    subc    WD_X+2(r4), r15         ; (no overflow within the coordinate limit: N^V = N)
     jge     1f
     inv     r12
     inv     r15
@@ -1005,8 +971,8 @@ optical_width_core:
     bis     r15, r11
 3:  mov     @r13+, r12              ; y8
     mov     @r13, r15
-    sub     8(r4), r12
-    subc    10(r4), r15
+    sub     WD_Y(r4), r12
+    subc    WD_Y+2(r4), r15
     jge     1f
     inv     r12
     inv     r15
@@ -1035,17 +1001,17 @@ optical_width_core:
     mov     r12, r11                ; rhi = o + eps8, saturated
     mov     r12, &MPY               ; rlo = (o 58623) >> 16 - eps8, or 0
     mov     #58623, &OP2
-    add     12(r4), r11
+    add     WD_EPS8(r4), r11
     jnc     1f
     mov     #-1, r11
 1:  mov     &RESHI, r13
     mov     r11, &MPY               ; tol = tol8 + (rhi rel16) >> 16, saturated
-    mov     16(r4), &OP2
-    sub     12(r4), r13
+    mov     WD_REL16(r4), &OP2
+    sub     WD_EPS8(r4), r13
     jc      1f
     clr     r13
 1:  mov     &RESHI, r15
-    add     14(r4), r15
+    add     WD_TOL8(r4), r15
     jnc     1f
     mov     #-1, r15
 1:  sub     r15, r13                ; lo = rlo - tol, or 0
@@ -1074,19 +1040,19 @@ optical_width_core:
     rrc     r14
     sub     r14, r12
     subc    r15, r13
-    cmp     r13, 2(r4)
+    cmp     r13, WD_DK+2(r4)
     jne     1f
-    cmp     r12, 0(r4)
+    cmp     r12, WD_DK(r4)
 1:  jlo     wd_misfit
-    tst.b   18(r4)                  ; flat: only that bound
+    tst.b   WD_FLAT(r4)             ; flat: only that bound
     jnz     wd_fit
     mov     r11, &OP2               ; q = hi w16 >= dk: fits
     mov     &RESLO, r12
     mov     &RESHI, r13
     pop     r2
-    cmp     2(r4), r13
+    cmp     WD_DK+2(r4), r13
     jne     1f
-    cmp     0(r4), r12
+    cmp     WD_DK(r4), r12
 1:  jhs     wd_fits
     mov     #0x80, r12
     ret

@@ -5,49 +5,19 @@
  * tests/vectors/optical_vectors.c checks them bit for bit on both worlds.
  *
  * Registers as clang emits calls (TI EABI): arguments in R12..R15, results in R12; R11..R15
- * may be clobbered, R4..R10 are preserved. optical_sighting_t is 6 bytes (angle 0, width 4),
- * optical_xy_t 8; the work area's offsets are static-asserted in fix.c and fastmath.c.
+ * may be clobbered, R4..R10 are preserved. Structure offsets and sizes, the multiplier's
+ * registers and the status codes come from layout.h (checked against the C in fastmath.c).
  * A binary angle rounded to 16 bits, (a + 2^15) >> 16, is its high word plus bit 15 of its low
  * word (RLA low, ADC high).
  */
-
-    .set MPY,   0x0130
-    .set OP2,   0x0138
-    .set RESLO, 0x013a
-    .set RESHI, 0x013c
-
-/* optical_work_t (fastmath.h) */
-    .set OW,        optical_work
-    .set OW_B,      0
-    .set OW_X,      2
-    .set OW_Y,      6
-    .set OW_HEAD,   10
-    .set OW_EPS8,   12
-    .set OW_NB,     20
-    .set OW_N,      21
-    .set OW_M,      23
-    .set OW_TH,     24
-    .set OW_WE,     84
-    .set OW_SM,     174
-    .set OW_BSTART, 189
-    .set OW_ORD,    205
-    .set OW_WCHK,   220
-    .set OW_POS,    235
-    .set OW_PSI,    250
-    .set OW_ANG,    250
-    .set OW_BM,     442
-
-    .set NONE,     0xff
-    .set DROPPED,  0xfd
+#include "layout.h"
 
 /*
  * bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
  * const optical_pose_t *approx, optical_width_t *wd): R12 = map, R13 = cfg, R14 = approx,
- * R15 = wd -> R12. optical_config_t: beacon_diameter 0, beacon_flat 4, window_pos 10, dist_tol
- * 30, dist_rel 34; optical_width_t: dk 0, x 4, y 8, eps8 12, tol8 14, rel16 16, flat 18. A
- * coordinate v lies within the limit when u = v + 2^29 - 1 < 2^30 - 1 (unsigned): u's high
- * word hi + 0x1fff + (lo != 0) below 0x3fff, or equal to it with lo != 0. The product with
- * interrupts held off (as fx's multiply helpers).
+ * R15 = wd -> R12. A coordinate v lies within the limit when u = v + 2^29 - 1 < 2^30 - 1
+ * (unsigned): u's high word hi + 0x1fff + (lo != 0) below 0x3fff, or equal to it with
+ * lo != 0. The product with interrupts held off (as fx's multiply helpers).
  */
     .section .text.optical_setup,"ax",@progbits
     .global optical_setup
@@ -55,48 +25,48 @@
 optical_setup:
     tst     r12                     ; the map: not NULL, 3..32 beacons
     jz      8f
-    mov.b   2(r12), r11
+    mov.b   MAP_N(r12), r11
     cmp.b   #3, r11
     jlo     8f
-    cmp.b   #33, r11
+    cmp.b   #MAX_BEACONS+1, r11
     jhs     8f
-    cmp     #1, 0(r14)              ; approx x, y within the limit
-    mov     2(r14), r11
+    cmp     #1, POSE_X(r14)         ; approx x, y within the limit
+    mov     POSE_X+2(r14), r11
     addc    #0x1fff, r11
     cmp     #0x3fff, r11
     jlo     1f
     jne     8f
-    tst     0(r14)
+    tst     POSE_X(r14)
     jz      8f
-1:  cmp     #1, 4(r14)
-    mov     6(r14), r11
+1:  cmp     #1, POSE_Y(r14)
+    mov     POSE_Y+2(r14), r11
     addc    #0x1fff, r11
     cmp     #0x3fff, r11
     jlo     1f
     jne     8f
-    tst     4(r14)
+    tst     POSE_Y(r14)
     jz      8f
-1:  mov     0(r12), &OW+OW_B
-    mov.b   2(r12), &OW+OW_NB
-    mov     0(r14), r12             ; x, y
+1:  mov     MAP_B(r12), &OW+OW_B
+    mov.b   MAP_N(r12), &OW+OW_NB
+    mov     POSE_X(r14), r12        ; x, y
     mov     r12, &OW+OW_X
-    mov     r12, 4(r15)
-    mov     2(r14), r12
+    mov     r12, WD_X(r15)
+    mov     POSE_X+2(r14), r12
     mov     r12, &OW+OW_X+2
-    mov     r12, 6(r15)
-    mov     4(r14), r12
+    mov     r12, WD_X+2(r15)
+    mov     POSE_Y(r14), r12
     mov     r12, &OW+OW_Y
-    mov     r12, 8(r15)
-    mov     6(r14), r12
+    mov     r12, WD_Y(r15)
+    mov     POSE_Y+2(r14), r12
     mov     r12, &OW+OW_Y+2
-    mov     r12, 10(r15)
-    mov     8(r14), r12             ; head
-    mov     10(r14), r11
+    mov     r12, WD_Y+2(r15)
+    mov     POSE_HEADING(r14), r12  ; head
+    mov     POSE_HEADING+2(r14), r11
     rla     r12
     adc     r11
     mov     r11, &OW+OW_HEAD
-    mov     10(r13), r12            ; m8 = ceil(window_pos / 2^8), saturated
-    mov     12(r13), r11
+    mov     CFG_WIN_POS(r13), r12   ; m8 = ceil(window_pos / 2^8), saturated
+    mov     CFG_WIN_POS+2(r13), r11
     mov     #-1, r14
     cmp     #0x0100, r11
     jhs     1f
@@ -109,13 +79,13 @@ optical_setup:
     inc     r14
     jnz     1f
     mov     #-1, r14
-1:  mov     r14, 12(r15)
+1:  mov     r14, WD_EPS8(r15)
     add     #2, r14                 ; eps8 = m8 + 2, saturated
     jnc     2f
     mov     #-1, r14
 2:  mov     r14, &OW+OW_EPS8
-    mov     30(r13), r12            ; tol8 = dist_tol >> 8, saturated
-    mov     32(r13), r11
+    mov     CFG_DIST_TOL(r13), r12  ; tol8 = dist_tol >> 8, saturated
+    mov     CFG_DIST_TOL+2(r13), r11
     mov     #-1, r14
     cmp     #0x0100, r11
     jhs     3f
@@ -123,21 +93,21 @@ optical_setup:
     swpb    r11
     mov.b   r12, r14
     bis     r11, r14
-3:  mov     r14, 14(r15)
-    mov     34(r13), r14            ; rel16 = dist_rel, saturated
-    tst     36(r13)
+3:  mov     r14, WD_TOL8(r15)
+    mov     CFG_DIST_REL(r13), r14  ; rel16 = dist_rel, saturated
+    tst     CFG_DIST_REL+2(r13)
     jz      4f
     mov     #-1, r14
-4:  mov     r14, 16(r15)
-    mov.b   4(r13), 18(r15)         ; flat
+4:  mov     r14, WD_REL16(r15)
+    mov.b   CFG_FLAT(r13), WD_FLAT(r15) ; flat
     push    r2                      ; dk = (D 10430 mod 2^32) >> 8
     dint
     nop
-    mov     0(r13), &MPY
+    mov     CFG_DIAMETER(r13), &MPY
     mov     #10430, &OP2
     mov     &RESLO, r12
     mov     &RESHI, r11
-    mov     2(r13), &MPY
+    mov     CFG_DIAMETER+2(r13), &MPY
     mov     #10430, &OP2
     add     &RESLO, r11
     pop     r2
@@ -148,8 +118,8 @@ optical_setup:
     and     #0xff00, r14
     bis     r14, r12
     mov.b   r11, r11
-    mov     r12, 0(r15)
-    mov     r11, 2(r15)
+    mov     r12, WD_DK(r15)
+    mov     r11, WD_DK+2(r15)
     mov     #1, r12
     ret
 8:  clr     r12
@@ -157,30 +127,30 @@ optical_setup:
 
 /*
  * void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx): R12 = out,
- * R13 = approx. optical_fix_t: pose 0, quality 12, ident 16..30, n_ident 34, widened 35.
+ * R13 = approx.
  */
     .section .text.optical_fix_init,"ax",@progbits
     .global optical_fix_init
     .type optical_fix_init,@function
 optical_fix_init:
-    mov     0(r13), 0(r12)
-    mov     2(r13), 2(r12)
-    mov     4(r13), 4(r12)
-    mov     6(r13), 6(r12)
-    mov     8(r13), 8(r12)
-    mov     10(r13), 10(r12)
+    mov     POSE_X(r13), FIX_POSE+POSE_X(r12)
+    mov     POSE_X+2(r13), FIX_POSE+POSE_X+2(r12)
+    mov     POSE_Y(r13), FIX_POSE+POSE_Y(r12)
+    mov     POSE_Y+2(r13), FIX_POSE+POSE_Y+2(r12)
+    mov     POSE_HEADING(r13), FIX_POSE+POSE_HEADING(r12)
+    mov     POSE_HEADING+2(r13), FIX_POSE+POSE_HEADING+2(r12)
     mov     #-1, r14
-    mov     r14, 12(r12)
-    mov     r14, 14(r12)
-    mov     r14, 16(r12)
-    mov     r14, 18(r12)
-    mov     r14, 20(r12)
-    mov     r14, 22(r12)
-    mov     r14, 24(r12)
-    mov     r14, 26(r12)
-    mov     r14, 28(r12)
-    mov.b   r14, 30(r12)
-    clr     34(r12)
+    mov     r14, FIX_QUALITY(r12)
+    mov     r14, FIX_QUALITY+2(r12)
+    mov     r14, FIX_IDENT(r12)
+    mov     r14, FIX_IDENT+2(r12)
+    mov     r14, FIX_IDENT+4(r12)
+    mov     r14, FIX_IDENT+6(r12)
+    mov     r14, FIX_IDENT+8(r12)
+    mov     r14, FIX_IDENT+10(r12)
+    mov     r14, FIX_IDENT+12(r12)
+    mov.b   r14, FIX_IDENT+MAX_SIGHTINGS-1(r12)
+    clr     FIX_N_IDENT(r12)        ; n_ident, widened
     ret
 
 /*
@@ -229,7 +199,7 @@ optical_sort:
     mov.b   r4, OW+OW_WCHK(r6)
     cmp     r13, r11                ; O4: narrower than wmin, dropped
     jlo     30f
-    mov.b   #-1, OW+OW_SM(r6)       ; NONE
+    mov.b   #MATCH_NONE, OW+OW_SM(r6)
     sub     #-1, r5
 3:  tst     r7                      ; the buckets up to t's start at i
     jz      5f
@@ -245,7 +215,7 @@ optical_sort:
     cmp     r9, r14                 ; i < n
     jlo     1b
     jmp     9f
-30: mov.b   #DROPPED, OW+OW_SM(r6)
+30: mov.b   #MATCH_DROPPED, OW+OW_SM(r6)
     jmp     3b
 20: push    r9                      ; j = i; while j > 0 and th[j - 1] > t: move up
     mov     r14, r11
@@ -264,10 +234,10 @@ optical_sort:
     mov     @r12+, r10
     mov.b   r6, OW+OW_ORD(r9)
     mov.b   r4, OW+OW_WCHK(r6)
-    mov.b   #-1, OW+OW_SM(r9)       ; NONE, or DROPPED when narrower than wmin
+    mov.b   #MATCH_NONE, OW+OW_SM(r9) ; or DROPPED when narrower than wmin
     cmp     r13, r10
     jhs     23f
-    mov.b   #DROPPED, OW+OW_SM(r9)
+    mov.b   #MATCH_DROPPED, OW+OW_SM(r9)
     jmp     24f
 23: sub     #-1, r5
 24: pop     r9
@@ -363,7 +333,7 @@ optical_unique:
 1:  tst     r6                      ; (n = 0)
     jz      9f
 2:  mov.b   OW+OW_SM(r8), r11       ; k
-    cmp.b   #DROPPED, r11
+    cmp.b   #MATCH_DROPPED, r11
     jhs     8f
     cmp.b   OW+OW_BM(r11), r8       ; bm[k] = j
     jne     7f
@@ -382,7 +352,7 @@ optical_unique:
     add     r15, r14
     rla     r14
     add     r5, r14
-    mov     4(r14), r14
+    mov     SIGHT_WIDTH(r14), r14
     call    #optical_width_core
     xor.b   OW+OW_SM(r8), r12       ; c = k | 0x80 for a misfit (N)
     mov.b   r12, OW+OW_WCHK(r8)
@@ -414,7 +384,7 @@ optical_unique:
     jmp     8f
 3:  jc      7f                      ; (the cached verdict: a misfit, or kept)
     jmp     4b
-7:  mov.b   #-1, OW+OW_SM(r8)       ; NONE
+7:  mov.b   #MATCH_NONE, OW+OW_SM(r8)
 8:  sub     #-1, r8
     cmp     r6, r8                  ; j < n
     jlo     2b
@@ -455,7 +425,7 @@ optical_gather:
 1:  cmp     r10, r13                ; j < n
     jhs     9f
     mov.b   @r13+, r11
-    cmp.b   #DROPPED, r11
+    cmp.b   #MATCH_DROPPED, r11
     jhs     1b
     mov.b   OW_ORD-OW_SM-1(r13), r9 ; ident[ord[j]] = sm[j]
     mov     r9, r7
@@ -501,8 +471,8 @@ optical_resid:
     mov     r12, r4
     mov     r13, r5
     mov     r14, r6
-    mov     8(r4), r10              ; a16(heading)
-    mov     10(r4), r9
+    mov     POSE_HEADING(r4), r10   ; a16(heading)
+    mov     POSE_HEADING+2(r4), r9
     rla     r10
     adc     r9
     clr     r7
@@ -521,14 +491,14 @@ optical_resid:
     rla     r10
     rla     r10
     add     &OW+OW_B, r10
-    mov     0(r10), r12             ; b - p
-    mov     2(r10), r13
-    sub     0(r4), r12
-    subc    2(r4), r13
-    mov     4(r10), r14
-    mov     6(r10), r15
-    sub     4(r4), r14
-    subc    6(r4), r15
+    mov     XY_X(r10), r12          ; b - p
+    mov     XY_X+2(r10), r13
+    sub     POSE_X(r4), r12
+    subc    POSE_X+2(r4), r13
+    mov     XY_Y(r10), r14
+    mov     XY_Y+2(r10), r15
+    sub     POSE_Y(r4), r14
+    subc    POSE_Y+2(r4), r15
     call    #optical_angle16
     sub     r9, r12
     mov     r7, r10                 ; - a16(ang[i])
@@ -551,7 +521,7 @@ optical_resid:
     jmp     2b
 8:  clr     r12                     ; OPTICAL_OK
     jmp     4f
-9:  mov     #8, r12                 ; OPTICAL_E_DISAGREE
+9:  mov     #E_DISAGREE, r12
 4:  pop     r4
     pop     r5
     pop     r6
@@ -564,8 +534,7 @@ optical_resid:
 /*
  * int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap,
  * const optical_config_t *cfg): R12 = p, R13 = ap, R14 = cfg -> R12. R11:R10 = jx (then |dh|),
- * R9:R8 = jy, R7:R6 = jump_max - jx - jy (then turn_max - |dh|). optical_config_t: jump_max
- * 38, turn_max 42.
+ * R9:R8 = jy, R7:R6 = jump_max - jx - jy (then turn_max - |dh|).
  */
     .section .text.optical_jump,"ax",@progbits
     .global optical_jump
@@ -576,28 +545,28 @@ optical_jump:
     push    r8
     push    r7
     push    r6
-    mov     0(r12), r10             ; jx = |p.x - ap.x|
-    mov     2(r12), r11
-    sub     0(r13), r10
-    subc    2(r13), r11
+    mov     POSE_X(r12), r10        ; jx = |p.x - ap.x|
+    mov     POSE_X+2(r12), r11
+    sub     POSE_X(r13), r10
+    subc    POSE_X+2(r13), r11
     tst     r11
     jge     1f
     inv     r10
     inv     r11
     inc     r10
     adc     r11
-1:  mov     4(r12), r8              ; jy = |p.y - ap.y|
-    mov     6(r12), r9
-    sub     4(r13), r8
-    subc    6(r13), r9
+1:  mov     POSE_Y(r12), r8         ; jy = |p.y - ap.y|
+    mov     POSE_Y+2(r12), r9
+    sub     POSE_Y(r13), r8
+    subc    POSE_Y+2(r13), r9
     tst     r9
     jge     2f
     inv     r8
     inv     r9
     inc     r8
     adc     r9
-2:  mov     38(r14), r6             ; jx > jump_max or jy > jump_max - jx: the root decides
-    mov     40(r14), r7
+2:  mov     CFG_JUMP_MAX(r14), r6   ; jx > jump_max or jy > jump_max - jx: the root decides
+    mov     CFG_JUMP_MAX+2(r14), r7
     sub     r10, r6
     subc    r11, r7
     jlo     3f
@@ -613,33 +582,33 @@ optical_jump:
     mov     r9, r15
     call    #fx_hypot
     pop     r14
-    mov     38(r14), r6             ; hypot > jump_max: a jump
-    mov     40(r14), r7
+    mov     CFG_JUMP_MAX(r14), r6   ; hypot > jump_max: a jump
+    mov     CFG_JUMP_MAX+2(r14), r7
     sub     r12, r6
     subc    r13, r7
     pop     r13
     pop     r12
     jlo     8f
-4:  mov     8(r12), r10             ; |heading - ap heading|
-    mov     10(r12), r11
-    sub     8(r13), r10
-    subc    10(r13), r11
+4:  mov     POSE_HEADING(r12), r10  ; |heading - ap heading|
+    mov     POSE_HEADING+2(r12), r11
+    sub     POSE_HEADING(r13), r10
+    subc    POSE_HEADING+2(r13), r11
     tst     r11
     jge     5f
     inv     r10
     inv     r11
     inc     r10
     adc     r11
-5:  mov     42(r14), r6             ; > turn_max: a turn
-    mov     44(r14), r7
+5:  mov     CFG_TURN_MAX(r14), r6   ; > turn_max: a turn
+    mov     CFG_TURN_MAX+2(r14), r7
     sub     r10, r6
     subc    r11, r7
     jlo     9f
     clr     r12                     ; OPTICAL_OK
     jmp     6f
-8:  mov     #6, r12                 ; OPTICAL_E_JUMP
+8:  mov     #E_JUMP, r12
     jmp     6f
-9:  mov     #7, r12                 ; OPTICAL_E_TURN
+9:  mov     #E_TURN, r12
 6:  pop     r6
     pop     r7
     pop     r8

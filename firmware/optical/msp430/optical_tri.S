@@ -12,35 +12,20 @@
  * pointers to two lists of pairs. Interrupts are held off around each dot (at most about 90
  * cycles).
  */
-    .set MPYS,  0x0132
-    .set MPY,   0x0130
-    .set MACS,  0x0136
-    .set OP2,   0x0138
-    .set RESLO, 0x013a
-    .set RESHI, 0x013c
-    .set SUMEXT, 0x013e
+#include "layout.h"
 
-/* frame: optical_work.u.sv.frame (offset asserted in fastmath.c) */
-    .set OW,    optical_work
-    .set FR,    350
-    .set F_Z,   FR+0            ; pairs -s2, c2, s2, s1, c1, -s1
-    .set F_B,   FR+24           ; b1x, b1y, b3x, b3y (scaled)
-    .set F_W,   FR+40           ; ax, cx, ay, cy, c1, c2
-    .set F_K,   FR+64           ; 4 ax, 4 cx, 4 cy, -4 ay; later the offsets' bound
-    .set F_U,   FR+80           ; u0, u1 (U^), k (K')
-    .set F_KN,  FR+92           ; K''
-    .set F_R,   FR+96           ; R'
-    .set F_T,   FR+100          ; T'
-    .set F_V,   FR+104          ; the offsets' pointer
-    .set F_SIG, FR+106          ; sigma (word)
-    .set F_SH,  FR+108          ; 12 - f - g - t (word)
-
-/* optical_tsol_t */
-    .set S_OFF, 0
-    .set S_W,   8
-    .set S_L,   16
-    .set S_R,   28
-    .set S_X,   32
+/* the kernels' frame in optical_work.u.sv.frame (OW_FRAME_SIZE bytes) */
+    .set F_Z,   OW_FRAME+0          ; pairs -s2, c2, s2, s1, c1, -s1
+    .set F_B,   OW_FRAME+24         ; b1x, b1y, b3x, b3y (scaled)
+    .set F_W,   OW_FRAME+40         ; ax, cx, ay, cy, c1, c2
+    .set F_K,   OW_FRAME+64         ; 4 ax, 4 cx, 4 cy, -4 ay; later the offsets' bound
+    .set F_U,   OW_FRAME+80         ; u0, u1 (U^), k (K')
+    .set F_KN,  OW_FRAME+92         ; K''
+    .set F_R,   OW_FRAME+96         ; R'
+    .set F_T,   OW_FRAME+100        ; T'
+    .set F_V,   OW_FRAME+104        ; the offsets' pointer
+    .set F_SIG, OW_FRAME+106        ; sigma (word)
+    .set F_SH,  OW_FRAME+108        ; 12 - f - g - t (word)
 
 /* R13:R12 -> the pair at address a: h = R13 + bit 15 of R12 (also left in R14), l = R12. */
     .macro  PUT a
@@ -326,7 +311,7 @@ tri_core_body:
     cmp     #0x0800, r7
     jhs     1f
     mov     &OW+F_V, r4
-    mov     #4, r12                 ; OPTICAL_E_DEGENERATE
+    mov     #E_DEGENERATE, r12
     mov     @r4, r13
     bis     2(r4), r13
     bis     4(r4), r13
@@ -457,8 +442,8 @@ tri_core_body:
     mov     #OW+F_K, r5
     mov     #OW+F_K+8, r6
     call    #dot2
-    mov     r12, S_L+4(r9)
-    mov     r13, S_L+6(r9)
+    mov     r12, TSOL_L+4(r9)
+    mov     r13, TSOL_L+6(r9)
     ; V = (s2, s1) (ax, cx), (s2, s1) (ay, cy): R7:R4 and R6:R5
     mov     #OW+F_Z+8, r5
     mov     #OW+F_W, r6
@@ -506,15 +491,15 @@ tri_core_body:
     sub     #1, r11
 5:  tst     r11
     jnz     4b
-    mov     r4, S_W(r9)
-    mov     r7, S_W+2(r9)
-    mov     r5, S_W+4(r9)
-    mov     r6, S_W+6(r9)
+    mov     r4, TSOL_W(r9)
+    mov     r7, TSOL_W+2(r9)
+    mov     r5, TSOL_W+4(r9)
+    mov     r6, TSOL_W+6(r9)
     PAIR    r4, r7, OW+F_U, r10
     PAIR    r5, r6, OW+F_U+4, r10
     ; K' = 16 K 2^(e - 4) within [-2^28, 2^28) (else beacon 2 lies beyond 2^31 lambda)
-    mov     S_L+4(r9), r12
-    mov     S_L+6(r9), r13
+    mov     TSOL_L+4(r9), r12
+    mov     TSOL_L+6(r9), r13
     mov     r8, r11
     sub     #4, r11
     call    #scale
@@ -524,8 +509,8 @@ tri_core_body:
     cmp     #0x2000, r14
     jhs     singular
     mov     r13, r7                 ; its sign from here
-    mov     r12, S_L+4(r9)
-    mov     r13, S_L+6(r9)
+    mov     r12, TSOL_L+4(r9)
+    mov     r13, TSOL_L+6(r9)
     PUT     OW+F_U+8
     bis     r12, r13
     tst     r13
@@ -535,13 +520,13 @@ tri_core_body:
     mov     #OW+F_U, r6
     call    #dot3s
     LSIGN
-    mov     r12, S_L(r9)
-    mov     r13, S_L+2(r9)
+    mov     r12, TSOL_L(r9)
+    mov     r13, TSOL_L+2(r9)
     mov     #OW+F_W+4, r5
     call    #dot3s
     LSIGN
-    mov     r12, S_L+8(r9)
-    mov     r13, S_L+10(r9)
+    mov     r12, TSOL_L+8(r9)
+    mov     r13, TSOL_L+10(r9)
     ; Q = |U^|^2 / 2^32 in [2^22, 2^25); R' = 2^(52 + g) / Q (recip_q in fastmath.c)
     mov     r6, r5                  ; (R6 = the pairs U as both lists)
     call    #dot2
@@ -634,12 +619,12 @@ tri_core_body:
     sub     r11, r8                 ; e - g
     mov     #12, r5                 ; 12 - g - f - t, for the moment in R5
     sub     r11, r5
-    mov     r12, S_R(r9)
-    mov     r13, S_R+2(r9)
+    mov     r12, TSOL_R(r9)
+    mov     r13, TSOL_R+2(r9)
     PUT     OW+F_R
     ; K'' = K' 2^f, |K''| in [2^29, 2^30)
-    mov     S_L+4(r9), r14
-    mov     S_L+6(r9), r15
+    mov     TSOL_L+4(r9), r14
+    mov     TSOL_L+6(r9), r15
     tst     r15
     jge     7f
     inv     r14
@@ -720,42 +705,42 @@ tri_core_body:
     ; w: U^ with the sign of K' (the direction to beacon 2)
     tst     r7
     jge     9f
-    mov     S_W(r9), r12
-    mov     S_W+2(r9), r13
+    mov     TSOL_W(r9), r12
+    mov     TSOL_W+2(r9), r13
     NEG
-    mov     r12, S_W(r9)
-    mov     r13, S_W+2(r9)
-    mov     S_W+4(r9), r12
-    mov     S_W+6(r9), r13
+    mov     r12, TSOL_W(r9)
+    mov     r13, TSOL_W+2(r9)
+    mov     TSOL_W+4(r9), r12
+    mov     TSOL_W+6(r9), r13
     NEG
-    mov     r12, S_W+4(r9)
-    mov     r13, S_W+6(r9)
+    mov     r12, TSOL_W+4(r9)
+    mov     r13, TSOL_W+6(r9)
 9:  sub     &OW+F_SIG, r8           ; x = e - g - sigma
-    mov.b   r8, S_X(r9)
+    mov.b   r8, TSOL_X(r9)
     ; l = (4 l1, K', 4 l3)
-    mov     S_L(r9), r12
-    mov     S_L+2(r9), r13
+    mov     TSOL_L(r9), r12
+    mov     TSOL_L+2(r9), r13
     rla     r12
     rlc     r13
     rla     r12
     rlc     r13
-    mov     r12, S_L(r9)
-    mov     r13, S_L+2(r9)
-    mov     S_L+8(r9), r12
-    mov     S_L+10(r9), r13
+    mov     r12, TSOL_L(r9)
+    mov     r13, TSOL_L+2(r9)
+    mov     TSOL_L+8(r9), r12
+    mov     TSOL_L+10(r9), r13
     rla     r12
     rlc     r13
     rla     r12
     rlc     r13
-    mov     r12, S_L+8(r9)
-    mov     r13, S_L+10(r9)
+    mov     r12, TSOL_L+8(r9)
+    mov     r13, TSOL_L+10(r9)
     clr     r12                     ; OPTICAL_OK
     jmp     tri_ret
 inconsistent:
     mov     #9, r12                 ; OPTICAL_E_INCONSISTENT
     jmp     tri_ret
 singular:
-    mov     #5, r12                 ; OPTICAL_E_SINGULAR
+    mov     #E_SINGULAR, r12
 tri_ret:
     ret
 
@@ -787,8 +772,8 @@ offset:
 5:  inv     r14
     inc     r14
     call    #shl
-6:  mov     r12, S_OFF(r4)
-    mov     r13, S_OFF+2(r4)
+6:  mov     r12, TSOL_OFF(r4)
+    mov     r13, TSOL_OFF+2(r4)
     clrc
 4:  ret
 
@@ -842,7 +827,7 @@ tri_quality_body:
     ; the ranges' l to 16 bits by a common shift sr: with ls = 16 - sr the left shifts that
     ; bring the largest |l| to 2^30 (at most 16), the high words of l 2^ls; x = s->x + sr - 19
     mov     r9, r13
-    add     #S_L, r13
+    add     #TSOL_L, r13
     clr     r14
     clr     r15
     mov     #3, r8
@@ -875,12 +860,12 @@ tri_quality_body:
 3:  cmp     #0x4000, r15
     jlo     5b
 4:  push    r8                      ; the three l 2^ls: their high words to the frame
-    mov     S_L(r9), r10
-    mov     S_L+2(r9), r11
-    mov     S_L+4(r9), r12
-    mov     S_L+6(r9), r13
-    mov     S_L+8(r9), r14
-    mov     S_L+10(r9), r15
+    mov     TSOL_L(r9), r10
+    mov     TSOL_L+2(r9), r11
+    mov     TSOL_L+4(r9), r12
+    mov     TSOL_L+6(r9), r13
+    mov     TSOL_L+8(r9), r14
+    mov     TSOL_L+10(r9), r15
     push    r9
     mov     r8, r9
     cmp     #8, r9
@@ -936,10 +921,10 @@ tri_quality_body:
     jnz     6b
 7:  pop     r9
     pop     r8
-    mov     r11, &OW+FR
-    mov     r13, &OW+FR+2
-    mov     r15, &OW+FR+4
-    mov.b   S_X(r9), r10
+    mov     r11, &OW+OW_FRAME
+    mov     r13, &OW+OW_FRAME+2
+    mov     r15, &OW+OW_FRAME+4
+    mov.b   TSOL_X(r9), r10
     sxt     r10
     sub     r8, r10
     sub     #3, r10
@@ -948,19 +933,19 @@ tri_quality_body:
     push    r2
     dint
     nop
-    mov     &OW+FR+4, &MPYS
+    mov     &OW+OW_FRAME+4, &MPYS
     mov     r4, &OP2
     mov     &RESHI, r10
     mov     r5, &OP2
     mov     &RESHI, r11
-    mov     &OW+FR, &MPYS
+    mov     &OW+OW_FRAME, &MPYS
     mov     r6, &OP2
     mov     &RESHI, r12
     mov     r7, &OP2
     mov     &RESHI, r13
     sub     r4, r6
     sub     r5, r7
-    mov     &OW+FR+2, &MPYS
+    mov     &OW+OW_FRAME+2, &MPYS
     mov     r6, &OP2
     mov     &RESHI, r14
     mov     r7, &OP2
@@ -1018,8 +1003,8 @@ tri_quality_body:
     mov     optical_sqrt_tab-16(r14), r12
     add     #0x8000, r12
     add     &RESHI, r12
-    mov     S_R(r9), r14            ; R' / 2^15
-    mov     S_R+2(r9), r15
+    mov     TSOL_R(r9), r14         ; R' / 2^15
+    mov     TSOL_R+2(r9), r15
     rla     r14
     rlc     r15
     mov     r12, &MPY               ; root 2^25 / 1000 / 2^16
@@ -1064,14 +1049,8 @@ q_out:
  * bearing (fx_atan2 of w) and the quality limit. R4 = B2, R5 = B2's angle, R9 = out,
  * R7:R6 = the quality; quality_max at 0(R1).
  */
-    .set T_V,   460                 ; optical_work.u.sv.v, .sc, .ts (triangulate.c asserts)
-    .set T_SC,  476
-    .set T_TS,  492
-    .set T_PB,  FR                  ; (in the kernels' frame until they run) the beacons'
-    .set T_PT,  FR+6                ; pointers in the given order, the angles' pointers
-    .set W_SM,  174                 ; optical_work.sm, .pos, .u.sv.ang
-    .set W_POS, 235
-    .set U_ANG, 250
+    .set T_PB,  OW_FRAME            ; (in the kernels' frame until they run) the beacons'
+    .set T_PT,  OW_FRAME+6          ; pointers in the given order, the angles' pointers
 
     .section .text.optical_triangulate,"ax",@progbits
     .global optical_triangulate
@@ -1087,9 +1066,9 @@ optical_triangulate:
     push    r15
     push    r14
     mov     r12, &OW+T_PB           ; the beacons' and the angles' pointers
-    add     #8, r12
+    add     #XY_SIZE, r12
     mov     r12, &OW+T_PB+2
-    add     #8, r12
+    add     #XY_SIZE, r12
     mov     r12, &OW+T_PB+4
     mov     r13, &OW+T_PT
     add     #4, r13
@@ -1190,88 +1169,88 @@ optical_triangulate:
     mov     @r15+, r12
     mov     @r15+, r13
     sub     @r4, r12
-    subc    2(r4), r13
-    mov     r12, &OW+T_V
-    mov     r13, &OW+T_V+2
+    subc    XY_X+2(r4), r13
+    mov     r12, &OW+OW_SV_V
+    mov     r13, &OW+OW_SV_V+2
     mov     @r15+, r12
     mov     @r15, r13
-    sub     4(r4), r12
-    subc    6(r4), r13
-    mov     r12, &OW+T_V+4
-    mov     r13, &OW+T_V+6
+    sub     XY_Y(r4), r12
+    subc    XY_Y+2(r4), r13
+    mov     r12, &OW+OW_SV_V+4
+    mov     r13, &OW+OW_SV_V+6
     mov     @r14+, r12
     mov     @r14+, r13
     sub     @r4, r12
-    subc    2(r4), r13
-    mov     r12, &OW+T_V+8
-    mov     r13, &OW+T_V+10
+    subc    XY_X+2(r4), r13
+    mov     r12, &OW+OW_SV_V+8
+    mov     r13, &OW+OW_SV_V+10
     mov     @r14+, r12
     mov     @r14, r13
-    sub     4(r4), r12
-    subc    6(r4), r13
-    mov     r12, &OW+T_V+12
-    mov     r13, &OW+T_V+14
+    sub     XY_Y(r4), r12
+    subc    XY_Y+2(r4), r13
+    mov     r12, &OW+OW_SV_V+12
+    mov     r13, &OW+OW_SV_V+14
     ; (s1, c1, s2, c2)
     mov     r6, r12
     mov     r7, r13
     call    #fx_sin
-    mov     r12, &OW+T_SC
-    mov     r13, &OW+T_SC+2
+    mov     r12, &OW+OW_SV_SC
+    mov     r13, &OW+OW_SV_SC+2
     mov     r6, r12
     mov     r7, r13
     call    #fx_cos
-    mov     r12, &OW+T_SC+4
-    mov     r13, &OW+T_SC+6
+    mov     r12, &OW+OW_SV_SC+4
+    mov     r13, &OW+OW_SV_SC+6
     mov     r10, r12
     mov     r8, r13
     call    #fx_sin
-    mov     r12, &OW+T_SC+8
-    mov     r13, &OW+T_SC+10
+    mov     r12, &OW+OW_SV_SC+8
+    mov     r13, &OW+OW_SV_SC+10
     mov     r10, r12
     mov     r8, r13
     call    #fx_cos
-    mov     r12, &OW+T_SC+12
-    mov     r13, &OW+T_SC+14
-    mov     #OW+T_V, r12
-    mov     #OW+T_SC, r13
-    mov     #OW+T_TS, r14
+    mov     r12, &OW+OW_SV_SC+12
+    mov     r13, &OW+OW_SV_SC+14
+    mov     #OW+OW_SV_V, r12
+    mov     #OW+OW_SV_SC, r13
+    mov     #OW+OW_SV_TS, r14
     push    r9                      ; (the kernels' bodies keep no register)
     push    r5
     push    r4
     call    #tri_core_body
     tst     r12
     jnz     .Ltr_pop
-    mov     #OW+T_V, r12
-    mov     #OW+T_TS, r13
+    mov     #OW+OW_SV_V, r12
+    mov     #OW+OW_SV_TS, r13
     call    #tri_quality_body
     pop     r4
     pop     r5
     pop     r9
     mov     r12, r6
     mov     r13, r7
-    mov     r12, 12(r9)
-    mov     r13, 14(r9)
+    mov     r12, TRI_QUALITY(r9)
+    mov     r13, TRI_QUALITY+2(r9)
     mov     @r4+, r12               ; the position: B2 + off
     mov     @r4+, r13
-    add     &OW+T_TS, r12
-    addc    &OW+T_TS+2, r13
-    mov     r12, 0(r9)
-    mov     r13, 2(r9)
+    add     &OW+OW_SV_TS+TSOL_OFF, r12
+    addc    &OW+OW_SV_TS+TSOL_OFF+2, r13
+    mov     r12, TRI_POSE+POSE_X(r9)
+    mov     r13, TRI_POSE+POSE_X+2(r9)
     mov     @r4+, r12
     mov     @r4, r13
-    add     &OW+T_TS+4, r12
-    addc    &OW+T_TS+6, r13
-    mov     r12, 4(r9)
-    mov     r13, 6(r9)
-    mov     &OW+T_TS+12, r12        ; O10: atan2(w1, w0) - theta(B2)
-    mov     &OW+T_TS+14, r13
-    mov     &OW+T_TS+8, r14
-    mov     &OW+T_TS+10, r15
+    add     &OW+OW_SV_TS+TSOL_OFF+4, r12
+    addc    &OW+OW_SV_TS+TSOL_OFF+6, r13
+    mov     r12, TRI_POSE+POSE_Y(r9)
+    mov     r13, TRI_POSE+POSE_Y+2(r9)
+    mov     &OW+OW_SV_TS+TSOL_W+4, r12 ; O10: atan2(w1, w0) - theta(B2)
+    mov     &OW+OW_SV_TS+TSOL_W+6, r13
+    mov     &OW+OW_SV_TS+TSOL_W, r14
+    mov     &OW+OW_SV_TS+TSOL_W+2, r15
     call    #fx_atan2
     sub     @r5+, r12
     subc    @r5, r13
-    mov     r12, 8(r9)
-    mov     r13, 10(r9)
+    mov     r12, TRI_POSE+POSE_HEADING(r9)
+    mov     r13, TRI_POSE+POSE_HEADING+2(r9)
     clr     r12                     ; quality > quality_max: OPTICAL_E_SINGULAR
     cmp     r7, 2(r1)
     jlo     .Ltr_sing
@@ -1279,7 +1258,7 @@ optical_triangulate:
     cmp     r6, 0(r1)
     jhs     .Ltr_ret
 .Ltr_sing:
-    mov     #5, r12
+    mov     #E_SINGULAR, r12
     jmp     .Ltr_ret
 .Ltr_pop:
     pop     r4
@@ -1287,10 +1266,10 @@ optical_triangulate:
     pop     r9
     jmp     .Ltr_none
 .Ltr_degen:
-    mov     #4, r12                 ; OPTICAL_E_DEGENERATE
+    mov     #E_DEGENERATE, r12
 .Ltr_none:
-    mov     #-1, 12(r9)             ; quality: none
-    mov     #-1, 14(r9)
+    mov     #-1, TRI_QUALITY(r9)    ; quality: none
+    mov     #-1, TRI_QUALITY+2(r9)
 .Ltr_ret:
     add     #4, r1
     pop     r4
@@ -1325,10 +1304,10 @@ optical_tri_take:
     mov     r11, r10
     rla     r10
     rla     r10
-    add     #OW+U_ANG, r10
+    add     #OW+OW_ANG, r10
     mov     r10, 6(r15)
-    mov.b   OW+W_POS(r11), r11
-    mov.b   OW+W_SM(r11), r11
+    mov.b   OW+OW_POS(r11), r11
+    mov.b   OW+OW_SM(r11), r11
     rla     r11
     rla     r11
     rla     r11
