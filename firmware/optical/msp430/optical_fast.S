@@ -34,23 +34,17 @@ oct_b:
     .short  0, 16385, 32769, 16384, 1, 49152, 32768, 49153
 
 /*
- * The octant's arctangent (octant() in fastmath.c; es_octant, inside optical_expect_scan's
- * loop): R12 = u in [2^15, 2^16), R14 = v <= u, R11 = flags (2 swapped, 4 dx < 0, 8 dy < 0)
- * -> R12 = the angle (2^-16 turn), R13 = r (2^30 / u), R14 = 2i (i <= 63). Clobbers R15.
- * Interrupts held off (the three products). The ratio's product v r holds q = (v r) >> 14
- * as its bits 14..29: i = q >> 10 is RESHI's high byte, the fraction q << 6 RESHI's low byte
- * and RESLO's top two bits.
+ * OCTANT_ATAN sat, one: the octant's arctangent (octant() in fastmath.c), one copy of the
+ * steps expanded in optical_angle16's a16_oct and in optical_expect_scan's loop (es_octant),
+ * so that the static stack analysis sees two plain functions: R12 = u in [2^15, 2^16), R14 =
+ * v <= u, R11 = flags (2 swapped, 4 dx < 0, 8 dy < 0) -> R12 = the angle (2^-16 turn), R13 =
+ * r (2^30 / u), R14 = 2i (i <= 63). Clobbers R15. Interrupts must be held off (the three
+ * products). The ratio's product v r holds q = (v r) >> 14 as its bits 14..29: i = q >> 10
+ * is RESHI's high byte, the fraction q << 6 RESHI's low byte and RESLO's top two bits.
+ * @p sat: the caller's out-of-line saturated ratio (R12 = 0xffc0, R14 = 126, then a jump
+ * back to @p one, the label before the arctangent's product).
  */
-    .section .text.optical_octant,"ax",@progbits
-/* optical_angle16's octant: es_octant's steps (optical_expect_scan's loop holds its own copy),
- * interrupts held off around its products. */
-a16_octant:
-    push    r2
-    dint
-    call    #a16_oct
-    pop     r2
-    ret
-a16_oct:
+.macro OCTANT_ATAN sat, one
     mov     r12, r13                ; u mod 2^9 times the step 2^7: the step times u << 7
     and     #0x01ff, r13
     mov     r13, &MPY
@@ -67,7 +61,7 @@ a16_oct:
     mov     r13, &OP2
     mov     &RESHI, r12
     cmp     #0x4000, r12
-    jhs     a16_osat
+    jhs     \sat
     mov     &RESLO, r15
     swpb    r12                     ; 2 (q >> 10)
     mov.b   r12, r14
@@ -76,7 +70,7 @@ a16_oct:
     swpb    r15
     and     #0x00c0, r15
     bis     r15, r12
-a16_o1:
+\one:
     mov     r12, &MPY
     mov     optical_atan_tab(r14), r12
     mov     optical_atan_tab+2(r14), r15
@@ -89,6 +83,19 @@ a16_o1:
     rra     r12
     xor     oct_m(r11), r12         ; unfold
     add     oct_b(r11), r12
+.endm
+
+    .section .text.optical_octant,"ax",@progbits
+/* optical_angle16's octant: OCTANT_ATAN (optical_expect_scan's loop expands it too),
+ * interrupts held off around its products. */
+a16_octant:
+    push    r2
+    dint
+    call    #a16_oct
+    pop     r2
+    ret
+a16_oct:
+    OCTANT_ATAN a16_osat, a16_o1
     ret
 a16_osat:
     mov     #0xffc0, r12
@@ -476,44 +483,7 @@ es_beacon:
     rla     r10
 7:  dint                            ; (the caller's GIE on the frame)
 es_octant:                          ; the octant's arctangent: R12 angle, R13 r, R14 2i
-    mov     r12, r13                ; u mod 2^9 times the step 2^7: the step times u << 7
-    and     #0x01ff, r13
-    mov     r13, &MPY
-    mov     r12, r15                ; 2 (u >> 9): the tables - 128 based
-    swpb    r15
-    and     #0x00fe, r15
-    mov     optical_recip_d_tab-128(r15), &OP2 ; (RT[i] - RT[i+1]) 2^7
-    mov     optical_recip_tab-128(r15), r13
-    mov     &RESLO, r15             ; r = RT[i] - RESHI - the rounding bit (carry: its inverse)
-    inv     r15
-    rla     r15
-    subc    &RESHI, r13
-    mov     r14, &MPY               ; q = (v r) >> 14, saturated
-    mov     r13, &OP2
-    mov     &RESHI, r12
-    cmp     #0x4000, r12
-    jhs     es_osat
-    mov     &RESLO, r15
-    swpb    r12                     ; 2 (q >> 10)
-    mov.b   r12, r14
-    rla     r14
-    and     #0xff00, r12            ; f = q << 6
-    swpb    r15
-    and     #0x00c0, r15
-    bis     r15, r12
-es_o1:
-    mov     r12, &MPY
-    mov     optical_atan_tab(r14), r12
-    mov     optical_atan_tab+2(r14), r15
-    sub     r12, r15                ; AT[i+1] - AT[i]
-    mov     r15, &OP2
-    mov     &RESLO, r15             ; a = AT[i] + RESHI + the rounding bit, 2^-18 turn
-    rla     r15
-    addc    &RESHI, r12             ; (the table holds + 2: a >> 2 rounds; a <= 32770, C = 0)
-    rrc     r12
-    rra     r12
-    xor     oct_m(r11), r12         ; unfold
-    add     oct_b(r11), r12
+    OCTANT_ATAN es_osat, es_o1
     cmp     4(r1), r9               ; a window with k = 2/3
     jlo     es_wk1
     sub     &OW+OW_HEAD, r12        ; psi
