@@ -56,6 +56,14 @@ static void field(const char *label, uint32_t v)
     cy_print_hex32(v);
 }
 
+/* A pose's fields, as field() prints them. */
+static void pose_fields(const optical_pose_t *p)
+{
+    field("x", (uint32_t)p->x);
+    field("y", (uint32_t)p->y);
+    field("h", p->heading);
+}
+
 static void config(uint8_t variant, optical_config_t *cfg)
 {
     optical_config_default(cfg);
@@ -133,9 +141,7 @@ static void fixes(void)
         int8_t st = optical_fix(&map, &cfg, &ap, sight, (uint8_t)n, latched, &fix);
         cy_print(" st ");
         cy_print_dec(st);
-        field("x", (uint32_t)fix.pose.x);
-        field("y", (uint32_t)fix.pose.y);
-        field("h", fix.pose.heading);
+        pose_fields(&fix.pose);
         field("q", fix.quality);
         cy_print(" used");
         for (uint8_t k = 0; k < 3; k++) {
@@ -849,9 +855,7 @@ static void reflectors(void)
         cy_print_dec(v);
         cy_print(" st ");
         cy_print_dec(st);
-        field("x", (uint32_t)r.pose.x);
-        field("y", (uint32_t)r.pose.y);
-        field("h", r.pose.heading);
+        pose_fields(&r.pose);
         cy_print(" first ");
         cy_print_dec(r.first);
         cy_print(" cand ");
@@ -960,9 +964,7 @@ static void triangulations(void)
         cy_print_dec(t);
         cy_print(" ");
         cy_print_dec(st);
-        field("x", (uint32_t)r.pose.x);
-        field("y", (uint32_t)r.pose.y);
-        field("h", r.pose.heading);
+        pose_fields(&r.pose);
         field("q", r.quality);
         cy_println();
     }

@@ -33,6 +33,17 @@ oct_m:
 oct_b:
     .short  0, 16385, 32769, 16384, 1, 49152, 32768, 49153
 
+/* BUCKET_START: R14 = lo -> R14 = bstart[lo >> 12], the first sighting of lo's 1/16 turn. */
+.macro BUCKET_START
+    swpb    r14
+    mov.b   r14, r14
+    rra     r14
+    rra     r14
+    rra     r14
+    rra     r14
+    mov.b   OW+OW_BSTART(r14), r14
+.endm
+
 /*
  * OCTANT_ATAN sat, one: the octant's arctangent (octant() in fastmath.c), one copy of the
  * steps expanded in optical_angle16's a16_oct and in optical_expect_scan's loop (es_octant),
@@ -508,13 +519,7 @@ es_stand:                           ; standing: rel <= span is the window test i
     add     r9, r9
     add     10(r1), r9
     mov     r10, r14                ; j = bstart[lo >> 12]
-    swpb    r14
-    mov.b   r14, r14
-    rra     r14
-    rra     r14
-    rra     r14
-    rra     r14
-    mov.b   OW+OW_BSTART(r14), r14
+    BUCKET_START
     mov     r14, r13                ; R13 = &th[j], R14 = j - n (counted up to 0)
     add     r13, r13
     add     #OW+OW_TH, r13
@@ -645,13 +650,7 @@ es_pmulti:                          ; sm[j] had a match: MULTI (DROPPED: left al
 /* R14 = bstart[R10 >> 12]: the first sighting in the bucket of the window's start lo. */
 es_bucket:
     mov     r10, r14
-    swpb    r14
-    mov.b   r14, r14
-    rra     r14
-    rra     r14
-    rra     r14
-    rra     r14
-    mov.b   OW+OW_BSTART(r14), r14
+    BUCKET_START
     ret
 
 es_wide:
