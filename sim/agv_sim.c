@@ -748,8 +748,14 @@ int main(int argc, char **argv)
         pts[i].nsub = 0;
     }
     static main_board_config_t mc; /* the board keeps it by reference */
-    mc.beacons = beacons;
-    mc.n_beacons = (uint8_t)S.sc.world.n_beacons;
+    static optical_xy8_t beacons8[OPTICAL_MAX_BEACONS];
+    if (!optical_map_compile(&mc.map, beacons, (uint8_t)S.sc.world.n_beacons, beacons8)) {
+        snprintf(err, sizeof err,
+                 "beacons: %zu of them; the main board needs 3..%d within +-128 m of one "
+                 "point (a site of at most 256 m by 256 m)",
+                 S.sc.world.n_beacons, OPTICAL_MAX_BEACONS);
+        die_input(err);
+    }
     mc.path = pts;
     mc.n_path = (uint8_t)S.sc.n_path;
     mc.start = dpose(S.sc.start_x, S.sc.start_y, S.sc.start_heading);

@@ -48,6 +48,21 @@ def main():
            f"#define MISSION_N_BEACONS {len(b)}u",
            "#define MISSION_BEACONS \\"]
     out.append("    { " + ", ".join(f"{{{q16(x['x'])}l, {q16(x['y'])}l}}" for x in b) + " }")
+    # The compiled map as optical_map_compile() makes it: the origin the centre of the bounding
+    # box floored to whole metres, each beacon floor((b - origin) / 2^8) within 16 bits.
+    org = []
+    for c in ("x", "y"):
+        cs = [q16(x[c]) for x in b]
+        o = (min(cs) + ((max(cs) - min(cs)) >> 1)) & ~0xFFFF
+        if max(cs) - o >= 1 << 23 or o - min(cs) > 1 << 23:
+            sys.exit(f"gen_mission: {a.scenario}: the beacons must fit within +-128 m of one "
+                     "point")
+        org.append(o)
+    out.append(f"#define MISSION_ORIGIN_X {org[0]}l")
+    out.append(f"#define MISSION_ORIGIN_Y {org[1]}l")
+    out.append("#define MISSION_BEACONS8 \\")
+    out.append("    { " + ", ".join(f"{{{(q16(x['x']) - org[0]) >> 8}, {(q16(x['y']) - org[1]) >> 8}}}"
+                                    for x in b) + " }")
     out.append(f"#define MISSION_N_PATH {len(p)}u")
     out.append("#define MISSION_PATH \\")
     out.append("    { " + ", ".join(

@@ -31,7 +31,6 @@ enum { POSE_IDLE = 0, POSE_WAIT_ACK, POSE_WAIT_REPLY };
 static struct {
     /* configuration (by reference: a constant in flash on the target) */
     const main_board_config_t *cfg;
-    optical_map_t map;
     /* modules */
     optical_capture_t cap;
     drive_ds_t ds;
@@ -336,7 +335,8 @@ static __attribute__((noinline)) void fix_finish(void)
      * and the nav board applies the fix to that latch. */
     mb.approx = mb.latched[mb.n - 1];
     centre_and_sort(order);
-    int8_t st = optical_fix(&mb.map, &mb.cfg->optical, &mb.approx, s, mb.n, mb.latched, &mb.fix);
+    int8_t st =
+        optical_fix(&mb.cfg->map, &mb.cfg->optical, &mb.approx, s, mb.n, mb.latched, &mb.fix);
     fix_done(st, s, mb.n);
 }
 
@@ -477,13 +477,11 @@ static bool due(uint32_t now, uint32_t deadline)
 
 drive_status_t main_board_init(const main_board_config_t *cfg)
 {
-    if (!cfg || !cfg->path || !cfg->beacons || cfg->n_path == 0 ||
-        cfg->n_path > MAIN_BOARD_MAX_PATH || cfg->n_beacons < 3 ||
-        cfg->n_beacons > OPTICAL_MAX_BEACONS || cfg->counts_per_turn == 0)
+    if (!cfg || !cfg->path || !cfg->map.b || !cfg->map.b8 || cfg->n_path == 0 ||
+        cfg->n_path > MAIN_BOARD_MAX_PATH || cfg->map.n < 3 || cfg->map.n > OPTICAL_MAX_BEACONS ||
+        cfg->counts_per_turn == 0)
         return DRIVE_ERR_PARAM;
     mb.cfg = cfg;
-    mb.map.b = cfg->beacons;
-    mb.map.n = cfg->n_beacons;
 
     optical_capture_init(&mb.cap);
     hal_capture_init(HAL_CAPTURE_INDEX, on_index, &mb.cap);

@@ -35,8 +35,7 @@ extern "C" {
 
 /** What the board is told before a run (the base station's download, seed 5.1 step 1). */
 typedef struct {
-    const optical_xy_t *beacons; /**< the beacon map, 3..OPTICAL_MAX_BEACONS */
-    uint8_t n_beacons;
+    optical_map_t map; /**< the beacon map, compiled (optical_map_compile) */
     /** Primary points with their speeds, prepared in place (the board writes each point's
      * nsub and reads the points while it drives): the storage must outlive the run, and
      * holding it is the caller's choice (RAM is 2 KB: 18 bytes a point). */

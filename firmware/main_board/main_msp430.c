@@ -12,13 +12,13 @@
 #include "mission_builtin.h"
 
 static const optical_xy_t beacons[MISSION_N_BEACONS] = MISSION_BEACONS;
+static const optical_xy8_t beacons8[MISSION_N_BEACONS] = MISSION_BEACONS8;
 /* RAM: the board prepares the points in place. */
 static drive_path_point_t path[MISSION_N_PATH] = MISSION_PATH;
 
 /* The download, a constant in flash (the board keeps it by reference). */
 static const main_board_config_t cfg = {
-    .beacons = beacons,
-    .n_beacons = MISSION_N_BEACONS,
+    .map = {beacons, MISSION_N_BEACONS, beacons8, MISSION_ORIGIN_X, MISSION_ORIGIN_Y},
     .path = path,
     .n_path = MISSION_N_PATH,
     .start = MISSION_START,

@@ -26,7 +26,8 @@ _Static_assert(
         offsetof(optical_work_t, lev) == OW_LEV && offsetof(optical_work_t, we) == OW_WE &&
         offsetof(optical_work_t, sm) == OW_SM && offsetof(optical_work_t, bstart) == OW_BSTART &&
         offsetof(optical_work_t, ord) == OW_ORD && offsetof(optical_work_t, wchk) == OW_WCHK &&
-        offsetof(optical_work_t, pos) == OW_POS,
+        offsetof(optical_work_t, pos) == OW_POS && offsetof(optical_work_t, b8) == OW_B8 &&
+        offsetof(optical_work_t, ox) == OW_OX && offsetof(optical_work_t, oy) == OW_OY,
     "layout.h: optical_work_t");
 _Static_assert(offsetof(optical_work_t, u.id.psi) == OW_PSI &&
                    offsetof(optical_work_t, u.id.e) == OW_E &&
@@ -126,13 +127,14 @@ static uint16_t octant(uint16_t u, uint16_t v, uint8_t flags, angle_parts_t *p)
      * step times the fraction u << 7 mod 2^16), q = 2^16 v / u */
     uint16_t i = (uint16_t)((u >> 9) - 64u), f, d, a;
     p->r = (uint16_t)(optical_recip_tab[i] -
-                      (((uint32_t)optical_recip_d_tab[i] * (u & 0x1FFu) + 0x8000u) >> 16));
+                      (((uint32_t)optical_recip_d_tab[i] * (u & 0x1FFu)) >> 16));
     uint16_t q = sat16(((uint32_t)v * p->r) >> 14);
     i = (uint16_t)(q >> 10);
     f = (uint16_t)(q << 6);
     d = (uint16_t)(optical_atan_tab[i + 1u] - optical_atan_tab[i]);
-    /* 2^-18 turn, plus the 2 of the table: rounded to 2^-16 turn */
-    a = (uint16_t)((optical_atan_tab[i] + (((uint32_t)d * f + 0x8000u) >> 16)) >> 2);
+    /* 2^-18 turn (the step's product truncated), plus the 2 of the table: rounded to
+     * 2^-16 turn */
+    a = (uint16_t)((optical_atan_tab[i] + (((uint32_t)d * f) >> 16)) >> 2);
     p->i = i;
     if (flags & 1u)
         a = (uint16_t)(16384u - a);
@@ -165,12 +167,6 @@ uint16_t optical_angle16(int32_t dx, int32_t dy)
     }
     angle_parts_t p;
     return octant((uint16_t)ax, (uint16_t)ay, flags, &p);
-}
-
-/* -OPTICAL_COORD_LIMIT <= v < OPTICAL_COORD_LIMIT (2^29): the high word + 0x2000 below 0x4000. */
-static bool coord_ok(int32_t v)
-{
-    return (uint32_t)v + 0x20000000u < 0x40000000u;
 }
 
 static void clear_sm(void)
@@ -217,25 +213,31 @@ uint8_t optical_expect_scan(int16_t mid, uint16_t half)
     return optical_first_scan(mid, half);
 }
 
+/* floor(v / 2^8) within [-2^15, 2^15) into *v8, else false */
+static bool to8(int32_t v, int16_t *v8)
+{
+    if ((uint32_t)v + 0x00800000u > 0x00FFFFFFu)
+        return false;
+    *v8 = (int16_t)(uint16_t)((uint32_t)v >> 8);
+    return true;
+}
+
 uint8_t optical_first_scan(int16_t mid, uint16_t half)
 {
-    uint8_t bad = 0;
+    int16_t px, py; /* the position in the compiled map */
+    if (!to8((int32_t)((uint32_t)W.x - (uint32_t)W.ox), &px) ||
+        !to8((int32_t)((uint32_t)W.y - (uint32_t)W.oy), &py))
+        return 1;
     for (uint8_t k = 0; k < W.nb; k++)
         W.u.id.bm[k] = OPTICAL_NONE;
     W.nc = 0;
     for (uint8_t k = 0; k < W.nb; k++) {
-        const optical_xy_t *b = &W.b[k];
-        bad |= !coord_ok(b->x) || !coord_ok(b->y);
-        /* The offset floored to 2^-8 m (within 128 m, else gated out). */
-        int32_t dx = (int32_t)((uint32_t)b->x - (uint32_t)W.x);
-        int32_t dy = (int32_t)((uint32_t)b->y - (uint32_t)W.y);
+        /* The offset in 2^-8 m: a difference of two values in [-2^15, 2^15), its magnitude
+         * below 2^16 and its sign that of the exact difference. */
+        int32_t x8 = (int32_t)W.b8[k].x - px, y8 = (int32_t)W.b8[k].y - py;
+        uint16_t ax = (uint16_t)(x8 < 0 ? -x8 : x8);
+        uint16_t ay = (uint16_t)(y8 < 0 ? -y8 : y8);
         W.u.id.e[k] = 0;
-        if ((uint32_t)dx + 0x00800000u > 0x00FFFFFFu || (uint32_t)dy + 0x00800000u > 0x00FFFFFFu)
-            continue;
-        int16_t x8 = (int16_t)(uint16_t)((uint32_t)dx >> 8),
-                y8 = (int16_t)(uint16_t)((uint32_t)dy >> 8);
-        uint16_t ax = (uint16_t)(x8 < 0 ? 0u - (uint16_t)x8 : (uint16_t)x8);
-        uint16_t ay = (uint16_t)(y8 < 0 ? 0u - (uint16_t)y8 : (uint16_t)y8);
         if (ax > W.gate8 || ay > W.gate8)
             continue;
         uint8_t flags = (uint8_t)((x8 < 0 ? 2u : 0u) | (y8 < 0 ? 4u : 0u));
@@ -304,7 +306,7 @@ uint8_t optical_first_scan(int16_t mid, uint16_t half)
             W.nc++;
         }
     }
-    return bad;
+    return 0;
 }
 
 uint32_t optical_wmin(uint32_t dk, uint32_t t8)

@@ -29,6 +29,7 @@
  */
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "optical/fastmath.h"
 #include "optical/glue.h"
@@ -99,6 +100,42 @@ static bool coords_ok(fx_q16_t x, fx_q16_t y)
     /* |v| < limit  <=>  v + limit - 1 < 2 limit - 1, unsigned */
     const uint32_t l = (uint32_t)OPTICAL_COORD_LIMIT;
     return (uint32_t)x + (l - 1u) < 2u * l - 1u && (uint32_t)y + (l - 1u) < 2u * l - 1u;
+}
+
+/* ------------------------------------------------------------------ map */
+
+bool optical_map_compile(optical_map_t *map, const optical_xy_t *b, uint8_t n, optical_xy8_t *b8)
+{
+    if (map == NULL || b == NULL || b8 == NULL || n < 3 || n > OPTICAL_MAX_BEACONS)
+        return false;
+    int32_t lo[2] = {INT32_MAX, INT32_MAX}, hi[2] = {INT32_MIN, INT32_MIN};
+    for (uint8_t k = 0; k < n; k++) {
+        if (!coords_ok(b[k].x, b[k].y))
+            return false;
+        int32_t v[2] = {b[k].x, b[k].y};
+        for (uint8_t c = 0; c < 2; c++) {
+            lo[c] = v[c] < lo[c] ? v[c] : lo[c];
+            hi[c] = v[c] > hi[c] ? v[c] : hi[c];
+        }
+    }
+    /* the centre of the bounding box, floored to whole metres */
+    int32_t o[2];
+    for (uint8_t c = 0; c < 2; c++) {
+        int32_t mid = lo[c] + (int32_t)(((uint32_t)hi[c] - (uint32_t)lo[c]) >> 1);
+        o[c] = (int32_t)((uint32_t)mid & ~(uint32_t)(FX_Q16_ONE - 1));
+        if (hi[c] - o[c] >= OPTICAL_MAP_REACH || o[c] - lo[c] > OPTICAL_MAP_REACH)
+            return false;
+    }
+    for (uint8_t k = 0; k < n; k++) { /* floor((b - o) / 2^8), in [-2^15, 2^15) */
+        b8[k].x = (int16_t)(uint16_t)((uint32_t)(b[k].x - o[0]) >> 8);
+        b8[k].y = (int16_t)(uint16_t)((uint32_t)(b[k].y - o[1]) >> 8);
+    }
+    map->b = b;
+    map->n = n;
+    map->b8 = b8;
+    map->ox = o[0];
+    map->oy = o[1];
+    return true;
 }
 
 /* ------------------------------------------------------------------ revolution */
@@ -672,6 +709,9 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     ctx_t x;
     if (n > OPTICAL_MAX_SIGHTINGS || !optical_setup(map, cfg, approx, &x.wd))
         return finish(out, OPTICAL_E_ARG);
+    W.b8 = map->b8;
+    W.ox = map->ox;
+    W.oy = map->oy;
     x.map = map;
     x.cfg = cfg;
     x.ap = approx;

@@ -379,6 +379,33 @@ std::vector<int> select_ref(const std::vector<uint32_t> &ang)
     return id;
 }
 
+// The compiled form (optical_map_t.b8) of the first @p n beacons of @p map for the kernels
+// that read it from the work area: the origin the position floored to 2^8 (Q16 m).
+void compile_work(optical_work_t &w, const optical_xy_t *map, int n)
+{
+    static optical_xy8_t b8[OPTICAL_MAX_BEACONS];
+    w.ox = (int32_t)((uint32_t)w.x & ~0xFFu);
+    w.oy = (int32_t)((uint32_t)w.y & ~0xFFu);
+    for (int k = 0; k < n; k++) {
+        b8[k].x = (int16_t)((map[k].x - w.ox) >> 8);
+        b8[k].y = (int16_t)((map[k].y - w.oy) >> 8);
+    }
+    w.b8 = b8;
+}
+
+// A compiled map of @p m (storage in @p b8).
+optical_map_t compiled(const std::vector<optical_xy_t> &m, std::vector<optical_xy8_t> &b8,
+                       int n = -1)
+{
+    b8.resize(m.size());
+    optical_map_t map;
+    bool ok = optical_map_compile(&map, m.data(), (uint8_t)m.size(), b8.data());
+    EXPECT_TRUE(ok);
+    if (n >= 0)
+        map.n = (uint8_t)n;
+    return map;
+}
+
 TEST(Select, SeedCasesAndRandomAgainstReference)
 {
     auto run = [](const std::vector<double> &deg) {
@@ -673,12 +700,13 @@ TEST(ExpectScan, WindowsBoundTheArcsineTightly)
             double r = 0.3 * std::pow(333.0, (rng() % 10000) / 10000.0);
             double a = (rng() % 100000) * kTau / 100000.0;
             map[k] = q16(from_q16(w.x, w.y) + V2(r * std::cos(a), r * std::sin(a)));
+            compile_work(w, map, k + 1);
         }
         ASSERT_EQ(optical_expect_scan(0, 0), 0);
         for (int k = 0; k < OPTICAL_MAX_BEACONS; k++) {
-            // the kernel's offsets, floored to 2^-8 m
-            double x8 = std::floor((double)(map[k].x - w.x) / 256.0);
-            double y8 = std::floor((double)(map[k].y - w.y) / 256.0);
+            // the kernel's offsets: the compiled beacon minus the position floored alike
+            double x8 = w.b8[k].x - std::floor((double)(w.x - w.ox) / 256.0);
+            double y8 = w.b8[k].y - std::floor((double)(w.y - w.oy) / 256.0);
             double r8 = std::hypot(x8, y8);
             uint16_t e = w.u.id.e[k];
             ASSERT_NE(e, 0) << "beacon " << k << " gated";
@@ -733,6 +761,7 @@ TEST(ExpectScan, FirstScanAfterTheDropNeedsNoClearing)
         for (int k = 0; k < w.nb; k++)
             map[k] = {w.x + (int32_t)(rng() % 0x00400000u) - 0x00200000,
                       w.y + (int32_t)(rng() % 0x00400000u) - 0x00200000};
+        compile_work(w, map, w.nb);
         std::vector<uint16_t> th(w.n);
         for (auto &v : th) // half of them near a beacon's direction
             v = (rng() & 1) ? (uint16_t)rng()
@@ -929,7 +958,8 @@ FixOut run_fix(const Scene &sc, const optical_config_t &cfg,
     std::vector<optical_xy_t> m;
     for (const V2 &b : sc.map)
         m.push_back(q16(b));
-    optical_map_t map = {m.data(), (uint8_t)m.size()};
+    std::vector<optical_xy8_t> m8;
+    optical_map_t map = compiled(m, m8);
     optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
     int n = ngiven;
     if (given)
@@ -1026,7 +1056,8 @@ TEST(Pipeline, BadInputIsRefusedNotTrusted)
     optical_config_t cfg;
     optical_config_default(&cfg);
     std::vector<optical_xy_t> m = {q16(V2(0, 0)), q16(V2(10, 0)), q16(V2(0, 10)), q16(V2(10, 10))};
-    optical_map_t map = {m.data(), 4};
+    std::vector<optical_xy8_t> m8;
+    optical_map_t map = compiled(m, m8);
     optical_pose_t ap = {q16(V2(5, 5)).x, q16(V2(5, 5)).y, 0};
     optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
     for (int i = 0; i < 4; i++) { // the four beacons from (5, 5), heading 0
@@ -1041,14 +1072,24 @@ TEST(Pipeline, BadInputIsRefusedNotTrusted)
     ASSERT_EQ(optical_fix(&map, &cfg, &ap, s, 4, nullptr, &f), OPTICAL_OK);
     EXPECT_LT((from_q16(f.pose.x, f.pose.y) - V2(5, 5)).norm(), 1e-3);
     EXPECT_EQ(f.n_ident, 4);
-    optical_map_t small = {m.data(), 2};
+    optical_map_t small = map;
+    small.n = 2;
     EXPECT_EQ(optical_fix(&small, &cfg, &ap, s, 4, nullptr, &f), OPTICAL_E_ARG);
     EXPECT_EQ(optical_fix(&map, &cfg, &ap, s, 16, nullptr, &f), OPTICAL_E_ARG);
     EXPECT_EQ(optical_fix(&map, &cfg, &ap, s, 2, nullptr, &f), OPTICAL_E_FEW);
     std::vector<optical_xy_t> far = m;
-    far[3].x = OPTICAL_COORD_LIMIT; // beyond the coordinate range
-    optical_map_t farmap = {far.data(), 4};
-    EXPECT_EQ(optical_fix(&farmap, &cfg, &ap, s, 4, nullptr, &f), OPTICAL_E_ARG);
+    far[3].x = OPTICAL_COORD_LIMIT; // beyond the coordinate range: no compiled map
+    optical_map_t farmap;
+    optical_xy8_t far8[4];
+    EXPECT_FALSE(optical_map_compile(&farmap, far.data(), 4, far8));
+    far[3].x = q16(V2(300, 0)).x; // a site 300 m wide: beyond one origin's reach
+    EXPECT_FALSE(optical_map_compile(&farmap, far.data(), 4, far8));
+    EXPECT_FALSE(optical_map_compile(&farmap, m.data(), 2, far8));
+    far[3].x = q16(V2(250, 0)).x; // 250 m: within; a pose 130 m beyond the centre is not
+    ASSERT_TRUE(optical_map_compile(&farmap, far.data(), 4, far8));
+    optical_pose_t away = ap;
+    away.x = farmap.ox + q16(V2(130, 0)).x;
+    EXPECT_EQ(optical_fix(&farmap, &cfg, &away, s, 4, nullptr, &f), OPTICAL_E_ARG);
     // A heading 20 degrees off the stated 5 degrees: refused (never a wrong fix), and
     // found again with the window widened to cover it.
     optical_pose_t off = ap;
@@ -1198,7 +1239,8 @@ FixOut fix_raw(const std::vector<V2> &mapv, const optical_rev_t &rev, const opti
     std::vector<optical_xy_t> m;
     for (const V2 &b : mapv)
         m.push_back(q16(b));
-    optical_map_t map = {m.data(), (uint8_t)m.size()};
+    std::vector<optical_xy8_t> m8;
+    optical_map_t map = compiled(m, m8);
     optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
     int n = optical_rev_sightings(&rev, kCounts, s);
     FixOut o;

@@ -89,6 +89,9 @@ static const optical_rev_t *capture_case(uint8_t i)
     return optical_capture_take(&cap);
 }
 
+/* Compiled maps: the cases' (run_case) and the kernels' (kcompile), one at a time. */
+static optical_xy8_t kmap8[OPTICAL_MAX_BEACONS];
+
 /* The fix of case @p i; the sightings in sight[], their count returned (-1: bad revolution). */
 static int8_t run_case(uint8_t i, optical_config_t *cfg, optical_map_t *map, optical_pose_t *ap,
                        const optical_pose_t **latched)
@@ -99,8 +102,8 @@ static int8_t run_case(uint8_t i, optical_config_t *cfg, optical_map_t *map, opt
     if (rev)
         optical_capture_release(&cap);
     config(c->cfg, cfg);
-    map->b = &vec_beacons[vec_maps[c->map].first];
-    map->n = vec_maps[c->map].n;
+    if (!optical_map_compile(map, &vec_beacons[vec_maps[c->map].first], vec_maps[c->map].n, kmap8))
+        cy_check(false, "case map compiles");
     ap->x = c->approx.x;
     ap->y = c->approx.y;
     ap->heading = c->approx.h;
@@ -283,9 +286,29 @@ static uint32_t scan_hash(void)
     return h;
 }
 
+/* The compiled form of kmap for the scan (KW.b8, KW.ox, KW.oy): the origin @p o (a multiple of
+ * 2^8), every beacon first brought within its reach. */
+static void kcompile(int32_t ox, int32_t oy)
+{
+    KW.b8 = kmap8;
+    KW.ox = ox;
+    KW.oy = oy;
+    for (uint8_t k = 0; k < KW.nb; k++) {
+        int32_t *v[2] = {&kmap[k].x, &kmap[k].y}, o[2] = {ox, oy};
+        int16_t *v8[2] = {&kmap8[k].x, &kmap8[k].y};
+        for (uint8_t c = 0; c < 2; c++) {
+            int32_t d = *v[c] - o[c];
+            d = d < -0x00800000l ? -0x00800000l : d > 0x007FFFFFl ? 0x007FFFFFl : d;
+            *v[c] = o[c] + d;
+            *v8[c] = (int16_t)(uint16_t)((uint32_t)d >> 8);
+        }
+    }
+}
+
 /* A random scene for the identification kernels: a map (some beacons near the vehicle, some
- * beyond the gate or the 128 m of the kernels), sightings near some beacons' directions and
- * elsewhere, moving or not. */
+ * beyond the gate; compiled with an origin up to 128 m from the position, so that offsets up
+ * to 2^16 units of 2^-8 m occur, and now and then beyond its reach), sightings near some
+ * beacons' directions and elsewhere, moving or not. */
 static void scene(uint8_t t)
 {
     KW.b = kmap;
@@ -298,6 +321,11 @@ static void scene(uint8_t t)
         kmap[k].x = KW.x + rnd_in(r);
         kmap[k].y = KW.y + rnd_in(r);
     }
+    uint32_t reach = (t % 8u == 5u) ? 0x00A00000u : 0x007FFF00u;
+    int32_t ox = KW.x + rnd_in(reach); /* (one after the other: the same draws everywhere) */
+    int32_t oy = KW.y + rnd_in(reach);
+    kcompile((int32_t)((uint32_t)ox & ~(uint32_t)0xFFu),
+             (int32_t)((uint32_t)oy & ~(uint32_t)0xFFu));
     KW.gate8 = (uint16_t)((rnd32() & 3u) ? 0x7FFFu : rnd32() % 0x8000u);
     KW.head = (uint16_t)rnd32();
     KW.eps8 = (uint16_t)(rnd32() % 200u);
@@ -442,43 +470,24 @@ static void kernels(void)
     }
     rng = rng_saved;
     /* The coordinate limit's edges: [-2^29, 2^29) is accepted. */
-    static const int32_t coord_edge[] = {-0x20000000l, -0x1FFFFFFFl, 0x1FFFFFFFl, 0x20000000l,
-                                         -0x20000001l};
+    /* The compiled map's reach: the position at, just within and just beyond +-128 m of the
+     * origin on either axis (beyond: 1, nothing scanned), a beacon on each side. */
+    static const int32_t reach_edge[5] = {-0x00800000l, -0x007FFFFFl, 0x007FFFFFl, 0x00800000l,
+                                          -0x00800001l};
     for (uint8_t t = 0; t < 10; t++) {
-        kmap[0].x = kmap[0].y = kmap[1].x = 0;
-        kmap[1].y = 0x10000;
-        if (t & 1)
-            kmap[1].y = coord_edge[t >> 1];
-        else
-            kmap[1].x = coord_edge[t >> 1];
-        KW.b = kmap;
         KW.nb = 2;
         KW.n = 0;
-        KW.x = KW.y = 0;
-        cy_print("lim ");
+        KW.x = (t & 1) ? 0x10000l : reach_edge[t >> 1];
+        KW.y = (t & 1) ? reach_edge[t >> 1] : -0x10000l;
+        kmap[0].x = kmap[0].y = -0x7F0000l;
+        kmap[1].x = kmap[1].y = 0x7F0000l;
+        kcompile(0, 0);
+        cy_print("reach ");
         cy_print_dec(t);
         cy_print(" ");
         cy_print_dec(optical_expect_scan(0, 100));
-        cy_println();
-    }
-    /* The position itself near the limit (beyond 2^28: every coordinate checked before the
-     * loop): a beacon within 16 m of it on either side of the limit. */
-    static const int32_t near[4] = {0x1FF80000l, -0x1FF80000l, 0x10000000l, -0x10000001l};
-    for (uint8_t t = 0; t < 8; t++) {
-        int32_t p = near[t >> 1], d = (t & 1) ? 0x00100000l : -0x00100000l;
-        KW.x = (t & 4) ? 0 : p;
-        KW.y = (t & 4) ? p : 0;
-        kmap[0].x = KW.x;
-        kmap[0].y = KW.y + 0x00080000l;
-        kmap[1].x = KW.x + ((t & 4) ? 0 : d);
-        kmap[1].y = KW.y + ((t & 4) ? d : 0);
-        KW.b = kmap;
-        KW.nb = 2;
-        KW.n = 0;
-        cy_print("lim ");
-        cy_print_dec(10 + t);
-        cy_print(" ");
-        cy_print_dec(optical_expect_scan(0, 100));
+        for (uint8_t k = 0; k < 2; k++)
+            field("", ((uint32_t)KW.u.id.psi[k] << 16) | KW.u.id.e[k]);
         cy_println();
     }
     /* The triangulation kernels: beacon offsets from beacon 2 of every span (Q16), the
@@ -751,7 +760,7 @@ static void glue_kernels(void)
         if (t % 3 == 0) { /* the work area's and O5's arguments: ordinary, then saturating */
             optical_config_t c;
             optical_config_default(&c);
-            optical_map_t mp = {kmap, (uint8_t)(3u + t % 30u)};
+            optical_map_t mp = {kmap, (uint8_t)(3u + t % 30u), NULL, 0, 0};
             c.beacon_diameter = (fx_q16_t)(rnd32() >> (rnd32() % 32u));
             c.beacon_flat = (uint8_t)(t & 1u);
             c.window_pos = (fx_q16_t)(rnd32() >> (t < 30 ? 12u + rnd32() % 8u : rnd32() % 8u));

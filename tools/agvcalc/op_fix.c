@@ -139,7 +139,7 @@ static const char *why(int8_t st)
         return "identified only beyond the stated uncertainty (a guess or widened windows) "
                "and fewer than five sightings confirm the fix";
     default:
-        return "coordinates beyond +-8192 m";
+        return "the approximate position lies more than 128 m from the map's centre";
     }
 }
 
@@ -220,7 +220,12 @@ int agvcalc_op_fix(json_t *req, json_t *resp, char *err, size_t errlen)
         b[k].x = fx_q16_from_double(pts[k][0]);
         b[k].y = fx_q16_from_double(pts[k][1]);
     }
-    optical_map_t map = {b, (uint8_t)nb};
+    optical_xy8_t b8[OPTICAL_MAX_BEACONS];
+    optical_map_t map;
+    if (!optical_map_compile(&map, b, (uint8_t)nb, b8))
+        return ac_fail(err, errlen,
+                       "map: the beacons must fit within +-128 m of one point (a site of at "
+                       "most 256 m by 256 m)");
     optical_fix_t fix;
     int8_t st = optical_fix(&map, &cfg, &approx, ss, (uint8_t)n, with_pose ? sl : NULL, &fix);
 

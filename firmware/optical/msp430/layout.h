@@ -54,6 +54,10 @@
 #define OW_SV_V       460
 #define OW_SV_SC      476
 #define OW_SV_TS      492
+/* after the union: the compiled map and its origin */
+#define OW_B8         554
+#define OW_OX         556
+#define OW_OY         560
 
 /* the match codes of optical_work_t.sm / .bm (OPTICAL_NONE, _MULTI, _DROPPED: NONE as -1,
  * the constant generator's, whose low byte it is), OPTICAL_MARGIN, OPTICAL_MAX_CAND */

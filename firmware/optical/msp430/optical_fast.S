@@ -7,10 +7,9 @@
  *
  * Registers as clang emits calls (TI EABI): arguments in R12..R15 (32-bit ones in pairs, R12
  * the low word), results in R12; R11..R15 may be clobbered, R4..R10 are preserved. The
- * 16 x 16 hardware multiplier (layout.h: MPY, OP2, RESLO, RESHI) is used with
- * interrupts held off (SR saved, restored by POP SR; the scan's loop restores the entry's GIE
- * bit by BIS) for at most about 100 cycles, as the compiler's and fx's multiply helpers do;
- * the instruction after DINT never touches it.
+ * 16 x 16 hardware multiplier (layout.h: MPY, OP2, RESLO, RESHI) is used with interrupts
+ * enabled: these kernels run on the main board only, where no interrupt handler touches the
+ * multiplier (tools/stack_bound.py --no-mpy-in-isr checks the image; docs/optical.md).
  * Cycle counts are mspdebug's: it charges the constant-generator immediates #1, #2, #4, #8 and
  * #-1 like memory operands (see firmware/fx/msp430/fx_trig.S).
  * Structure offsets and sizes, match codes and the multiplier's registers come from layout.h
@@ -44,18 +43,16 @@ oct_b:
     mov.b   OW+OW_BSTART(r14), r14
 .endm
 
+    .section .text.optical_octant,"ax",@progbits
 /*
- * OCTANT_ATAN sat, one: the octant's arctangent (octant() in fastmath.c), one copy of the
- * steps expanded in optical_angle16's a16_oct and in optical_expect_scan's loop (es_octant),
- * so that the static stack analysis sees two plain functions: R12 = u in [2^15, 2^16), R14 =
- * v <= u, R11 = flags (2 swapped, 4 dx < 0, 8 dy < 0) -> R12 = the angle (2^-16 turn), R13 =
- * r (2^30 / u), R14 = 2i (i <= 63). Clobbers R15. Interrupts must be held off (the three
- * products). The ratio's product v r holds q = (v r) >> 14 as its bits 14..29: i = q >> 10
- * is RESHI's high byte, the fraction q << 6 RESHI's low byte and RESLO's top two bits.
- * @p sat: the caller's out-of-line saturated ratio (R12 = 0xffc0, R14 = 126, then a jump
- * back to @p one, the label before the arctangent's product).
+ * optical_angle16's octant (octant() in fastmath.c): R12 = u in [2^15, 2^16), R14 = v <= u,
+ * R11 = flags (2 swapped, 4 dx < 0, 8 dy < 0) -> R12 = the angle (2^-16 turn). Clobbers R13
+ * (r = 2^30 / u), R14 (2i, i <= 63), R15. The ratio's product v r holds q = (v r) >> 14 as its
+ * bits 14..29: i = q >> 10 is RESHI's high byte, the fraction q << 6 RESHI's low byte and
+ * RESLO's top two bits. (optical_first_scan's loop has its own copy, es_octant, which also
+ * forms the window factor h from r.)
  */
-.macro OCTANT_ATAN sat, one
+a16_octant:
     mov     r12, r13                ; u mod 2^9 times the step 2^7: the step times u << 7
     and     #0x01ff, r13
     mov     r13, &MPY
@@ -64,15 +61,12 @@ oct_b:
     and     #0x00fe, r15
     mov     optical_recip_d_tab-128(r15), &OP2 ; (RT[i] - RT[i+1]) 2^7
     mov     optical_recip_tab-128(r15), r13
-    mov     &RESLO, r15             ; r = RT[i] - RESHI - the rounding bit (carry: its inverse)
-    inv     r15
-    rla     r15
-    subc    &RESHI, r13
+    sub     &RESHI, r13             ; r = RT[i] - RESHI
     mov     r14, &MPY               ; q = (v r) >> 14, saturated
     mov     r13, &OP2
     mov     &RESHI, r12
     cmp     #0x4000, r12
-    jhs     \sat
+    jhs     a16_osat
     mov     &RESLO, r15
     swpb    r12                     ; 2 (q >> 10)
     mov.b   r12, r14
@@ -81,32 +75,17 @@ oct_b:
     swpb    r15
     and     #0x00c0, r15
     bis     r15, r12
-\one:
+a16_o1:
     mov     r12, &MPY
     mov     optical_atan_tab(r14), r12
     mov     optical_atan_tab+2(r14), r15
     sub     r12, r15                ; AT[i+1] - AT[i]
     mov     r15, &OP2
-    mov     &RESLO, r15             ; a = AT[i] + RESHI + the rounding bit, 2^-18 turn
-    rla     r15
-    addc    &RESHI, r12             ; (the table holds + 2: a >> 2 rounds; a <= 32770, C = 0)
-    rrc     r12
+    add     &RESHI, r12             ; a = AT[i] + RESHI, 2^-18 turn (the table holds + 2: a >> 2
+    rrc     r12                     ; rounds; a <= 32770, C = 0)
     rra     r12
     xor     oct_m(r11), r12         ; unfold
     add     oct_b(r11), r12
-.endm
-
-    .section .text.optical_octant,"ax",@progbits
-/* optical_angle16's octant: OCTANT_ATAN (optical_expect_scan's loop expands it too),
- * interrupts held off around its products. */
-a16_octant:
-    push    r2
-    dint
-    call    #a16_oct
-    pop     r2
-    ret
-a16_oct:
-    OCTANT_ATAN a16_osat, a16_o1
     ret
 a16_osat:
     mov     #0xffc0, r12
@@ -179,16 +158,12 @@ win6:
     mov     #0x7fff+MARGIN, r15
     cmp     #-1, r11
     jeq     2f
-    push    r2
-    dint
-    nop
     mov     r13, &MPY
     mov     r11, &OP2
     mov     &RESLO, r15
     add     #255, r15
     mov     &RESHI, r13
     adc     r13
-    pop     r2
     cmp     #0x0080, r13            ; >= 2^15 after the shift: cap
     jhs     1f
     swpb    r13                     ; (hi:lo) >> 8
@@ -309,26 +284,57 @@ optical_expect_scan:
     call    #clear_sm
     jmp     optical_first_scan
 
+/* R15:R14 -> R14 = floor(R15:R14 / 2^8), R15 = 0 when within [-2^23, 2^23), else not 0. */
+es_to8:
+    add     #0x0080, r15            ; the high word + 128 below 2^8
+    cmp     #0x0100, r15
+    jhs     1f
+    swpb    r14
+    mov.b   r14, r14
+    swpb    r15                     ; ((high word + 128) << 8) - 2^15: the high word << 8
+    sub     #0x8000, r15
+    bis     r15, r14
+    clr     r15
+1:  ret
+
 /*
  * uint8_t optical_first_scan(int16_t mid, uint16_t half): R12 = mid, R13 = half -> R12 = 0,
- * or 1 when a beacon lies beyond the coordinate limit. The marks sm as optical_drop leaves
- * them (NONE or DROPPED): not cleared.
- * R4 = 2k, R5 = &b[k], R6 = x's low word, R7 = k, R8 = 2 nc; per beacon R9 = m8, R10 = eps8
- * shifted with u (2^l eps8), R11 = flags, then h. The frame: 0 the map's end, 2 min(gate8 + 1,
- * 0xffff) (m8 from there on: gated), 4 the larger of min(2 amax8, 0xffff) and the next (m8 from
- * there on: a window with k = 2/3), 6 max(77, amax8 + 1) (m8 from there on: a window;
- * saturated), 8 mid - half, 10 2 half, 12 0x7000 - half, 0 when that is negative or moving (e
- * from there on: every sighting, or moving), 14 the coordinate check (OR of the high words +
- * 0x2000: in the loop only of the beacons beyond 2^23, the others lie within the limit when x,
- * y lie within 2^28; else all of them before the loop), 16 the caller's GIE. Without
+ * or 1 when the position lies beyond the compiled map's reach (then nothing is touched). The
+ * marks sm as optical_drop leaves them (NONE or DROPPED): not cleared.
+ * R4 = 2k, R5 = &b8[k], R6 = px, R7 = k, R8 = 2 nc; per beacon R9 = m8, R10 = eps8 shifted
+ * with u (2^l eps8), R11 = flags, then h (R13 from the ratio's product on). The frame: 0 the
+ * map's end, 2 min(gate8 + 1, 0xffff) (m8 from there on: gated), 4 the larger of min(2 amax8,
+ * 0xffff) and the next (m8 from there on: a window with k = 2/3), 6 max(77, amax8 + 1) (m8
+ * from there on: a window; saturated), 8 mid - half, 10 2 half, 12 0x7000 - half, 0 when that
+ * is negative or moving (e from there on: every sighting, or moving), 14 py. Without
  * sightings the half-width is taken as 0x7000 (every sighting, i.e. none).
- * Interrupts are held off from the reciprocal's product to the window's (about 100 cycles):
- * DINT, then BIS of frame slot 16, the caller's GIE bit (SR and 8), restores them.
+ * (px, py) = floor(((x, y) - (ox, oy)) / 2^8): the offsets b8[k] - (px, py) have magnitudes
+ * below 2^16 and the signs that JGE reads after the subtraction (N xor V).
+ * The multiplier is used with interrupts enabled: no interrupt handler of the main board
+ * touches it (tools/stack_bound.py --no-mpy-in-isr checks the image).
  */
     .global optical_first_scan
     .type optical_first_scan,@function
 optical_first_scan:
-    push    r10
+    mov     &OW+OW_X, r14           ; px = floor((x - ox) / 2^8) into R11, then py into R14
+    mov     &OW+OW_X+2, r15
+    sub     &OW+OW_OX, r14
+    subc    &OW+OW_OX+2, r15
+    call    #es_to8
+    tst     r15
+    jnz     es_far
+    mov     r14, r11
+    mov     &OW+OW_Y, r14
+    mov     &OW+OW_Y+2, r15
+    sub     &OW+OW_OY, r14
+    subc    &OW+OW_OY+2, r15
+    call    #es_to8
+    tst     r15
+    jz      1f
+es_far:                             ; beyond the compiled map's reach
+    mov     #1, r12
+    ret
+1:  push    r10
     push    r9
     push    r8
     push    r7
@@ -375,74 +381,29 @@ optical_first_scan:
     jhs     8f
     mov     r13, r12
 8:  mov     r12, 4(r1)
-    mov     &OW+OW_B, r5
+    mov     &OW+OW_B8, r5
     mov.b   &OW+OW_NB, r12          ; the map's end
-    rla     r12
     rla     r12
     rla     r12
     add     r5, r12
     mov     r12, 0(r1)
-    mov     r2, r12                 ; the interrupt enable (GIE) of the caller
-    and     #8, r12
-    mov     r12, 16(r1)
+    mov     r14, 14(r1)             ; py
+    mov     r11, r6                 ; px
     clr     r4
-    clr     r6
     clr     r7
-    mov     &OW+OW_X+2, r13         ; x, y within +-2^28: a beacon within 2^23 of them lies
-    add     #0x1000, r13            ; within the limit, and only those beyond (gated) are
-    mov     &OW+OW_Y+2, r14         ; checked in the loop; else every one here
-    add     #0x1000, r14
-    bis     r14, r13
-    cmp     #0x2000, r13
-    jlo     2f
-    mov     r5, r13
-1:  cmp     @r1, r13
-    jhs     2f
-    mov     2(r13), r14             ; |bx|, |by| < 2^29: high word + 0x2000 below 0x4000
-    add     #0x2000, r14
-    bis     r14, r6
-    mov     6(r13), r14
-    add     #0x2000, r14
-    bis     r14, r6
-    add     #8, r13
-    jmp     1b
-2:  mov     r6, 14(r1)              ; (the check on the frame, R6 = x's low word)
-    mov     &OW+OW_X, r6
     cmp     @r1, r5
     jhs     es_done
 es_beacon:
-    mov     @r5+, r12               ; bx, by
-    mov     @r5+, r13
+    mov     @r5+, r12               ; x8 = b8.x - px, y8 = b8.y - py, each to its magnitude
     mov     @r5+, r14
-    mov     @r5+, r15
-    sub     r6, r12                 ; dx, dy
-    subc    &OW+OW_X+2, r13
-    sub     &OW+OW_Y, r14
-    subc    &OW+OW_Y+2, r15
-    mov.b   r13, r9                 ; within +-2^23: each high word its low byte sign-extended
-    sxt     r9
-    xor     r13, r9
-    jnz     es_far
-    mov.b   r15, r9
-    sxt     r9
-    xor     r15, r9
-    jnz     es_far
-    clr     r11                     ; flags 4 dx < 0, 8 dy < 0, 2 swapped
-    swpb    r14                     ; y8 = floor(dy / 256), then x8 (the sum of the two
-    mov.b   r14, r14                ; bytes sets N, V = 0: the sign), each to its magnitude
-    swpb    r15
-    and     #0xff00, r15
-    add     r15, r14
+    clr     r11                     ; flags 4 x8 < 0, 8 y8 < 0, 2 swapped
+    sub     14(r1), r14
     jge     2f
     mov     r14, r9
     clr     r14
     sub     r9, r14
     bis     #8, r11
-2:  swpb    r12
-    mov.b   r12, r12
-    swpb    r13
-    and     #0xff00, r13
-    add     r13, r12
+2:  sub     r6, r12
     jge     1f
     mov     r12, r9
     clr     r12
@@ -492,20 +453,51 @@ es_beacon:
     rla     r12
     rla     r14
     rla     r10
-7:  dint                            ; (the caller's GIE on the frame)
-es_octant:                          ; the octant's arctangent: R12 angle, R13 r, R14 2i
-    OCTANT_ATAN es_osat, es_o1
+7:
+es_octant:                          ; the octant's arctangent as a16_octant, and h
+    mov     r12, r13                ; r = RT[i] - ((u mod 2^9) (RT[i] - RT[i+1]) 2^7) >> 16
+    and     #0x01ff, r13
+    mov     r13, &MPY
+    mov     r12, r15                ; 2 (u >> 9): the tables - 128 based
+    swpb    r15
+    and     #0x00fe, r15
+    mov     optical_recip_d_tab-128(r15), &OP2
+    mov     optical_recip_tab-128(r15), r13
+    sub     &RESHI, r13
+    mov     r13, &MPY               ; q = (r v) >> 14, saturated (r stays the multiplier's
+    mov     r14, &OP2               ; first operand for h)
+    mov     &RESHI, r12
+    cmp     #0x4000, r12
+    jhs     es_osat
+    mov     &RESLO, r15
+    swpb    r12                     ; 2i = 2 (q >> 10)
+    mov.b   r12, r14
+    rla     r14
+    mov     optical_ct_tab(r14), &OP2 ; h = (r C[i]) >> 16
+    and     #0xff00, r12            ; f = q << 6
+    swpb    r15
+    and     #0x00c0, r15
+    bis     r15, r12
+    mov     &RESHI, r13
+es_o1:                              ; a = AT[i] + ((AT[i+1] - AT[i]) f) >> 16, 2^-18 turn
+    mov     r12, &MPY
+    mov     optical_atan_tab(r14), r12
+    mov     optical_atan_tab+2(r14), r15
+    sub     r12, r15
+    mov     r15, &OP2
+    add     &RESHI, r12             ; (the table holds + 2: a >> 2 rounds; a <= 32770, C = 0)
+    rrc     r12
+    rra     r12
+    xor     oct_m(r11), r12         ; unfold
+    add     oct_b(r11), r12
     cmp     4(r1), r9               ; a window with k = 2/3
     jlo     es_wk1
     sub     &OW+OW_HEAD, r12        ; psi
     mov     r12, OW+OW_PSI(r4)
-    mov     r13, &MPY               ; h = (r C) >> 16
-    mov     optical_ct_tab(r14), &OP2
-    mov     &RESHI, r11
-    mov     r11, &MPY               ; e = (h 2^l eps8) >> 16 + 1 + margin (below 2^14 + 7)
+    mov     r13, r11
+    mov     r13, &MPY               ; e = (h 2^l eps8) >> 16 + 1 + margin (below 2^14 + 7)
     mov     r10, &OP2
     mov     &RESHI, r15
-    bis     16(r1), r2              ; interrupts as they were
     add     #1+MARGIN, r15
 es_e:                               ; R9 = m8, R11 = h (0xffff: none), R12 = psi, R15 = e
     mov     r15, OW+OW_E(r4)
@@ -574,11 +566,8 @@ es_next:
     cmp     @r1, r5
     jlo     es_beacon
 es_done:
-    clr     r12                     ; 1 when a coordinate is beyond the limit
-    cmp     #0x4000, 14(r1)
-    jlo     1f
-    mov     #1, r12
-1:  add     #18, r1
+    clr     r12
+    add     #18, r1
     rra     r8                      ; nc
     mov.b   r8, &OW+OW_NC
     pop     r4
@@ -594,9 +583,7 @@ es_wk1:
     jlo     es_nowin
     sub     &OW+OW_HEAD, r12        ; psi
     mov     r12, OW+OW_PSI(r4)
-    mov     r13, &MPY               ; h = (r C) >> 16, k = 1: h + h / 2 + 2; e capped at
-    mov     optical_ct_tab(r14), &OP2 ; 0x7fff + margin
-    mov     &RESHI, r11
+    mov     r13, r11                ; k = 1: h + h / 2 + 2; e capped at 0x7fff + margin
     mov     r11, r15
     clrc
     rrc     r15
@@ -605,7 +592,6 @@ es_wk1:
     mov     r11, &MPY
     mov     r10, &OP2
     mov     &RESHI, r15
-    bis     16(r1), r2
     cmp     #0x7fff, r15
     jhs     2f
     add     #1+MARGIN, r15
@@ -616,23 +602,17 @@ es_zero:
     clr     r12
     jmp     1f
 es_nowin:
-    bis     16(r1), r2
 1:  sub     &OW+OW_HEAD, r12        ; psi
     mov     r12, OW+OW_PSI(r4)
     mov     #-1, r11
     mov     #0x7fff+MARGIN, r15
     jmp     es_e
-es_osat:                            ; (the octant) q = 0xffff: i = 63, f = 0xffc0
-    mov     #0xffc0, r12
+es_osat:                            ; (the octant) q = 0xffff: i = 63, f = 0xffc0; h
     mov     #126, r14
+    mov     optical_ct_tab+126, &OP2
+    mov     #0xffc0, r12
+    mov     &RESHI, r13
     jmp     es_o1
-es_far:                             ; beyond 2^23: the coordinate check
-    mov     -6(r5), r9
-    add     #0x2000, r9
-    bis     r9, 14(r1)
-    mov     -2(r5), r9
-    add     #0x2000, r9
-    bis     r9, 14(r1)
 es_gated:
     clr     OW+OW_E(r4)
     mov.b   #MATCH_NONE, OW+OW_BM(r7)
@@ -914,8 +894,7 @@ optical_width_ok:
 /*
  * O5's test for optical_width_ok and optical_unique (fastmath.c's steps), an internal entry:
  * R4 = a (optical_width_t), R13 = b, R14 = w16 -> R12 = 0 (fits) or 0x80 (a misfit). Clobbers
- * R11..R15 only. R11 = x8 then rhi, hi; R13 = rlo then lo; R15 = tol. Interrupts held off
- * from the first product to the last (about 70 cycles).
+ * R11..R15 only. R11 = x8 then rhi, hi; R13 = rlo then lo; R15 = tol.
  */
     .section .text.optical_width_core,"ax",@progbits
     .global optical_width_core
@@ -965,9 +944,7 @@ optical_width_core:
     add     r11, r12
     jnc     5f
     mov     #-1, r12
-5:  push    r2                      ; (one multiplier window for all the products)
-    dint
-    mov     r12, r11                ; rhi = o + eps8, saturated
+5:  mov     r12, r11                ; rhi = o + eps8, saturated
     mov     r12, &MPY               ; rlo = (o 58623) >> 16 - eps8, or 0
     mov     #58623, &OP2
     add     WD_EPS8(r4), r11
@@ -1014,11 +991,10 @@ optical_width_core:
     cmp     r12, WD_DK(r4)
 1:  jlo     wd_misfit
     tst.b   WD_FLAT(r4)             ; flat: only that bound
-    jnz     wd_fit
+    jnz     wd_fits
     mov     r11, &OP2               ; q = hi w16 >= dk: fits
     mov     &RESLO, r12
     mov     &RESHI, r13
-    pop     r2
     cmp     WD_DK+2(r4), r13
     jne     1f
     cmp     WD_DK(r4), r12
@@ -1026,11 +1002,8 @@ optical_width_core:
     mov     #0x80, r12
     ret
 wd_misfit:
-    pop     r2
     mov     #0x80, r12
     ret
-wd_fit:
-    pop     r2
 wd_fits:
     clr     r12
     ret
@@ -1039,7 +1012,6 @@ wd_wide:                            ; w16 > 5215: lo 5215 <= dk + (dk >> 4)
     mov     #5215, &OP2
     mov     &RESLO, r14
     mov     &RESHI, r11
-    pop     r2
     mov     0(r4), r12
     mov     2(r4), r13
     clrc

@@ -113,6 +113,8 @@ typedef struct {
             optical_tsol_t ts;  /**< its solution */
         } sv;
     } u;
+    const optical_xy8_t *b8; /**< the compiled map (optical_map_t.b8), nb beacons */
+    fx_q16_t ox, oy;         /**< its origin */
 } optical_work_t;
 
 /** The work area (fastmath.c). */
@@ -122,8 +124,9 @@ extern optical_work_t optical_work;
  * Expected angle and window of every map beacon from (x, y, head) (O2), and the candidate
  * pairs within the windows centred on heading offset @p mid (2^-16 turn) of half-width @p half
  * (optical_eval's test; the pairs in scan order, sightings from the bucket of each window's
- * start). Per beacon, with (x8, y8) its offset floored to 2^-8 m (beyond +-128 m, or a
- * magnitude beyond gate8: e = 0, gated out): psi = the angle of (x8, y8) - head, with the
+ * start). Per beacon, with (x8, y8) = b8[k] - p8 its offset in 2^-8 m, p8 = floor(((x, y) -
+ * (ox, oy)) / 2^8) the position in the compiled map (a magnitude beyond gate8: e = 0, gated
+ * out): psi = the angle of (x8, y8) - head, with the
  * octant's arctangent of optical_angle16 (r its 2^30 / u, u = m8 2^l in [2^15, 2^16), m8 the
  * larger magnitude, i = floor(64 t), t = smaller / larger). The window, when m8 >= 77 and
  * m8 > amax8 (else g = 0xFFFF, e = 0x7FFF + margin): h = floor(r optical_ct_tab[i] / 2^16)
@@ -132,10 +135,10 @@ extern optical_work_t optical_work;
  * floor(h / 2^(8 - l)) + 1 (l <= 8), min(2 h + 1, 0xFFFE) (l = 9). So e - margin >= 2^16 /
  * (2 pi) asin(eps8 / r8) and optical_win(l8, g) >= 2^16 / (2 pi) asin(l8 / r8) for l8 <=
  * amax8, r8 = |(x8, y8)| (docs/optical.md "O2-O5" derives it; tests/unit/optical_test.cpp
- * checks it). The offsets' flooring moves the angles by up to sqrt 2 units of 2^-8 m: the
- * caller adds 2 to eps8. Clears bm and sm (except DROPPED) and marks every pair as
- * optical_eval. Returns 1 when a beacon coordinate lies outside [-OPTICAL_COORD_LIMIT,
- * OPTICAL_COORD_LIMIT) (the results are then meaningless), else 0.
+ * checks it). Both floorings leave each coordinate of the offset within one unit of 2^-8 m
+ * of the exact one (the vector within sqrt 2 units): the caller adds 2 to eps8. Clears bm and
+ * sm (except DROPPED) and marks every pair as optical_eval. Returns 1 when the position lies
+ * beyond the compiled map's reach (p8 outside [-2^15, 2^15): nothing scanned), else 0.
  */
 uint8_t optical_expect_scan(int16_t mid, uint16_t half);
 

@@ -27,6 +27,7 @@
 #ifndef OPTICAL_OPTICAL_H
 #define OPTICAL_OPTICAL_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "fx/fx.h"
@@ -67,10 +68,25 @@ typedef struct {
     uint16_t width;   /**< apparent angular width, 2^-16 turn (0.0055 degrees) */
 } optical_sighting_t;
 
-/** The beacon map. */
+/** A beacon of a compiled map: its offset from the map's origin floored to 2^-8 m. */
 typedef struct {
-    const optical_xy_t *b; /**< beacon positions (the centres of the posts) */
-    uint8_t n;             /**< 3..OPTICAL_MAX_BEACONS */
+    int16_t x, y;
+} optical_xy8_t;
+
+/** The compiled map's reach: beacons and poses within +-OPTICAL_MAP_REACH of its origin. */
+#define OPTICAL_MAP_REACH (128l * FX_Q16_ONE)
+
+/**
+ * The beacon map, compiled: optical_map_compile() fills it, or a generator writes the same
+ * (tools/gen_mission.py). b8[k] = floor((b[k] - origin) / 2^8) per coordinate, 2^-8 m: the
+ * expected angles of O2 come from these 16-bit offsets, computed once for the map instead of
+ * once a fix per beacon.
+ */
+typedef struct {
+    const optical_xy_t *b;   /**< beacon positions (the centres of the posts) */
+    uint8_t n;               /**< 3..OPTICAL_MAX_BEACONS */
+    const optical_xy8_t *b8; /**< the compiled positions, n of them */
+    fx_q16_t ox, oy;         /**< the origin of b8 (a multiple of 2^8, Q15.16 m) */
 } optical_map_t;
 
 /** Result codes (optical_fix_t.status, optical_triangulate). */
@@ -200,8 +216,18 @@ int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], u
 void optical_select(const fx_angle_t *angle, uint8_t n, uint8_t keep[3]);
 
 /**
+ * Compile a map of @p n beacons @p b (3..OPTICAL_MAX_BEACONS, within OPTICAL_COORD_LIMIT) for
+ * optical_fix(): the origin is the centre of their bounding box (whole metres), @p b8 receives
+ * the n compiled positions, and *map refers to b and b8 (both must outlive it). Fails (false,
+ * *map untouched) when n is out of range, a coordinate lies beyond OPTICAL_COORD_LIMIT, or the
+ * beacons do not fit within +-OPTICAL_MAP_REACH of one origin (a site larger than 256 m).
+ * optical_fix() then refuses (OPTICAL_E_ARG) an approximate pose beyond that reach too.
+ */
+bool optical_map_compile(optical_map_t *map, const optical_xy_t *b, uint8_t n, optical_xy8_t *b8);
+
+/**
  * One revolution's fix (O2-O11).
- * @param map     beacon map (3..OPTICAL_MAX_BEACONS beacons)
+ * @param map     beacon map (3..OPTICAL_MAX_BEACONS beacons), compiled (optical_map_compile)
  * @param cfg     parameters (optical_config_default)
  * @param approx  approximate pose at the reference instant: the nav board's dead-reckoning
  *                pose there. The fix is the pose at that same instant.
