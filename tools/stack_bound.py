@@ -532,8 +532,29 @@ INTERRUPT_ENTRY = 4  # PC and SR pushed by the hardware
 GIE_RESTORERS = ("hal_irq_restore", "hal_critical_exit")
 
 
-def report(image, vectors, free_ram, limit, restorers=GIE_RESTORERS):
-    """The analysis of an image as a dict; vectors: {vector number: function name}."""
+# The 16 x 16 hardware multiplier's registers (MPY .. SUMEXT).
+MPY_REGS = range(0x130, 0x140)
+
+
+def mpy_operands(image, fn):
+    """The instructions of function fn that name a multiplier register (&addr or #addr)."""
+    f = image.funcs[fn]
+    out = []
+    for a in sorted(image.insns):
+        if f.start <= a < f.end:
+            i = image.insns[a]
+            for op in i.ops:
+                m = re.fullmatch(r"[&#](-?\d+)", op.strip())
+                if m and int(m.group(1)) & 0xFFFF in MPY_REGS:
+                    out.append(f"{a:04x}: {i.mnem} {', '.join(i.ops)}")
+                    break
+    return out
+
+
+def report(image, vectors, free_ram, limit, restorers=GIE_RESTORERS, no_mpy_in_isr=False):
+    """The analysis of an image as a dict; vectors: {vector number: function name}.
+    no_mpy_in_isr: no maskable handler may reach code that names a multiplier register (its
+    main line then uses the multiplier with interrupts enabled)."""
     errors = []
     for f in image.funcs.values():
         errors += [f"{f.name}: {e}" for e in f.errors]
@@ -564,6 +585,10 @@ def report(image, vectors, free_ram, limit, restorers=GIE_RESTORERS):
             for e in f.edges:
                 if e[1] is None:
                     indirect.append(f"{fn}@{e[3]:04x}")
+        if no_mpy_in_isr and not reset and NMI_VECTOR not in vecs:
+            for fn in sorted(bounds.reach(name)):
+                for insn in mpy_operands(image, fn):
+                    errors.append(f"{name} reaches the hardware multiplier: {fn} {insn}")
         roots.append({"root": "reset" if reset else "isr", "function": name,
                       "vectors": vecs, "bound": b + entry, "entry": entry,
                       "chain": [{"function": n, "frame": fr} for n, fr in chain],
@@ -678,6 +703,9 @@ def main(argv=None):
                          "function@hexaddr) to these functions")
     ap.add_argument("--function", action="append", default=[], metavar="NAME",
                     help="also print the bound of this function (its call included: +2)")
+    ap.add_argument("--no-mpy-in-isr", action="store_true",
+                    help="fail when a maskable interrupt handler reaches code that names a "
+                         "hardware multiplier register (0x130-0x13F)")
     ap.add_argument("--json", help="write the analysis here")
     args = ap.parse_args(argv)
 
@@ -696,7 +724,7 @@ def main(argv=None):
     ram_end = args.ram_end if args.ram_end is not None else elf.symbol("__stack_top")
     static_end = elf.symbol("__noinit_end")
     free = ram_end - static_end if ram_end is not None and static_end is not None else None
-    r = report(image, vectors, free, args.limit)
+    r = report(image, vectors, free, args.limit, no_mpy_in_isr=args.no_mpy_in_isr)
     r["image"] = args.elf
     r["ram_end"] = ram_end
     r["static_end"] = static_end

@@ -100,6 +100,22 @@ static void on_ds(void *arg)
     hal_cpu_wake();
 }
 
+/*
+ * &mb.latched[i] without a multiply: on_frame runs in the link's receive interrupt, and no
+ * interrupt handler of the main board may use the hardware multiplier (the optical kernels use
+ * it with interrupts enabled; tools/stack_bound.py --no-mpy-in-isr checks the image). The
+ * empty asm hides one shift from the compiler, which would otherwise fold 8i + 4i into a
+ * multiplication by 12.
+ */
+_Static_assert(sizeof(optical_pose_t) == 12, "latched_at: 12-byte poses");
+
+static optical_pose_t *latched_at(uint16_t i)
+{
+    uint16_t i8 = (uint16_t)(i << 3);
+    __asm__("" : "+r"(i8));
+    return (optical_pose_t *)(void *)((uint8_t *)mb.latched + i8 + (uint16_t)(i << 2));
+}
+
 static void on_frame(void *arg, const hal_link_frame_t *f)
 {
     (void)arg;
@@ -110,9 +126,10 @@ static void on_frame(void *arg, const hal_link_frame_t *f)
     case LINKMSG_LATCH: {
         uint16_t i = (uint16_t)(m.u.latch.seq - mb.latch_first);
         if (mb.fix_state == FIX_WAIT_LATCHES && i < mb.n && m.u.latch.status == 0) {
-            mb.latched[i].x = m.u.latch.pose.x;
-            mb.latched[i].y = m.u.latch.pose.y;
-            mb.latched[i].heading = m.u.latch.pose.heading;
+            optical_pose_t *p = latched_at(i);
+            p->x = m.u.latch.pose.x;
+            p->y = m.u.latch.pose.y;
+            p->heading = m.u.latch.pose.heading;
             mb.latch_have |= (uint16_t)(1u << i);
         }
         break;

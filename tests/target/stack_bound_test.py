@@ -205,6 +205,32 @@ class Errors(unittest.TestCase):
         self.assertTrue(r["nesting"])
         self.assertEqual(r["worst"], 10 + (4 + 2) + (4 + 20))
 
+    def test_multiplier_in_a_handler_is_reported_when_forbidden(self):
+        text = """
+00001000 <reset>:
+    1000:      	mov	#2560, r1
+    1004:      	mov	r12, &304
+    1008:      	jmp	$+0
+
+00001100 <isr_a>:
+    1100:      	call	#4608
+    1104:      	reti
+
+00001200 <helper>:
+    1200:      	mov	&314, r12
+    1204:      	ret
+
+00001300 <isr_b>:
+    1300:      	mov	&400, r12
+    1304:      	reti
+"""
+        vectors = {16: "reset", 2: "isr_a", 3: "isr_b"}
+        r = sb.report(image(text), vectors, 1000, None, no_mpy_in_isr=True)
+        self.assertEqual(r["errors"], ["isr_a reaches the hardware multiplier: helper "
+                                       "1200: mov &314, r12"])
+        # the main line may use it; without the option nothing is reported
+        self.assertEqual(sb.report(image(text), vectors, 1000, None)["errors"], [])
+
     def test_noreturn_call_does_not_fall_into_the_next_function(self):
         text = """
 00001000 <f>:
