@@ -17,7 +17,8 @@
  * const optical_pose_t *approx, optical_width_t *wd): R12 = map, R13 = cfg, R14 = approx,
  * R15 = wd -> R12. A coordinate v lies within the limit when u = v + 2^29 - 1 < 2^30 - 1
  * (unsigned): u's high word hi + 0x1fff + (lo != 0) below 0x3fff, or equal to it with
- * lo != 0. The product with interrupts held off (as fx's multiply helpers).
+ * lo != 0. The product with interrupts enabled (no handler of the main board uses the
+ * multiplier: tools/stack_bound.py --no-mpy-in-isr).
  */
     .section .text.optical_setup,"ax",@progbits
     .global optical_setup
@@ -100,9 +101,6 @@ optical_setup:
     mov     #-1, r14
 4:  mov     r14, WD_REL16(r15)
     mov.b   CFG_FLAT(r13), WD_FLAT(r15) ; flat
-    push    r2                      ; dk = (D 10430 mod 2^32) >> 8
-    dint
-    nop
     mov     CFG_DIAMETER(r13), &MPY
     mov     #10430, &OP2
     mov     &RESLO, r12
@@ -110,7 +108,6 @@ optical_setup:
     mov     CFG_DIAMETER+2(r13), &MPY
     mov     #10430, &OP2
     add     &RESLO, r11
-    pop     r2
     swpb    r12
     mov.b   r12, r12
     swpb    r11

@@ -9,8 +9,8 @@
  * products h h accumulated in one chain of the multiplier, h l + l h in another (the callers
  * keep both below 2^31), l l dropped, the second chain's high word added. The operands live in
  * a static frame (optical_work.u.sv.frame) as (h, l) pairs of 4 bytes; the dot routines take
- * pointers to two lists of pairs. Interrupts are held off around each dot (at most about 90
- * cycles).
+ * pointers to two lists of pairs. The multiplier is used with interrupts enabled: no
+ * interrupt handler of the main board touches it (tools/stack_bound.py --no-mpy-in-isr).
  */
 #include "layout.h"
 
@@ -94,9 +94,6 @@
  * three with the x pairs 8 bytes apart. Clobber R14.
  */
 dot1:
-    push    r2
-    dint
-    nop
     mov     @r5, &MPYS              ; h h
     mov     @r6, &OP2
     mov     &RESLO, r12
@@ -107,9 +104,6 @@ dot1:
     mov     @r6, &OP2
     jmp     dot_end
 dot2:
-    push    r2
-    dint
-    nop
     mov     @r5, &MPYS
     mov     @r6, &OP2
     mov     4(r5), &MACS
@@ -122,9 +116,6 @@ dot2:
     mov     @r6, &OP2
     jmp     dot_x2
 dot3s:
-    push    r2
-    dint
-    nop
     mov     @r5, &MPYS
     mov     @r6, &OP2
     mov     8(r5), &MACS
@@ -154,7 +145,6 @@ dot_x2:
 dot_end:
     add     &RESHI, r12             ; floor(chain / 2^16), sign-extended (SUMEXT)
     addc    &SUMEXT, r13
-    pop     r2
     ret
 
 /*
@@ -559,9 +549,6 @@ tri_core_body:
     mov     r13, r14                ; 2 (qh >> 9): recip_tab - 128 based
     swpb    r14
     and     #0x00fe, r14
-    push    r2
-    dint
-    nop
     mov     r15, &MPY               ; r0 = RT[i] - (d f) / 2^16, rounded
     mov     optical_recip_tab-128(r14), r15
     sub     optical_recip_tab-126(r14), r15
@@ -596,7 +583,6 @@ tri_core_body:
     mov     r15, &OP2
     mov     &RESLO, r15
     mov     &RESHI, r13
-    pop     r2
     mov     r13, r10                ; floor(P / 2^12): R10:R13 (R10 the sign first)
     rla     r10
     subc    r10, r10
@@ -930,9 +916,6 @@ tri_quality_body:
     sub     #3, r10
     mov     r10, r8
     ; M = sum of ((r_k chord) / 2^16)^2: r3 with b1, r1 with b3, r2 with b3 - b1
-    push    r2
-    dint
-    nop
     mov     &OW+OW_FRAME+4, &MPYS
     mov     r4, &OP2
     mov     &RESHI, r10
@@ -950,10 +933,6 @@ tri_quality_body:
     mov     &RESHI, r14
     mov     r7, &OP2
     mov     &RESHI, r15
-    pop     r2
-    push    r2
-    dint
-    nop
     mov     r10, &MPYS
     mov     r10, &OP2
     mov     r11, &MACS
@@ -968,7 +947,6 @@ tri_quality_body:
     mov     r15, &OP2
     mov     &RESLO, r12
     mov     &RESHI, r13
-    pop     r2
     mov     r12, r14
     bis     r13, r14
     tst     r14
@@ -995,9 +973,6 @@ tri_quality_body:
     rla     r13
     mov     optical_sqrt_tab-14(r14), r15
     sub     optical_sqrt_tab-16(r14), r15
-    push    r2
-    dint
-    nop
     mov     r15, &MPY
     mov     r13, &OP2
     mov     optical_sqrt_tab-16(r14), r12
@@ -1013,7 +988,6 @@ tri_quality_body:
     mov     r15, &OP2
     mov     &RESLO, r12
     mov     &RESHI, r13
-    pop     r2
     tst     r8
     jge     11f
     inv     r8                      ; x < 0: floor shift right by -x (0 from 32 on)
