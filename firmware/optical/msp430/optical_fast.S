@@ -124,8 +124,8 @@ optical_angle16:
     xor     r15, r13
     xor     r13, r15
     bis     #2, r11
-4:  tst     r13                     ; both to [2^15, 2^16): right, a bit at a time
-    jz      20f
+4:  tst     r13                     ; both to [2^15, 2^16): right, a bit at a time until
+    jz      20f                     ; ax's high word is 0
     jge     11f
     clrc                            ; (ax = 2^31, ay up to that: logical)
     rrc     r13
@@ -133,13 +133,13 @@ optical_angle16:
     clrc
     rrc     r15
     rrc     r14
-11: tst     r13
-    jz      a16_octant
-    rra     r13
+11: rra     r13
     rrc     r12
     rra     r15
     rrc     r14
-    jmp     11b
+    tst     r13
+    jnz     11b
+    jmp     a16_octant
 20: tst     r12                     ; ax < 2^16 (ay too): left, a bit at a time
     jz      9f
     jn      a16_octant

@@ -152,13 +152,15 @@ optical_fix_init:
 
 /*
  * uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin): R12 = s, R13 = wmin ->
- * R12 = the kept. R6 = i, R14 = &th[i], R9 = &th[n], R10 = t, R15 = th[i - 1] (0 for i = 0:
- * the largest so far), R5 = kept, R4 = 0x7f (wchk). A sighting not below the largest so far
- * is placed at i; otherwise it is inserted (R11 = &th[j], R9 = j, saved meanwhile). While none
- * has moved, the buckets up to each one's start are filled as it is placed (R8 = 2^12 b, the
- * start of the next bucket b, R7 = &bstart[b], 0 when all 16 are set); after a move R8 = 1
- * and optical_buckets does them. O4's mark as it is placed: NONE when its width is wmin or
- * more (counted), else DROPPED.
+ * R12 = the kept. First every mark of the work area NONE and every wchk 0x7F, a word (two
+ * sightings) at a time, all 15 (entries beyond n are not read), bstart[0] = 0. R12 walks s up
+ * to R9 = &s[n]; R6 = i, R14 = &th[i], R10 = t, R15 = th[i - 1] (0 for i = 0: the largest so
+ * far), R5 = kept (n less the dropped), R4 = 1. A sighting not below the largest so far is
+ * placed at i; otherwise it is inserted (R11 = &th[j], R9 = j, saved meanwhile). While none
+ * has moved, the buckets up to each one's start are filled as it is placed (R7 = &bstart[b],
+ * R8 = 2^12 b - 1: bucket b starts at i when t > R8; 0xFFFF after bucket 15, which no t
+ * exceeds); after a move R7 = 0, R8 = 0xFFFF and optical_buckets does them. O4's mark as it
+ * is placed: DROPPED when its width is below wmin (the NONE stays otherwise).
  */
     .section .text.optical_sort,"ax",@progbits
     .global optical_sort
@@ -171,17 +173,38 @@ optical_sort:
     push    r6
     push    r5
     push    r4
-    mov.b   &OW+OW_N, r9
+    mov.b   &OW+OW_N, r5            ; kept = n, less the dropped
+    mov     r5, r9                  ; &s[n] = s + 6 n
     rla     r9
-    add     #OW+OW_TH, r9
+    add     r5, r9
+    rla     r9
+    add     r12, r9
+    mov     #-1, r11                ; sm = NONE, wchk = 0x7f
+    mov     r11, &OW+OW_SM
+    mov     r11, &OW+OW_SM+2
+    mov     r11, &OW+OW_SM+4
+    mov     r11, &OW+OW_SM+6
+    mov     r11, &OW+OW_SM+8
+    mov     r11, &OW+OW_SM+10
+    mov     r11, &OW+OW_SM+12
+    mov.b   r11, &OW+OW_SM+14
+    mov     #0x7f7f, r11
+    mov     r11, &OW+OW_WCHK
+    mov     r11, &OW+OW_WCHK+2
+    mov     r11, &OW+OW_WCHK+4
+    mov     r11, &OW+OW_WCHK+6
+    mov     r11, &OW+OW_WCHK+8
+    mov     r11, &OW+OW_WCHK+10
+    mov     r11, &OW+OW_WCHK+12
+    mov.b   r11, &OW+OW_WCHK+14
+    clr.b   &OW+OW_BSTART           ; bucket 0 starts at 0
+    mov     #1, r4
     clr     r6
-    clr     r5
-    mov     #0x7f, r4
     mov     #OW+OW_TH, r14
     clr     r15
-    clr     r8
-    mov     #OW+OW_BSTART, r7
-    cmp     r9, r14                 ; (n = 0)
+    mov     #0x0fff, r8
+    mov     #OW+OW_BSTART+1, r7
+    cmp     r9, r12                 ; (n = 0)
     jhs     9f
 1:  mov     @r12+, r11              ; t = (angle + 2^15) >> 16
     mov     @r12+, r10
@@ -193,26 +216,22 @@ optical_sort:
     mov     r10, r15
     mov.b   r6, OW+OW_ORD(r6)
     mov     @r12+, r11
-    mov.b   r4, OW+OW_WCHK(r6)
     cmp     r13, r11                ; O4: narrower than wmin, dropped
     jlo     30f
-    mov.b   #MATCH_NONE, OW+OW_SM(r6)
-    sub     #-1, r5
-3:  tst     r7                      ; the buckets up to t's start at i
-    jz      5f
-4:  cmp     r8, r10
-    jlo     5f
-    mov.b   r6, 0(r7)
-    sub     #-1, r7
+3:  cmp     r10, r8                 ; the buckets up to t's start at i
+    jhs     5f
+4:  mov.b   r6, 0(r7)
+    add     r4, r7
     add     #0x1000, r8
-    jnz     4b
-    clr     r7                      ; all 16 set
-5:  sub     #-1, r6
+    cmp     r10, r8
+    jlo     4b
+5:  add     r4, r6
     incd    r14
-    cmp     r9, r14                 ; i < n
+    cmp     r9, r12                 ; i < n
     jlo     1b
     jmp     9f
 30: mov.b   #MATCH_DROPPED, OW+OW_SM(r6)
+    sub     r4, r5
     jmp     3b
 20: push    r9                      ; j = i; while j > 0 and th[j - 1] > t: move up
     mov     r14, r11
@@ -225,30 +244,26 @@ optical_sort:
     mov.b   OW+OW_ORD-1(r9), OW+OW_ORD(r9)
     mov.b   OW+OW_SM-1(r9), OW+OW_SM(r9)
     decd    r11
-    add     #-1, r9
+    sub     r4, r9
     jmp     21b
 22: mov     r10, 0(r11)
     mov     @r12+, r10
     mov.b   r6, OW+OW_ORD(r9)
-    mov.b   r4, OW+OW_WCHK(r6)
     mov.b   #MATCH_NONE, OW+OW_SM(r9) ; or DROPPED when narrower than wmin
     cmp     r13, r10
-    jhs     23f
+    jhs     24f
     mov.b   #MATCH_DROPPED, OW+OW_SM(r9)
-    jmp     24f
-23: sub     #-1, r5
+    sub     r4, r5
 24: pop     r9
-    mov     #1, r8                  ; (moved: the buckets afterwards)
+    mov     #-1, r8                 ; (moved: the buckets afterwards)
     clr     r7
     jmp     5b
-9:  cmp     #1, r8
-    jeq     7f
-    tst     r7                      ; the rest: 0
-    jz      8f
-6:  cmp     #OW+OW_BSTART+16, r7
+9:  tst     r7
+    jz      7f
+6:  cmp     #OW+OW_BSTART+16, r7    ; the rest: 0
     jhs     8f
     clr.b   0(r7)
-    sub     #-1, r7
+    add     r4, r7
     jmp     6b
 7:  call    #optical_buckets
 8:  mov     r5, r12
@@ -300,9 +315,11 @@ optical_buckets:
 /*
  * int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, int16_t *lohi):
  * R12 = wd, R13 = s, R14 = lohi (kept on the stack) -> R12 = the kept. R4 = wd, R5 = s,
- * R6 = n, R7 = kept, R8 = j, R9 = lo, R10 = hi (without lohi: narrowed all the same, and
- * dropped), R11 = k. O5 by optical_width_core (R4 = wd; it clobbers R11..R15 only). The
- * cached verdict: c ^ k is 0 (fits) or 0x80 (a misfit) when c is k's.
+ * R6 = &sm[n], R7 = kept, R8 = &sm[j + 1] (walked), R9 = lo, R10 = hi (without lohi: narrowed
+ * all the same, and dropped), R11 = k, R12 = j. sm holds a beacon (below 32) or NONE, MULTI,
+ * DROPPED (0xfd and up): the sign bit tells them apart. O5 by optical_width_core (R4 = wd; it
+ * clobbers R11..R15 only). The cached verdict: c ^ k is 0 (fits) or 0x80 (a misfit) when c is
+ * k's.
  */
     .section .text.optical_unique,"ax",@progbits
     .global optical_unique
@@ -318,45 +335,49 @@ optical_unique:
     push    r14
     mov     r12, r4
     mov     r13, r5
+    mov     #OW+OW_SM, r8
     mov.b   &OW+OW_N, r6
+    add     r8, r6
     clr     r7
-    clr     r8
     clr     r9
     clr     r10
     tst     r14
     jz      1f
     mov     0(r14), r9
     mov     2(r14), r10
-1:  tst     r6                      ; (n = 0)
-    jz      9f
-2:  mov.b   OW+OW_SM(r8), r11       ; k
-    cmp.b   #MATCH_DROPPED, r11
-    jhs     8f
-    cmp.b   OW+OW_BM(r11), r8       ; bm[k] = j
+1:  cmp     r6, r8                  ; (n = 0)
+    jhs     9f
+2:  mov.b   @r8+, r11               ; k, a beacon
+    tst.b   r11
+    jn      8f
+    mov     r8, r12                 ; bm[k] = j
+    sub     #OW+OW_SM+1, r12
+    cmp.b   OW+OW_BM(r11), r12
     jne     7f
-    mov.b   OW+OW_WCHK(r8), r12     ; c: the cached verdict when it is k's
-    xor.b   r11, r12
-    rla.b   r12                     ; (C: bit 7, a misfit)
+    mov.b   OW+OW_WCHK(r12), r13    ; c: the cached verdict when it is k's
+    xor.b   r11, r13
+    rla.b   r13                     ; (C: bit 7, a misfit)
     jz      3f
-    mov     r11, r13                ; O5: &b[k], the width of s[ord[j]]
-    rla     r13
-    rla     r13
-    rla     r13
-    add     &OW+OW_B, r13
-    mov.b   OW+OW_ORD(r8), r14
+    mov.b   OW+OW_ORD(r12), r14     ; O5: the width of s[ord[j]], &b[k]
     mov     r14, r15
     rla     r14
     add     r15, r14
     rla     r14
     add     r5, r14
     mov     SIGHT_WIDTH(r14), r14
+    mov     r11, r13
+    rla     r13
+    rla     r13
+    rla     r13
+    add     &OW+OW_B, r13
     call    #optical_width_core
-    xor.b   OW+OW_SM(r8), r12       ; c = k | 0x80 for a misfit (N)
-    mov.b   r12, OW+OW_WCHK(r8)
+    xor.b   -1(r8), r12             ; c = k | 0x80 for a misfit (N)
+    mov.b   r12, OW_WCHK-OW_SM-1(r8)
     jn      7f
     mov.b   r12, r11                ; (k)
 4:  sub     #-1, r7
     mov     r8, r13                 ; off = th[j] - psi[k], e = we[j]
+    sub     #OW+OW_SM+1, r13
     rla     r13
     rla     r11
     mov     OW+OW_TH(r13), r15
@@ -379,11 +400,9 @@ optical_unique:
     mov     r15, r10
     add     r14, r10
     jmp     8f
-3:  jc      7f                      ; (the cached verdict: a misfit, or kept)
-    jmp     4b
-7:  mov.b   #MATCH_NONE, OW+OW_SM(r8)
-8:  sub     #-1, r8
-    cmp     r6, r8                  ; j < n
+3:  jnc     4b                      ; (the cached verdict: kept, or a misfit)
+7:  mov.b   #MATCH_NONE, -1(r8)
+8:  cmp     r6, r8                  ; j < n
     jlo     2b
 9:  pop     r14
     tst     r14
@@ -451,9 +470,15 @@ optical_gather:
 
 /*
  * int8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol): R12 = p,
- * R13 = t3, R14 = tol -> R12. R4 = p, R5 = t3, R6 = tol, R7 = i, R8 = left, R9 = a16(heading),
- * R10 scratch (optical_angle16 preserves R4..R10).
+ * R13 = t3, R14 = tol -> R12. R4 = p, R5 = m, R6 = tol, R7 = i, R8 = left, R9 = a16(heading),
+ * R10 = the triplet's positions as bits, shifted right once a step (bit 0: i is one of them;
+ * at most 3 + CHECK_MAX steps are taken, so positions from 7 on need none). optical_angle16
+ * preserves R4..R10.
  */
+    .section .rodata.optical_resid_bits,"a",@progbits
+resid_bits:
+    .byte   0x01, 0x02, 0x04, 0x08, 0x10, 0x20, 0x40, 0x80, 0, 0, 0, 0, 0, 0, 0, 0
+
     .section .text.optical_resid,"ax",@progbits
     .global optical_resid
     .type optical_resid,@function
@@ -466,43 +491,45 @@ optical_resid:
     push    r5
     push    r4
     mov     r12, r4
-    mov     r13, r5
     mov     r14, r6
-    mov     POSE_HEADING(r4), r10   ; a16(heading)
+    mov.b   @r13+, r12              ; the triplet's bits
+    mov.b   resid_bits(r12), r10
+    mov.b   @r13+, r12
+    bis.b   resid_bits(r12), r10
+    mov.b   @r13, r12
+    bis.b   resid_bits(r12), r10
+    mov.b   &OW+OW_M, r5
+    mov     POSE_HEADING(r4), r12   ; a16(heading)
     mov     POSE_HEADING+2(r4), r9
-    rla     r10
+    rla     r12
     adc     r9
     clr     r7
     mov     #4, r8                  ; CHECK_MAX
-1:  cmp.b   &OW+OW_M, r7            ; i < m
+1:  cmp     r5, r7                  ; i < m
     jhs     8f
-    cmp.b   @r5, r7                 ; not one of the triplet
-    jeq     7f
-    cmp.b   1(r5), r7
-    jeq     7f
-    cmp.b   2(r5), r7
-    jeq     7f
-    mov.b   OW+OW_POS(r7), r10      ; &b[sm[pos[i]]]
-    mov.b   OW+OW_SM(r10), r10
-    rla     r10
-    rla     r10
-    rla     r10
-    add     &OW+OW_B, r10
-    mov     XY_X(r10), r12          ; b - p
-    mov     XY_X+2(r10), r13
+    rra     r10                     ; not one of the triplet
+    jc      7f
+    mov.b   OW+OW_POS(r7), r11      ; &b[sm[pos[i]]]
+    mov.b   OW+OW_SM(r11), r11
+    rla     r11
+    rla     r11
+    rla     r11
+    add     &OW+OW_B, r11
+    mov     @r11+, r12              ; b - p
+    mov     @r11+, r13
     sub     POSE_X(r4), r12
     subc    POSE_X+2(r4), r13
-    mov     XY_Y(r10), r14
-    mov     XY_Y+2(r10), r15
+    mov     @r11+, r14
+    mov     @r11, r15
     sub     POSE_Y(r4), r14
     subc    POSE_Y+2(r4), r15
     call    #optical_angle16
     sub     r9, r12
-    mov     r7, r10                 ; - a16(ang[i])
-    rla     r10
-    rla     r10
-    mov     OW+OW_ANG(r10), r11
-    mov     OW+OW_ANG+2(r10), r13
+    mov     r7, r13                 ; - a16(ang[i])
+    rla     r13
+    rla     r13
+    mov     OW+OW_ANG(r13), r11
+    mov     OW+OW_ANG+2(r13), r13
     rla     r11
     adc     r13
     sub     r13, r12
@@ -511,10 +538,10 @@ optical_resid:
     jlo     9f
     add     #-1, r8
     jz      8f
-7:  inc     r7
+7:  sub     #-1, r7
     jmp     1b
 3:  inv     r12
-    inc     r12
+    sub     #-1, r12
     jmp     2b
 8:  clr     r12                     ; OPTICAL_OK
     jmp     4f

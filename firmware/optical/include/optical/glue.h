@@ -81,8 +81,8 @@ void optical_gather(const optical_sighting_t *s, int8_t *ident);
 int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap, const optical_config_t *cfg);
 
 /**
- * O6's residuals: of the identified positions i = 0..m-1 other than @p t3[0..2], the first
- * CHECK_MAX (4) in order: beacon k = sm[pos[i]] seen from the fix @p p, res =
+ * O6's residuals: of the identified positions i = 0..m-1 other than @p t3[0..2] (each below
+ * 16), the first CHECK_MAX (4) in order: beacon k = sm[pos[i]] seen from the fix @p p, res =
  * optical_angle16(b[k] - p) - a16(p->heading) - a16(u.sv.ang[i]) (16 bits; a16(a) = (a +
  * 2^15) >> 16). Returns OPTICAL_E_DISAGREE at the first with |res| > @p tol (2^-16 turn),
  * else OPTICAL_OK.
