@@ -197,7 +197,8 @@ bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
     /* the expected angles come from offsets floored to 2^-8 m: that adds up to sqrt 2 units
      * to the position uncertainty */
     uint16_t e8 = m8((uint32_t)cfg->window_pos);
-    W.eps8 = sat16((uint32_t)e8 + 2u);
+    W.amax8 = W.eps8 = sat16((uint32_t)e8 + 2u);
+    W.lever8 = 0;
     /* D (m) * 2^8 * 2^16 / (2 pi) = D (Q16) * 10430.378 / 2^8 */
     wd->dk = ((uint32_t)cfg->beacon_diameter * 10430u) >> 8;
     wd->eps8 = e8;
@@ -207,14 +208,12 @@ bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
     return true;
 }
 
-void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx)
+void optical_fix_init(optical_fix_t *out)
 {
     for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++)
         out->ident[i] = -1;
     out->n_ident = 0;
     out->widened = 0;
-    out->quality = UINT32_MAX;
-    out->pose = *approx;
 }
 
 uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin)
@@ -293,8 +292,9 @@ void optical_gather(const optical_sighting_t *s, int8_t *ident)
 int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap, const optical_config_t *cfg)
 {
     /* (|jx| + |jy| <= jump_max bounds the distance without the root) */
-    uint32_t jx = umag(p->x - ap->x), jy = umag(p->y - ap->y), jm = (uint32_t)cfg->jump_max;
-    if ((jx > jm || jy > jm - jx) && fx_hypot((int32_t)jx, (int32_t)jy) > jm)
+    int32_t dx = p->x - ap->x, dy = p->y - ap->y;
+    uint32_t jx = umag(dx), jy = umag(dy), jm = (uint32_t)cfg->jump_max;
+    if ((jx > jm || jy > jm - jx) && fx_hypot(dx, dy) > jm)
         return OPTICAL_E_JUMP;
     if (umag((int32_t)(p->heading - ap->heading)) > cfg->turn_max)
         return OPTICAL_E_TURN;
@@ -511,31 +511,53 @@ static int8_t finish(optical_fix_t *out, int8_t status)
     return status;
 }
 
+/* A result without a solution: the pose @p ap, quality UINT32_MAX (field by field: no
+ * memcpy). */
+__attribute__((noinline)) static int8_t fail(optical_fix_t *out, const optical_pose_t *ap,
+                                             int8_t status)
+{
+    out->pose.x = ap->x;
+    out->pose.y = ap->y;
+    out->pose.heading = ap->heading;
+    out->quality = UINT32_MAX;
+    return finish(out, status);
+}
+
+/* The gathered angles into the reference frame: each turned by its latched heading's change
+ * to the reference instant. */
+__attribute__((noinline)) static void rotate(const ctx_t *x)
+{
+    const optical_pose_t *lat = x->latched;
+    for (uint8_t i = 0; i < W.m; i++)
+        W.u.sv.ang[i] += lat[W.ord[W.pos[i]]].heading - x->ap->heading;
+}
+
 /* The identified (W.sm) into W.pos / W.m and the result's ident, and their reference-frame
- * angles (the sighting's angle turned by its latched heading's change to the reference
- * instant). */
+ * angles (standing: the sightings' own). */
 static void gather(const ctx_t *x)
 {
     optical_gather(x->s, x->ident);
-    const optical_pose_t *lat = x->latched;
-    if (lat != NULL)
-        for (uint8_t i = 0; i < W.m; i++)
-            W.u.sv.ang[i] += lat[W.ord[W.pos[i]]].heading - x->ap->heading;
+    if (x->latched != NULL)
+        rotate(x);
 }
 
-/* solve_triplet() with a parallax lever among the three: the angles refined with the
- * ranges of the fix (O11), @p passes at most. */
+/* solve_triplet() while moving: with a parallax lever among the three, the angles refined
+ * with the ranges of the fix (O11), @p passes at most; else as standing. */
 __attribute__((noinline)) static int8_t solve_moving(const ctx_t *x, const uint8_t t[3],
                                                      uint8_t passes, optical_tri_t *tri)
 {
+    uint8_t i = 0;
+    while (!W.c[W.pos[t[i]]])
+        if (++i == 3)
+            return optical_tri_take(x->map->b, t, x->cfg->quality_max, tri);
     optical_xy_t *b = W.u.sv.b;
     fx_angle_t th[3];
-    for (uint8_t i = 0; i < 3; i++)
+    for (i = 0; i < 3; i++)
         b[i] = x->map->b[W.sm[W.pos[t[i]]]];
     optical_pose_t p = *x->ap;
     int8_t st = OPTICAL_OK;
     for (uint8_t pass = 0; pass < passes; pass++) {
-        for (uint8_t i = 0; i < 3; i++) {
+        for (i = 0; i < 3; i++) {
             uint8_t j = W.pos[t[i]];
             th[i] = W.u.sv.ang[t[i]];
             if (W.c[j])
@@ -560,24 +582,16 @@ __attribute__((noinline)) static int8_t solve_moving(const ctx_t *x, const uint8
 static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, optical_tri_t *tri)
 {
     if (x->latched != NULL) /* (standing: W.c unset) */
-        for (uint8_t i = 0; i < 3; i++)
-            if (W.c[W.pos[t[i]]] != 0)
-                return solve_moving(x, t, passes, tri);
+        return solve_moving(x, t, passes, tri);
     return optical_tri_take(x->map->b, t, x->cfg->quality_max, tri);
 }
 
-/*
- * O7-O10: select three of the identified (the seed's rule) and triangulate. When that
- * triplet lies too close to its beacons' circle (refused as singular or inconsistent), the
- * triplets with one of its beacons replaced by another identified one are tried, and the
- * best taken.
- */
-static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t *tri)
+/* solve() when triplet @p t was refused with @p st (singular or inconsistent) and more than
+ * three are identified: the triplets with one of its beacons replaced by another identified
+ * one, the best of them (OPTICAL_OK) into @p tri and @p t, else @p st. */
+__attribute__((noinline)) static int8_t solve_others(const ctx_t *x, uint8_t passes, uint8_t t[3],
+                                                     optical_tri_t *tri, int8_t st)
 {
-    optical_select(W.u.sv.ang, W.m, t);
-    int8_t st = solve_triplet(x, t, passes, tri);
-    if ((st != OPTICAL_E_SINGULAR && st != OPTICAL_E_INCONSISTENT) || W.m <= 3)
-        return st;
     uint32_t best = UINT32_MAX;
     uint8_t br = 0, bq = 0; /* the best: t with t[br] = bq */
     for (uint8_t r = 0; r < 3; r++) {
@@ -601,10 +615,26 @@ static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t 
     return solve_triplet(x, t, passes, tri);
 }
 
+/*
+ * O7-O10: select three of the identified (the seed's rule) and triangulate. When that
+ * triplet lies too close to its beacons' circle (refused as singular or inconsistent), the
+ * triplets with one of its beacons replaced by another identified one are tried, and the
+ * best taken (solve_others).
+ */
+static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t *tri)
+{
+    optical_select(W.u.sv.ang, W.m, t);
+    int8_t st = solve_triplet(x, t, passes, tri);
+    if ((st != OPTICAL_E_SINGULAR && st != OPTICAL_E_INCONSISTENT) || W.m <= 3)
+        return st;
+    return solve_others(x, passes, t, tri, st);
+}
+
 /* O11: the sightings into the vehicle frame of the reference instant, sorted by angle, with
- * their parallax levers (standing: none, and W.c / W.lev are not read: lever8 = 0, no
- * latched poses), and O4's marks for the range T = cfg->range (threshold()); the sightings
- * kept, or -1 when a latched pose lies beyond the coordinate limit. */
+ * their parallax levers, lever8 and amax8 (standing: none, and W.c / W.lev are not read:
+ * lever8 = 0 and amax8 = eps8 as optical_setup left them, no latched poses), and O4's marks for the
+ * range T = cfg->range (threshold()); the sightings kept, or -1 when a latched pose lies beyond the
+ * coordinate limit. */
 static int8_t prepare(ctx_t *x)
 {
     const optical_pose_t *ap = x->ap, *lat = x->latched;
@@ -653,9 +683,9 @@ static int8_t prepare(ctx_t *x)
         }
         optical_buckets();
         kept = optical_drop(x->s, wmin);
+        W.lever8 = lever8; /* (standing: 0 and eps8, as optical_setup left them) */
+        W.amax8 = sat16((uint32_t)W.eps8 + lever8);
     }
-    W.lever8 = lever8;
-    W.amax8 = sat16((uint32_t)W.eps8 + lever8);
     return (int8_t)kept;
 }
 
@@ -705,10 +735,10 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *approx, const optical_sighting_t *s, uint8_t n,
                    const optical_pose_t *latched, optical_fix_t *out)
 {
-    optical_fix_init(out, approx);
+    optical_fix_init(out);
     ctx_t x;
     if (n > OPTICAL_MAX_SIGHTINGS || !optical_setup(map, cfg, approx, &x.wd))
-        return finish(out, OPTICAL_E_ARG);
+        return fail(out, approx, OPTICAL_E_ARG);
     W.b8 = map->b8;
     W.ox = map->ox;
     W.oy = map->oy;
@@ -722,25 +752,25 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
 
     int8_t kept = prepare(&x);
     if (kept < 0)
-        return finish(out, OPTICAL_E_ARG);
+        return fail(out, approx, OPTICAL_E_ARG);
     /* O4, then O2: expected angles of the beacons within T (+ the position uncertainty),
      * and the first identification pass (O3). */
     W.gate8 = sat15(((uint32_t)threshold(&x, (uint8_t)kept) + (uint32_t)cfg->window_pos) >> 8);
     uint16_t h0 = half0(cfg);
     if (optical_first_scan(0, h0)) /* (O4 left every mark NONE or DROPPED) */
-        return finish(out, OPTICAL_E_ARG);
+        return fail(out, approx, OPTICAL_E_ARG);
     if (n < 3)
-        return finish(out, OPTICAL_E_FEW);
+        return fail(out, approx, OPTICAL_E_FEW);
 
     /* O3-O5 */
     uint8_t mode, widened;
     int8_t found = identify(&x, h0, &mode, &widened);
     out->widened = widened;
     if (found < 0)
-        return finish(out, OPTICAL_E_INCONSISTENT);
+        return fail(out, approx, OPTICAL_E_INCONSISTENT);
     if (found < 3) { /* (found: the identified, as gather would count them) */
         out->n_ident = (uint8_t)found;
-        return finish(out, OPTICAL_E_FEW);
+        return fail(out, approx, OPTICAL_E_FEW);
     }
     gather(&x);
 
@@ -762,23 +792,23 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         for (uint8_t j = 0; j < n; j++)
             W.wchk[j] = 0x7Fu;
         optical_expect_scan(0, rmax);
-        optical_fix_init(out, approx); /* (none identified: gather wrote ident) */
+        optical_fix_init(out); /* (none identified: gather wrote ident) */
         out->widened = widened;
         if (optical_unique(&x.wd, x.s, NULL) < 5)
-            return finish(out, OPTICAL_E_UNCONFIRMED);
+            return fail(out, approx, OPTICAL_E_UNCONFIRMED);
         gather(&x);
         st = solve(&x, passes, t3, &tri);
     }
     out->n_ident = W.m;
-    if (st == OPTICAL_OK || st == OPTICAL_E_SINGULAR) {
-        out->pose.x = tri.pose.x; /* (field by field, unrolled: no memcpy, no counter) */
-        out->pose.y = tri.pose.y;
-        out->pose.heading = tri.pose.heading;
-        out->quality = tri.quality;
-        out->used[0] = W.sm[W.pos[t3[0]]];
-        out->used[1] = W.sm[W.pos[t3[1]]];
-        out->used[2] = W.sm[W.pos[t3[2]]];
-    }
+    if (st != OPTICAL_OK && st != OPTICAL_E_SINGULAR)
+        return fail(out, approx, st);
+    out->pose.x = tri.pose.x; /* (field by field, unrolled: no memcpy, no counter) */
+    out->pose.y = tri.pose.y;
+    out->pose.heading = tri.pose.heading;
+    out->quality = tri.quality;
+    out->used[0] = W.sm[W.pos[t3[0]]];
+    out->used[1] = W.sm[W.pos[t3[1]]];
+    out->used[2] = W.sm[W.pos[t3[2]]];
     if (st == OPTICAL_OK)
         st = check(&x, &tri.pose, t3);
     return finish(out, st);

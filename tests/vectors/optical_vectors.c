@@ -821,7 +821,7 @@ static void glue_kernels(void)
             optical_fix_t f;
             for (uint8_t i = 0; i <= offsetof(optical_fix_t, status); i++)
                 ((uint8_t *)&f)[i] = (uint8_t)rnd32();
-            optical_fix_init(&f, &p);
+            optical_fix_init(&f);
             cy_print(" f");
             for (uint8_t i = 0; i <= offsetof(optical_fix_t, status); i++) {
                 cy_print(" ");

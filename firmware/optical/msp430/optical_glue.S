@@ -85,6 +85,8 @@ optical_setup:
     jnc     2f
     mov     #-1, r14
 2:  mov     r14, &OW+OW_EPS8
+    mov     r14, &OW+OW_AMAX8       ; amax8 = eps8, lever8 = 0 (standing)
+    clr     &OW+OW_LEVER8
     mov     CFG_DIST_TOL(r13), r12  ; tol8 = dist_tol >> 8, saturated
     mov     CFG_DIST_TOL+2(r13), r11
     mov     #-1, r14
@@ -122,23 +124,12 @@ optical_setup:
 8:  clr     r12
     ret
 
-/*
- * void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx): R12 = out,
- * R13 = approx.
- */
+/* void optical_fix_init(optical_fix_t *out): R12 = out. */
     .section .text.optical_fix_init,"ax",@progbits
     .global optical_fix_init
     .type optical_fix_init,@function
 optical_fix_init:
-    mov     POSE_X(r13), FIX_POSE+POSE_X(r12)
-    mov     POSE_X+2(r13), FIX_POSE+POSE_X+2(r12)
-    mov     POSE_Y(r13), FIX_POSE+POSE_Y(r12)
-    mov     POSE_Y+2(r13), FIX_POSE+POSE_Y+2(r12)
-    mov     POSE_HEADING(r13), FIX_POSE+POSE_HEADING(r12)
-    mov     POSE_HEADING+2(r13), FIX_POSE+POSE_HEADING+2(r12)
     mov     #-1, r14
-    mov     r14, FIX_QUALITY(r12)
-    mov     r14, FIX_QUALITY+2(r12)
     mov     r14, FIX_IDENT(r12)
     mov     r14, FIX_IDENT+2(r12)
     mov     r14, FIX_IDENT+4(r12)
@@ -422,7 +413,8 @@ optical_unique:
 /*
  * void optical_gather(const optical_sighting_t *s, int8_t *ident): R12 = s, R13 = ident.
  * R13 = &sm[j + 1] (walked), R8 = ident, R10 = &sm[n], R14 = &pos[m], R15 = &ang[m], R11 =
- * sm[j], R9 = ord[j], then the sighting's address, then j; R7 = &ident[ord[j]].
+ * sm[j] (a beacon, below 32, or NONE, MULTI, DROPPED: the sign bit tells them apart), R9 =
+ * ord[j], then the sighting's address, then j; R7 = &ident[ord[j]].
  */
     .section .text.optical_gather,"ax",@progbits
     .global optical_gather
@@ -440,9 +432,9 @@ optical_gather:
     mov     #OW+OW_ANG, r15
 1:  cmp     r10, r13                ; j < n
     jhs     9f
-    mov.b   @r13+, r11
-    cmp.b   #MATCH_DROPPED, r11
-    jhs     1b
+    mov.b   @r13+, r11              ; a beacon
+    tst.b   r11
+    jn      1b
     mov.b   OW_ORD-OW_SM-1(r13), r9 ; ident[ord[j]] = sm[j]
     mov     r9, r7
     add     r8, r7
@@ -557,8 +549,11 @@ optical_resid:
 
 /*
  * int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap,
- * const optical_config_t *cfg): R12 = p, R13 = ap, R14 = cfg -> R12. R11:R10 = jx (then |dh|),
- * R9:R8 = jy, R7:R6 = jump_max - jx - jy (then turn_max - |dh|).
+ * const optical_config_t *cfg): R12 = p, R13 = ap, R14 = cfg -> R12. R15:R11 = jump_max -
+ * jx - jy (then turn_max - |dh|), R9:R10 a difference d: its magnitude taken off by
+ * subtracting d, or adding it when negative (the carry tells whether the rest stays >= 0,
+ * unsigned, either way). Only when it does not, the root of dx and dy (fx_hypot takes their
+ * magnitudes).
  */
     .section .text.optical_jump,"ax",@progbits
     .global optical_jump
@@ -566,76 +561,70 @@ optical_resid:
 optical_jump:
     push    r10
     push    r9
-    push    r8
-    push    r7
-    push    r6
-    mov     POSE_X(r12), r10        ; jx = |p.x - ap.x|
-    mov     POSE_X+2(r12), r11
+    mov     CFG_JUMP_MAX(r14), r11  ; jx > jump_max or jy > jump_max - jx: the root decides
+    mov     CFG_JUMP_MAX+2(r14), r15
+    mov     POSE_X(r12), r10        ; - |p.x - ap.x|
+    mov     POSE_X+2(r12), r9
     sub     POSE_X(r13), r10
-    subc    POSE_X+2(r13), r11
-    tst     r11
-    jge     1f
-    inv     r10
-    inv     r11
-    inc     r10
-    adc     r11
-1:  mov     POSE_Y(r12), r8         ; jy = |p.y - ap.y|
+    subc    POSE_X+2(r13), r9
+    jn      1f
+    sub     r10, r11
+    subc    r9, r15
+    jmp     2f
+1:  add     r10, r11
+    addc    r9, r15
+2:  jnc     3f
+    mov     POSE_Y(r12), r10        ; - |p.y - ap.y|
     mov     POSE_Y+2(r12), r9
-    sub     POSE_Y(r13), r8
+    sub     POSE_Y(r13), r10
     subc    POSE_Y+2(r13), r9
-    tst     r9
-    jge     2f
-    inv     r8
-    inv     r9
-    inc     r8
-    adc     r9
-2:  mov     CFG_JUMP_MAX(r14), r6   ; jx > jump_max or jy > jump_max - jx: the root decides
-    mov     CFG_JUMP_MAX+2(r14), r7
-    sub     r10, r6
-    subc    r11, r7
-    jlo     3f
-    sub     r8, r6
-    subc    r9, r7
-    jhs     4f
+    jn      1f
+    sub     r10, r11
+    subc    r9, r15
+    jmp     2f
+1:  add     r10, r11
+    addc    r9, r15
+2:  jc      4f
 3:  push    r12
     push    r13
     push    r14
+    mov     POSE_Y(r12), r14        ; hypot(dx, dy) (of the magnitudes)
+    mov     POSE_Y+2(r12), r15
+    sub     POSE_Y(r13), r14
+    subc    POSE_Y+2(r13), r15
+    mov     POSE_X(r12), r10
+    mov     POSE_X+2(r12), r11
+    sub     POSE_X(r13), r10
+    subc    POSE_X+2(r13), r11
     mov     r10, r12
     mov     r11, r13
-    mov     r8, r14
-    mov     r9, r15
     call    #fx_hypot
     pop     r14
-    mov     CFG_JUMP_MAX(r14), r6   ; hypot > jump_max: a jump
-    mov     CFG_JUMP_MAX+2(r14), r7
-    sub     r12, r6
-    subc    r13, r7
+    mov     CFG_JUMP_MAX(r14), r11  ; hypot > jump_max: a jump
+    mov     CFG_JUMP_MAX+2(r14), r15
+    sub     r12, r11
+    subc    r13, r15
     pop     r13
     pop     r12
     jlo     8f
-4:  mov     POSE_HEADING(r12), r10  ; |heading - ap heading|
-    mov     POSE_HEADING+2(r12), r11
+4:  mov     CFG_TURN_MAX(r14), r11  ; |heading - ap heading| > turn_max: a turn
+    mov     CFG_TURN_MAX+2(r14), r15
+    mov     POSE_HEADING(r12), r10
+    mov     POSE_HEADING+2(r12), r9
     sub     POSE_HEADING(r13), r10
-    subc    POSE_HEADING+2(r13), r11
-    tst     r11
-    jge     5f
-    inv     r10
-    inv     r11
-    inc     r10
-    adc     r11
-5:  mov     CFG_TURN_MAX(r14), r6   ; > turn_max: a turn
-    mov     CFG_TURN_MAX+2(r14), r7
-    sub     r10, r6
-    subc    r11, r7
-    jlo     9f
+    subc    POSE_HEADING+2(r13), r9
+    jn      1f
+    sub     r10, r11
+    subc    r9, r15
+    jmp     2f
+1:  add     r10, r11
+    addc    r9, r15
+2:  jnc     9f
     clr     r12                     ; OPTICAL_OK
     jmp     6f
 8:  mov     #E_JUMP, r12
     jmp     6f
 9:  mov     #E_TURN, r12
-6:  pop     r6
-    pop     r7
-    pop     r8
-    pop     r9
+6:  pop     r9
     pop     r10
     ret

@@ -24,20 +24,20 @@ extern "C" {
  * optical_fix()'s argument check and its work area and O5 arguments from its inputs: false
  * (nothing written) when @p map is NULL, map->n lies outside [3, OPTICAL_MAX_BEACONS] or
  * approx's x or y outside (-OPTICAL_COORD_LIMIT, OPTICAL_COORD_LIMIT); else true and: b, nb
- * from @p map; x, y and
- * head = (heading + 2^15) >> 16 from @p approx; eps8 = min(m8 + 2, 0xFFFF) with m8 =
- * min(ceil(window_pos / 2^8), 0xFFFF) (2^-8 m); @p wd: dk = (beacon_diameter 10430 mod 2^32)
- * >> 8, x, y as approx, eps8 = m8, tol8 = min(dist_tol >> 8, 0xFFFF), rel16 = min(dist_rel,
- * 0xFFFF) (both as uint32), flat = beacon_flat.
+ * from @p map; x, y and head = (heading + 2^15) >> 16 from @p approx; amax8 = eps8 =
+ * min(m8 + 2, 0xFFFF) with m8 = min(ceil(window_pos / 2^8), 0xFFFF) (2^-8 m), lever8 = 0 (as
+ * standing); @p wd: dk = (beacon_diameter 10430 mod 2^32) >> 8, x, y as approx, eps8 = m8,
+ * tol8 = min(dist_tol >> 8, 0xFFFF), rel16 = min(dist_rel, 0xFFFF) (both as uint32), flat =
+ * beacon_flat.
  */
 bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *approx, optical_width_t *wd);
 
 /**
- * optical_fix()'s result before any check: ident all -1, n_ident = widened = 0, quality =
- * UINT32_MAX, pose = *@p approx.
+ * optical_fix()'s result before any check: ident all -1, n_ident = widened = 0 (pose and
+ * quality are written once the outcome is known).
  */
-void optical_fix_init(optical_fix_t *out, const optical_pose_t *approx);
+void optical_fix_init(optical_fix_t *out);
 
 /**
  * The standing preparation (no latched poses): sightings @p s[0..n) (n = optical_work.n) by
@@ -75,7 +75,7 @@ void optical_gather(const optical_sighting_t *s, int8_t *ident);
 /**
  * O6's plausibility of the fix @p p against the approximate pose @p ap: OPTICAL_E_JUMP when
  * the distance exceeds cfg->jump_max (jx = |dx|, jy = |dy| unsigned 32-bit: jx > jump_max or
- * jy > jump_max - jx, and fx_hypot(jx, jy) > jump_max), else OPTICAL_E_TURN when
+ * jy > jump_max - jx, and fx_hypot(dx, dy) > jump_max), else OPTICAL_E_TURN when
  * |heading - ap heading| (as int32, magnitude unsigned) exceeds cfg->turn_max, else OPTICAL_OK.
  */
 int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap, const optical_config_t *cfg);
