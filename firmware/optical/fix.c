@@ -541,23 +541,19 @@ static void gather(const ctx_t *x)
         rotate(x);
 }
 
-/* solve_triplet() while moving: with a parallax lever among the three, the angles refined
- * with the ranges of the fix (O11), @p passes at most; else as standing. */
+/* solve_triplet() with a parallax lever among the three: the angles refined with the
+ * ranges of the fix (O11), @p passes at most. */
 __attribute__((noinline)) static int8_t solve_moving(const ctx_t *x, const uint8_t t[3],
                                                      uint8_t passes, optical_tri_t *tri)
 {
-    uint8_t i = 0;
-    while (!W.c[W.pos[t[i]]])
-        if (++i == 3)
-            return optical_tri_take(x->map->b, t, x->cfg->quality_max, tri);
     optical_xy_t *b = W.u.sv.b;
     fx_angle_t th[3];
-    for (i = 0; i < 3; i++)
+    for (uint8_t i = 0; i < 3; i++)
         b[i] = x->map->b[W.sm[W.pos[t[i]]]];
     optical_pose_t p = *x->ap;
     int8_t st = OPTICAL_OK;
     for (uint8_t pass = 0; pass < passes; pass++) {
-        for (i = 0; i < 3; i++) {
+        for (uint8_t i = 0; i < 3; i++) {
             uint8_t j = W.pos[t[i]];
             th[i] = W.u.sv.ang[t[i]];
             if (W.c[j])
@@ -582,16 +578,24 @@ __attribute__((noinline)) static int8_t solve_moving(const ctx_t *x, const uint8
 static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, optical_tri_t *tri)
 {
     if (x->latched != NULL) /* (standing: W.c unset) */
-        return solve_moving(x, t, passes, tri);
+        for (uint8_t i = 0; i < 3; i++)
+            if (W.c[W.pos[t[i]]] != 0)
+                return solve_moving(x, t, passes, tri);
     return optical_tri_take(x->map->b, t, x->cfg->quality_max, tri);
 }
 
-/* solve() when triplet @p t was refused with @p st (singular or inconsistent) and more than
- * three are identified: the triplets with one of its beacons replaced by another identified
- * one, the best of them (OPTICAL_OK) into @p tri and @p t, else @p st. */
-__attribute__((noinline)) static int8_t solve_others(const ctx_t *x, uint8_t passes, uint8_t t[3],
-                                                     optical_tri_t *tri, int8_t st)
+/*
+ * O7-O10: select three of the identified (the seed's rule) and triangulate. When that
+ * triplet lies too close to its beacons' circle (refused as singular or inconsistent), the
+ * triplets with one of its beacons replaced by another identified one are tried, and the
+ * best taken.
+ */
+static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t *tri)
 {
+    optical_select(W.u.sv.ang, W.m, t);
+    int8_t st = solve_triplet(x, t, passes, tri);
+    if ((st != OPTICAL_E_SINGULAR && st != OPTICAL_E_INCONSISTENT) || W.m <= 3)
+        return st;
     uint32_t best = UINT32_MAX;
     uint8_t br = 0, bq = 0; /* the best: t with t[br] = bq */
     for (uint8_t r = 0; r < 3; r++) {
@@ -615,25 +619,10 @@ __attribute__((noinline)) static int8_t solve_others(const ctx_t *x, uint8_t pas
     return solve_triplet(x, t, passes, tri);
 }
 
-/*
- * O7-O10: select three of the identified (the seed's rule) and triangulate. When that
- * triplet lies too close to its beacons' circle (refused as singular or inconsistent), the
- * triplets with one of its beacons replaced by another identified one are tried, and the
- * best taken (solve_others).
- */
-static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t *tri)
-{
-    optical_select(W.u.sv.ang, W.m, t);
-    int8_t st = solve_triplet(x, t, passes, tri);
-    if ((st != OPTICAL_E_SINGULAR && st != OPTICAL_E_INCONSISTENT) || W.m <= 3)
-        return st;
-    return solve_others(x, passes, t, tri, st);
-}
-
 /* O11: the sightings into the vehicle frame of the reference instant, sorted by angle, with
- * their parallax levers, lever8 and amax8 (standing: none, and W.c / W.lev are not read:
- * lever8 = 0 and amax8 = eps8 as optical_setup left them, no latched poses), and O4's marks for the
- * range T = cfg->range (threshold()); the sightings kept, or -1 when a latched pose lies beyond the
+ * their parallax levers, lever8 and amax8 (standing: none, and W.c / W.lev are not read;
+ * lever8 = 0 and amax8 = eps8 as optical_setup left them), and O4's marks for the range
+ * T = cfg->range (threshold()); the sightings kept, or -1 when a latched pose lies beyond the
  * coordinate limit. */
 static int8_t prepare(ctx_t *x)
 {
@@ -683,7 +672,7 @@ static int8_t prepare(ctx_t *x)
         }
         optical_buckets();
         kept = optical_drop(x->s, wmin);
-        W.lever8 = lever8; /* (standing: 0 and eps8, as optical_setup left them) */
+        W.lever8 = lever8;
         W.amax8 = sat16((uint32_t)W.eps8 + lever8);
     }
     return (int8_t)kept;
