@@ -49,20 +49,20 @@ optical_setup:
     jz      8f
 1:  mov     MAP_B(r12), &OW+OW_B
     mov.b   MAP_N(r12), &OW+OW_NB
-    mov     POSE_X(r14), r12        ; x, y
+    mov     @r14+, r12              ; x, y (approx walked)
     mov     r12, &OW+OW_X
     mov     r12, WD_X(r15)
-    mov     POSE_X+2(r14), r12
+    mov     @r14+, r12
     mov     r12, &OW+OW_X+2
     mov     r12, WD_X+2(r15)
-    mov     POSE_Y(r14), r12
+    mov     @r14+, r12
     mov     r12, &OW+OW_Y
     mov     r12, WD_Y(r15)
-    mov     POSE_Y+2(r14), r12
+    mov     @r14+, r12
     mov     r12, &OW+OW_Y+2
     mov     r12, WD_Y+2(r15)
-    mov     POSE_HEADING(r14), r12  ; head
-    mov     POSE_HEADING+2(r14), r11
+    mov     @r14+, r12              ; head
+    mov     @r14, r11
     rla     r12
     adc     r11
     mov     r11, &OW+OW_HEAD
@@ -146,8 +146,9 @@ optical_fix_init:
  * R12 = the kept. First every mark of the work area NONE and every wchk 0x7F, a word (two
  * sightings) at a time, all 15 (entries beyond n are not read), bstart[0] = 0. R12 walks s up
  * to R9 = &s[n]; R6 = i, R14 = &th[i], R10 = t, R15 = th[i - 1] (0 for i = 0: the largest so
- * far), R5 = kept (n less the dropped), R4 = 1. A sighting not below the largest so far is
- * placed at i; otherwise it is inserted (R11 = &th[j], R9 = j, saved meanwhile). While none
+ * far), R4 = 1, R5 = 2; the kept (n less the dropped) on the stack. A sighting not below the
+ * largest so far is placed at i; otherwise it is inserted (R11 = &th[j], R15 = j; then th[i]
+ * holds the largest so far). While none
  * has moved, the buckets up to each one's start are filled as it is placed (R7 = &bstart[b],
  * R8 = 2^12 b - 1: bucket b starts at i when t > R8; 0xFFFF after bucket 15, which no t
  * exceeds); after a move R7 = 0, R8 = 0xFFFF and optical_buckets does them. O4's mark as it
@@ -164,10 +165,11 @@ optical_sort:
     push    r6
     push    r5
     push    r4
-    mov.b   &OW+OW_N, r5            ; kept = n, less the dropped
-    mov     r5, r9                  ; &s[n] = s + 6 n
+    mov.b   &OW+OW_N, r11           ; kept = n, less the dropped
+    push    r11
+    mov     r11, r9                 ; &s[n] = s + 6 n
     rla     r9
-    add     r5, r9
+    add     r11, r9
     rla     r9
     add     r12, r9
     mov     #-1, r11                ; sm = NONE, wchk = 0x7f
@@ -190,6 +192,7 @@ optical_sort:
     mov.b   r11, &OW+OW_WCHK+14
     clr.b   &OW+OW_BSTART           ; bucket 0 starts at 0
     mov     #1, r4
+    mov     #2, r5
     clr     r6
     mov     #OW+OW_TH, r14
     clr     r15
@@ -217,35 +220,34 @@ optical_sort:
     cmp     r10, r8
     jlo     4b
 5:  add     r4, r6
-    incd    r14
+    add     r5, r14
     cmp     r9, r12                 ; i < n
     jlo     1b
     jmp     9f
 30: mov.b   #MATCH_DROPPED, OW+OW_SM(r6)
-    sub     r4, r5
+    sub     r4, 0(r1)
     jmp     3b
-20: push    r9                      ; j = i; while j > 0 and th[j - 1] > t: move up
-    mov     r14, r11
-    mov     r6, r9
-21: tst     r9
+20: mov     r14, r11                ; j = i; while j > 0 and th[j - 1] > t: move up
+    mov     r6, r15
+21: tst     r15
     jz      22f
     cmp     -2(r11), r10
     jhs     22f
     mov     -2(r11), 0(r11)
-    mov.b   OW+OW_ORD-1(r9), OW+OW_ORD(r9)
-    mov.b   OW+OW_SM-1(r9), OW+OW_SM(r9)
-    decd    r11
-    sub     r4, r9
+    mov.b   OW+OW_ORD-1(r15), OW+OW_ORD(r15)
+    mov.b   OW+OW_SM-1(r15), OW+OW_SM(r15)
+    sub     r5, r11
+    sub     r4, r15
     jmp     21b
 22: mov     r10, 0(r11)
     mov     @r12+, r10
-    mov.b   r6, OW+OW_ORD(r9)
-    mov.b   #MATCH_NONE, OW+OW_SM(r9) ; or DROPPED when narrower than wmin
+    mov.b   r6, OW+OW_ORD(r15)
+    mov.b   #MATCH_NONE, OW+OW_SM(r15) ; or DROPPED when narrower than wmin
     cmp     r13, r10
     jhs     24f
-    mov.b   #MATCH_DROPPED, OW+OW_SM(r9)
-    sub     r4, r5
-24: pop     r9
+    mov.b   #MATCH_DROPPED, OW+OW_SM(r15)
+    sub     r4, 0(r1)
+24: mov     @r14, r15               ; the largest so far (moved up to i)
     mov     #-1, r8                 ; (moved: the buckets afterwards)
     clr     r7
     jmp     5b
@@ -257,7 +259,7 @@ optical_sort:
     add     r4, r7
     jmp     6b
 7:  call    #optical_buckets
-8:  mov     r5, r12
+8:  pop     r12
     pop     r4
     pop     r5
     pop     r6
