@@ -102,14 +102,14 @@ optical_angle16:
     jge     1f
     inv     r12
     inv     r13
-    add     #1, r12
+    sub     #-1, r12                ; (+1, carry as add)
     adc     r13
     bis     #4, r11
 1:  tst     r15
     jge     2f
     inv     r14
     inv     r15
-    add     #1, r14
+    sub     #-1, r14
     adc     r15
     bis     #8, r11
 2:  cmp     r13, r15                ; ay > ax: swap
@@ -784,8 +784,8 @@ optical_eval:
 /*
  * uint32_t optical_wmin(uint32_t dk, uint32_t t8): R13:R12 = dk, R15:R14 = t8 -> R13:R12
  * (fastmath.c). A restoring division when t8 and the quotient fit 16 bits (the quotient's bits
- * into R12, the remainder in R13, R15 the steps): 8 steps when dk >> 8 < t8 (the quotient's
- * upper byte 0: dk << 8 to start from), else 16; otherwise the library's.
+ * into R12, the remainder in R13, R15 the steps, R11 = -1): 8 steps when dk >> 8 < t8 (the
+ * quotient's upper byte 0: dk << 8 to start from), else 16; otherwise the library's.
  */
     .section .text.optical_wmin,"ax",@progbits
     .global optical_wmin
@@ -799,7 +799,7 @@ optical_wmin:
     jhs     5f
     mov     #16, r15
     cmp     #0x0100, r13            ; dk >> 8 below t8: start from dk << 8
-    jhs     1f
+    jhs     7f
     mov     r13, r11
     swpb    r11
     mov     r12, r13
@@ -811,20 +811,21 @@ optical_wmin:
     swpb    r12
     and     #0xff00, r12
     mov     #8, r15
+7:  mov     #-1, r11
 1:  rla     r12
     rlc     r13
     jc      2f
     cmp     r14, r13
     jlo     3f
 2:  sub     r14, r13
-    sub     #-1, r12                ; (the bit shifted in is 0)
-3:  add     #-1, r15
+    sub     r11, r12                ; (the bit shifted in is 0)
+3:  add     r11, r15
     jnz     1b
     clr     r13
     ret
 4:  mov     r11, r13                ; (dk's high word again: r11 = its byte << 8)
     swpb    r13
-    jmp     1b
+    jmp     7b
 5:  br      #__mspabi_divul         ; t8 or the quotient 2^16 or more
 6:  mov     #-1, r12                ; t8 = 0: 0xffff
     clr     r13
