@@ -144,7 +144,8 @@ optical_fix_init:
 /*
  * uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin): R12 = s, R13 = wmin ->
  * R12 = the kept. First every mark of the work area NONE and every wchk 0x7F, a word (two
- * sightings) at a time, all 15 (entries beyond n are not read), bstart[0] = 0. R12 walks s up
+ * sightings) at a time, all 15 (entries beyond n are not read), and bstart[0] = 0 (the word
+ * after sm[13]). R12 walks s up
  * to R9 = &s[n]; R6 = i, R14 = &th[i], R10 = t, R15 = th[i - 1] (0 for i = 0: the largest so
  * far), R4 = 1, R5 = 2; the kept (n less the dropped) on the stack. A sighting not below the
  * largest so far is placed at i; otherwise it is inserted (R11 = &th[j], R15 = j; then th[i]
@@ -154,6 +155,9 @@ optical_fix_init:
  * exceeds); after a move R7 = 0, R8 = 0xFFFF and optical_buckets does them. O4's mark as it
  * is placed: DROPPED when its width is below wmin (the NONE stays otherwise).
  */
+    .if OW_BSTART - OW_SM - MAX_SIGHTINGS
+    .error "optical_sort: bstart[0] must follow sm[14]"
+    .endif
     .section .text.optical_sort,"ax",@progbits
     .global optical_sort
     .type optical_sort,@function
@@ -180,7 +184,7 @@ optical_sort:
     mov     r11, &OW+OW_SM+8
     mov     r11, &OW+OW_SM+10
     mov     r11, &OW+OW_SM+12
-    mov.b   r11, &OW+OW_SM+14
+    mov     #0x00ff, &OW+OW_SM+14   ; sm[14] and bstart[0] = 0 (bucket 0 starts at 0)
     mov     #0x7f7f, r11
     mov     r11, &OW+OW_WCHK
     mov     r11, &OW+OW_WCHK+2
@@ -190,7 +194,6 @@ optical_sort:
     mov     r11, &OW+OW_WCHK+10
     mov     r11, &OW+OW_WCHK+12
     mov.b   r11, &OW+OW_WCHK+14
-    clr.b   &OW+OW_BSTART           ; bucket 0 starts at 0
     mov     #1, r4
     mov     #2, r5
     clr     r6
