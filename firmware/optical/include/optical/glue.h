@@ -5,7 +5,9 @@
  * are assembly (msp430/optical_glue.S, OPTICAL_ASM); fix.c holds the portable C that defines
  * every result, and tests/vectors/optical_vectors.c compares both worlds bit for bit.
  *
- * They work on optical_work (optical/fastmath.h), whose fields fix.c describes.
+ * They work on optical_work (optical/fastmath.h), whose fields fix.c describes; sm[j] holds a
+ * beacon (below OPTICAL_MAX_BEACONS) or NONE, MULTI, DROPPED (the assembly tells them apart by
+ * the sign bit).
  */
 #ifndef OPTICAL_GLUE_H
 #define OPTICAL_GLUE_H
