@@ -68,6 +68,22 @@
     mov     \lo, &\a+2
     .endm
 
+/* R11:R4 |= |\hi:\lo| (R8 the temporary; BIS and MOV keep the borrow of the low word) */
+    .macro  MAGOR lo, hi
+    tst     \hi
+    jn      8f
+    bis     \lo, r4
+    bis     \hi, r11
+    jmp     9f
+8:  clr     r8
+    sub     \lo, r8
+    bis     r8, r4
+    clr     r8
+    subc    \hi, r8
+    bis     r8, r11
+9:
+    .endm
+
 /* To inconsistent unless R13:R12 is nonzero with the sign of K' (R7). Clobbers R14. */
     .macro  LSIGN
     mov     r12, r14
@@ -87,6 +103,14 @@
     adc     r13
     .endm
 
+/* \hi:\lo = -\hi:\lo */
+    .macro  NEGR lo, hi
+    inv     \lo
+    inv     \hi
+    inc     \lo
+    adc     \hi
+    .endm
+
     .section .text.optical_tri_kernels,"ax",@progbits
 
 /*
@@ -103,18 +127,6 @@ dot1:
     mov     2(r5), &MACS
     mov     @r6, &OP2
     jmp     dot_end
-dot2:
-    mov     @r5, &MPYS
-    mov     @r6, &OP2
-    mov     4(r5), &MACS
-    mov     4(r6), &OP2
-    mov     &RESLO, r12
-    mov     &RESHI, r13
-    mov     @r5, &MPYS
-    mov     2(r6), &OP2
-    mov     2(r5), &MACS
-    mov     @r6, &OP2
-    jmp     dot_x2
 dot3s:
     mov     @r5, &MPYS
     mov     @r6, &OP2
@@ -137,7 +149,17 @@ dot3s:
     mov     10(r5), &MACS
     mov     4(r6), &OP2
     jmp     dot_end
-dot_x2:
+dot2:                               ; (the most frequent: falls through)
+    mov     @r5, &MPYS
+    mov     @r6, &OP2
+    mov     4(r5), &MACS
+    mov     4(r6), &OP2
+    mov     &RESLO, r12
+    mov     &RESHI, r13
+    mov     @r5, &MPYS
+    mov     2(r6), &OP2
+    mov     2(r5), &MACS
+    mov     @r6, &OP2
     mov     4(r5), &MACS
     mov     6(r6), &OP2
     mov     6(r5), &MACS
@@ -263,114 +285,9 @@ optical_tri_core:
     push    r6
     push    r5
     push    r4
-    call    #tri_core_body
-    pop     r4
-    pop     r5
-    pop     r6
-    pop     r7
-    pop     r8
-    pop     r9
-    pop     r10
-    ret
-
-/* The body: R4..R10 not kept (optical_triangulate calls it directly). The public entry has
- * its own section: the board, which only triangulates, links without it. */
-    .section .text.optical_tri_kernels,"ax",@progbits
-tri_core_body:
+    mov     r12, r10
     mov     r14, r9
-    mov     r12, &OW+F_V
     mov     r13, r8
-    ; |v|: beyond 2^27 OPTICAL_E_ARG; b1 = 0, b3 = 0 or b1 = b3 OPTICAL_E_DEGENERATE
-    mov     r12, r4
-    clr     r6
-    clr     r7
-    mov     #4, r5
-1:  mov     @r4+, r12
-    mov     @r4+, r13
-    tst     r13
-    jge     7f
-    inv     r12
-    inv     r13
-    inc     r12
-    adc     r13
-7:  bis     r12, r6
-    bis     r13, r7
-    dec     r5
-    jnz     1b
-    mov     #1, r12                 ; OPTICAL_E_ARG
-    cmp     #0x0800, r7
-    jhs     1f
-    mov     &OW+F_V, r4
-    mov     #E_DEGENERATE, r12
-    mov     @r4, r13
-    bis     2(r4), r13
-    bis     4(r4), r13
-    bis     6(r4), r13
-    tst     r13
-    jz      1f
-    mov     8(r4), r13
-    bis     10(r4), r13
-    bis     12(r4), r13
-    bis     14(r4), r13
-    tst     r13
-    jz      1f
-    cmp     @r4, 8(r4)
-    jne     2f
-    cmp     2(r4), 10(r4)
-    jne     2f
-    cmp     4(r4), 12(r4)
-    jne     2f
-    cmp     6(r4), 14(r4)
-    jne     2f
-1:  br      #tri_ret
-    ; sigma: the largest |v| to [2^28, 2^29)
-2:  mov     r6, r14
-    mov     r7, r15
-    mov     #0x1000, r13
-    call    #lead
-    mov     r11, &OW+F_SIG
-    ; v 2^sigma, in place and as the pairs B: the four values in registers, whole bytes
-    ; while sigma >= 8, then bits (R4 the temporary)
-    mov     @r4, r12
-    mov     2(r4), r13
-    mov     4(r4), r14
-    mov     6(r4), r15
-    mov     8(r4), r5
-    mov     10(r4), r6
-    mov     12(r4), r7
-    mov     14(r4), r10
-3:  cmp     #8, r11
-    jlo     5f
-    BYTEL   r12, r13, r4
-    BYTEL   r14, r15, r4
-    BYTEL   r5, r6, r4
-    BYTEL   r7, r10, r4
-    sub     #8, r11
-    jmp     3b
-4:  rla     r12
-    rlc     r13
-    rla     r14
-    rlc     r15
-    rla     r5
-    rlc     r6
-    rla     r7
-    rlc     r10
-    sub     #1, r11
-5:  tst     r11
-    jnz     4b
-    mov     &OW+F_V, r4
-    mov     r12, 0(r4)
-    mov     r13, 2(r4)
-    mov     r14, 4(r4)
-    mov     r15, 6(r4)
-    mov     r5, 8(r4)
-    mov     r6, 10(r4)
-    mov     r7, 12(r4)
-    mov     r10, 14(r4)
-    PAIR    r12, r13, OW+F_B, r4
-    PAIR    r14, r15, OW+F_B+4, r4
-    PAIR    r5, r6, OW+F_B+8, r4
-    PAIR    r7, r10, OW+F_B+12, r4
     ; the sines: Z = (-s2, c2, s2, s1, c1, -s1); c1, c2 also in W
     mov     @r8+, r12               ; s1
     mov     @r8+, r13
@@ -392,6 +309,110 @@ tri_core_body:
     PUT     OW+F_Z+4
     mov     r14, &OW+F_W+20
     mov     r12, &OW+F_W+22
+    mov     r10, r12
+    mov     r9, r14
+    call    #tri_core_body
+    pop     r4
+    pop     r5
+    pop     r6
+    pop     r7
+    pop     r8
+    pop     r9
+    pop     r10
+    ret
+
+/* The body: R4..R10 not kept (optical_triangulate calls it directly). The public entry has
+ * its own section: the board, which only triangulates, links without it. */
+    .section .text.optical_tri_kernels,"ax",@progbits
+arg:
+    mov     #1, r12                 ; OPTICAL_E_ARG
+    ret
+degenerate:
+    mov     #E_DEGENERATE, r12
+    ret
+tri_core_body:
+    mov     r14, &OW+F_SH           ; (out, for now: R9 counts sigma)
+    mov     r12, &OW+F_V
+    mov     r12, r11                ; v in registers
+    mov     @r11+, r12
+    mov     @r11+, r13
+    mov     @r11+, r14
+    mov     @r11+, r15
+    mov     @r11+, r5
+    mov     @r11+, r6
+    mov     @r11+, r7
+    mov     @r11, r10
+    ; |v| or'ed (R11:R4): 2^27 or more OPTICAL_E_ARG
+    clr     r4
+    clr     r11
+    MAGOR   r12, r13
+    MAGOR   r14, r15
+    MAGOR   r5, r6
+    MAGOR   r7, r10
+    cmp     #0x0800, r11
+    jhs     arg
+    ; b1 = 0, b3 = 0 or b1 = b3: OPTICAL_E_DEGENERATE
+    mov     r12, r8
+    bis     r13, r8
+    bis     r14, r8
+    bis     r15, r8
+    tst     r8
+    jz      degenerate
+    mov     r5, r8
+    bis     r6, r8
+    bis     r7, r8
+    bis     r10, r8
+    tst     r8
+    jz      degenerate
+    cmp     r12, r5
+    jne     2f
+    cmp     r13, r6
+    jne     2f
+    cmp     r14, r7
+    jne     2f
+    cmp     r15, r10
+    jeq     degenerate
+    ; sigma (R9): |v| or'ed to [2^28, 2^29), v with it, whole bytes below 2^21, then bits
+2:  clr     r9
+    jmp     5f
+3:  BYTEL   r4, r11, r8
+    BYTEL   r12, r13, r8
+    BYTEL   r14, r15, r8
+    BYTEL   r5, r6, r8
+    BYTEL   r7, r10, r8
+    add     #8, r9
+5:  cmp     #0x0020, r11
+    jlo     3b
+    jmp     7f
+6:  rla     r4
+    rlc     r11
+    rla     r12
+    rlc     r13
+    rla     r14
+    rlc     r15
+    rla     r5
+    rlc     r6
+    rla     r7
+    rlc     r10
+    sub     #-1, r9
+7:  cmp     #0x1000, r11
+    jlo     6b
+    mov     r9, &OW+F_SIG
+    mov     &OW+F_SH, r9            ; out
+    ; v 2^sigma in place and as the pairs B
+    mov     &OW+F_V, r4
+    mov     r12, 0(r4)
+    mov     r13, 2(r4)
+    mov     r14, 4(r4)
+    mov     r15, 6(r4)
+    mov     r5, 8(r4)
+    mov     r6, 10(r4)
+    mov     r7, 12(r4)
+    mov     r10, 14(r4)
+    PAIR    r12, r13, OW+F_B, r4
+    PAIR    r14, r15, OW+F_B+4, r4
+    PAIR    r5, r6, OW+F_B+8, r4
+    PAIR    r7, r10, OW+F_B+12, r4
     ; A = R(alpha1) b1 / 4, C = R(-alpha2) b3 / 4 into W and (times 4) K
     mov     #OW+F_Z+16, r5          ; ax = (c1, -s1) b1
     mov     #OW+F_B, r6
@@ -724,7 +745,7 @@ tri_core_body:
     jmp     tri_ret
 inconsistent:
     mov     #9, r12                 ; OPTICAL_E_INCONSISTENT
-    jmp     tri_ret
+    ret
 singular:
     mov     #E_SINGULAR, r12
 tri_ret:
@@ -1014,6 +1035,82 @@ q_out:
     ret
 
 /*
+ * sin_q1() of fx_trig.c, the table evaluation of fx_sin (firmware/fx/msp430/fx_trig.S's
+ * SIN_BODY from xr on, bit for bit, on fx's tables): R13:R12 = xr, the first-quadrant argument
+ * plus 64 (at most 2^30 + 64) -> R13:R12 = its sine, Q1.30, non-negative. Clobbers R11, R14,
+ * R15.
+ */
+sinq:
+    rla     r12                     ; xr << 1: i = high byte of R13,
+    rlc     r13                     ; u = low byte of R13 : high byte of R12
+    swpb    r13
+    mov.b   r13, r14                ; i
+    xor     r14, r13
+    swpb    r12
+    mov.b   r12, r12
+    bis     r12, r13                ; u
+    rla     r14                     ; 2i
+    clr     r11
+    mov     fx_sin_corr(r14), &MPY  ; G[i] (2^16 - u)
+    sub     r13, r11
+    mov     r11, &OP2
+    rla     r14                     ; 4i
+    mov     fx_sin_tab+4(r14), r12  ; D = T[i+1] - T[i]
+    mov     fx_sin_tab+6(r14), r15
+    sub     fx_sin_tab(r14), r12
+    subc    fx_sin_tab+2(r14), r15
+    mov     &RESHI, r11             ; + 2 ((G (2^16 - u)) >> 16), 17 bits
+    rla     r11
+    adc     r15
+    add     r11, r12
+    adc     r15                     ; e = R15:R12
+    mov     r13, &MPY               ; (e u) >> 16 = e_hi u + ((e_lo u) >> 16)
+    mov     r12, &OP2
+    mov     &RESHI, r12
+    mov     r15, &OP2
+    add     &RESLO, r12
+    mov     &RESHI, r13
+    adc     r13
+    add     fx_sin_tab(r14), r12    ; + T[i]
+    addc    fx_sin_tab+2(r14), r13
+    ret
+
+/*
+ * R13:R12 = alpha in (0, 2^31) -> R5:R4 = fx_sin(alpha), R13:R12 = fx_cos(alpha), bit for
+ * bit. With x = alpha mod 2^30, P = sin_q1(x + 64) and Q = sin_q1(2^30 - x + 64): in the
+ * first quadrant sin = P, cos = Q, in the second sin = Q, cos = -P. O8's alpha1 and alpha2
+ * lie there: gaps between three distinct sightings that sum to a turn, neither the largest.
+ * Clobbers R6, R7, R9, R11, R14, R15.
+ */
+sincos:
+    mov     r13, r9                 ; bit 14: the second quadrant
+    and     #0x3fff, r13
+    add     #64, r12                ; P's xr
+    adc     r13
+    mov     #0x0080, r6             ; Q's xr = 2^30 + 128 - P's
+    mov     #0x4000, r7
+    sub     r12, r6
+    subc    r13, r7
+    bit     #0x4000, r9
+    jz      1f
+    mov     r6, r4                  ; second quadrant: the sine from Q's, the cosine P's
+    mov     r7, r5
+    mov     r12, r6
+    mov     r13, r7
+    mov     r4, r12
+    mov     r5, r13
+1:  call    #sinq
+    mov     r12, r4
+    mov     r13, r5
+    mov     r6, r12
+    mov     r7, r13
+    call    #sinq
+    bit     #0x4000, r9
+    jz      2f
+    NEG
+2:  ret
+
+/*
  * int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3],
  * uint32_t quality_max, optical_tri_t *out): R12 = b, R13 = theta, R15:R14 = quality_max,
  * out on the stack. The steps of triangulate.c: O8's ordering (d1 = theta1 - theta0,
@@ -1164,33 +1261,31 @@ optical_triangulate:
     subc    XY_Y+2(r4), r13
     mov     r12, &OW+OW_SV_V+12
     mov     r13, &OW+OW_SV_V+14
-    ; (s1, c1, s2, c2)
-    mov     r6, r12
-    mov     r7, r13
-    call    #fx_sin
-    mov     r12, &OW+OW_SV_SC
-    mov     r13, &OW+OW_SV_SC+2
-    mov     r6, r12
-    mov     r7, r13
-    call    #fx_cos
-    mov     r12, &OW+OW_SV_SC+4
-    mov     r13, &OW+OW_SV_SC+6
-    mov     r10, r12
-    mov     r8, r13
-    call    #fx_sin
-    mov     r12, &OW+OW_SV_SC+8
-    mov     r13, &OW+OW_SV_SC+10
-    mov     r10, r12
-    mov     r8, r13
-    call    #fx_cos
-    mov     r12, &OW+OW_SV_SC+12
-    mov     r13, &OW+OW_SV_SC+14
-    mov     #OW+OW_SV_V, r12
-    mov     #OW+OW_SV_SC, r13
-    mov     #OW+OW_SV_TS, r14
     push    r9                      ; (the kernels' bodies keep no register)
     push    r5
     push    r4
+    ; fx_sin and fx_cos of alpha1, alpha2 straight into the kernels' pairs: Z = (-s2, c2,
+    ; s2, s1, c1, -s1), c1 and c2 also in W (the pointers there are read)
+    mov     r6, r12
+    mov     r7, r13
+    call    #sincos
+    PAIR    r4, r5, OW+F_Z+12, r14
+    PAIR    r12, r13, OW+F_Z+16, r14
+    mov     r14, &OW+F_W+16
+    mov     r12, &OW+F_W+18
+    NEGR    r4, r5
+    PAIR    r4, r5, OW+F_Z+20, r14
+    mov     r10, r12
+    mov     r8, r13
+    call    #sincos
+    PAIR    r4, r5, OW+F_Z+8, r14
+    PAIR    r12, r13, OW+F_Z+4, r14
+    mov     r14, &OW+F_W+20
+    mov     r12, &OW+F_W+22
+    NEGR    r4, r5
+    PAIR    r4, r5, OW+F_Z, r14
+    mov     #OW+OW_SV_V, r12
+    mov     #OW+OW_SV_TS, r14
     call    #tri_core_body
     tst     r12
     jnz     .Ltr_pop
