@@ -115,7 +115,7 @@
 
 /*
  * dot1, dot2: R5 -> x pairs, R6 -> y pairs -> R13:R12 = dot(x, y, n). dot3s: the same for
- * three with the x pairs 8 bytes apart. Clobber R14.
+ * three, the first two x pairs 8 bytes apart, the third at R4. Clobber R14.
  */
 dot1:
     mov     @r5, &MPYS              ; h h
@@ -132,7 +132,7 @@ dot3s:
     mov     @r6, &OP2
     mov     8(r5), &MACS
     mov     4(r6), &OP2
-    mov     16(r5), &MACS
+    mov     @r4, &MACS
     mov     8(r6), &OP2
     mov     &RESLO, r12
     mov     &RESHI, r13
@@ -140,9 +140,9 @@ dot3s:
     mov     2(r6), &OP2
     mov     2(r5), &MACS
     mov     @r6, &OP2
-    mov     16(r5), &MACS
+    mov     @r4, &MACS
     mov     10(r6), &OP2
-    mov     18(r5), &MACS
+    mov     2(r4), &MACS
     mov     8(r6), &OP2
     mov     8(r5), &MACS
     mov     6(r6), &OP2
@@ -297,8 +297,6 @@ optical_tri_core:
     mov     @r8+, r12               ; c1
     mov     @r8+, r13
     PUT     OW+F_Z+16
-    mov     r14, &OW+F_W+16
-    mov     r12, &OW+F_W+18
     mov     @r8+, r12               ; s2
     mov     @r8+, r13
     PUT     OW+F_Z+8
@@ -307,8 +305,6 @@ optical_tri_core:
     mov     @r8+, r12               ; c2
     mov     @r8+, r13
     PUT     OW+F_Z+4
-    mov     r14, &OW+F_W+20
-    mov     r12, &OW+F_W+22
     mov     r10, r12
     mov     r9, r14
     call    #tri_core_body
@@ -526,16 +522,27 @@ tri_core_body:
     bis     r12, r13
     tst     r13
     jz      inconsistent            ; K' = 0: the vehicle on beacon 2
-    ; l1 = (ax, ay, c1) (U^, K'), l3 = (cx, cy, c2) (U^, K'): both with the sign of K'
+    ; l1 = (ax, ay, c1) (U^, K'), l3 = (cx, cy, c2) (U^, K'): both with the sign of K';
+    ; out->l[0] = 4 l1, out->l[2] = 4 l3
     mov     #OW+F_W, r5
     mov     #OW+F_U, r6
+    mov     #OW+F_Z+16, r4
     call    #dot3s
     LSIGN
+    rla     r12
+    rlc     r13
+    rla     r12
+    rlc     r13
     mov     r12, TSOL_L(r9)
     mov     r13, TSOL_L+2(r9)
     mov     #OW+F_W+4, r5
+    mov     #OW+F_Z+4, r4
     call    #dot3s
     LSIGN
+    rla     r12
+    rlc     r13
+    rla     r12
+    rlc     r13
     mov     r12, TSOL_L+8(r9)
     mov     r13, TSOL_L+10(r9)
     ; Q = |U^|^2 / 2^32 in [2^22, 2^25); R' = 2^(52 + g) / Q (recip_q in fastmath.c)
@@ -724,23 +731,6 @@ tri_core_body:
     mov     r13, TSOL_W+6(r9)
 9:  sub     &OW+F_SIG, r8           ; x = e - g - sigma
     mov.b   r8, TSOL_X(r9)
-    ; l = (4 l1, K', 4 l3)
-    mov     TSOL_L(r9), r12
-    mov     TSOL_L+2(r9), r13
-    rla     r12
-    rlc     r13
-    rla     r12
-    rlc     r13
-    mov     r12, TSOL_L(r9)
-    mov     r13, TSOL_L+2(r9)
-    mov     TSOL_L+8(r9), r12
-    mov     TSOL_L+10(r9), r13
-    rla     r12
-    rlc     r13
-    rla     r12
-    rlc     r13
-    mov     r12, TSOL_L+8(r9)
-    mov     r13, TSOL_L+10(r9)
     clr     r12                     ; OPTICAL_OK
     jmp     tri_ret
 inconsistent:
@@ -1271,8 +1261,6 @@ optical_triangulate:
     call    #sincos
     PAIR    r4, r5, OW+F_Z+12, r14
     PAIR    r12, r13, OW+F_Z+16, r14
-    mov     r14, &OW+F_W+16
-    mov     r12, &OW+F_W+18
     NEGR    r4, r5
     PAIR    r4, r5, OW+F_Z+20, r14
     mov     r10, r12
@@ -1280,8 +1268,6 @@ optical_triangulate:
     call    #sincos
     PAIR    r4, r5, OW+F_Z+8, r14
     PAIR    r12, r13, OW+F_Z+4, r14
-    mov     r14, &OW+F_W+20
-    mov     r12, &OW+F_W+22
     NEGR    r4, r5
     PAIR    r4, r5, OW+F_Z, r14
     mov     #OW+OW_SV_V, r12
