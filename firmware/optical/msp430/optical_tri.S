@@ -832,118 +832,86 @@ tri_quality_body:
     mov     @r13+, r11
     tst     r11
     jge     2f
-    inv     r10
-    inv     r11
-    inc     r10
-    adc     r11
+    clr     r12                     ; (BIS and MOV keep the borrow of the low word)
+    sub     r10, r12
+    bis     r12, r14
+    clr     r12
+    subc    r11, r12
+    bis     r12, r15
+    jmp     3f
 2:  bis     r10, r14
     bis     r11, r15
-    dec     r8
+3:  add     #-1, r8
     jnz     1b
-    clr     r8                      ; ls: a byte at once below 2^22, then bits (at most 8
-    cmp     #0x0040, r15            ; from 2^6 on; still below it after the byte: 16)
-    jhs     3f
-    mov     #8, r8
+    mov.b   TSOL_X(r9), r8          ; x = s->x - ls - 3 (R8), P = 2^ls (R12): a byte at
+    sxt     r8                      ; once below 2^22 (still below it after the byte: ls =
+    sub     #3, r8                  ; 16), four bits below 2^26, then bits
+    mov     #1, r12
+    cmp     #0x0040, r15
+    jhs     4f
     swpb    r15
     swpb    r14
     mov.b   r14, r14
     bis     r14, r15
+    mov     #0x0100, r12
+    sub     #8, r8
     cmp     #0x0040, r15
-    jhs     3f
-    mov     #16, r8
-    jmp     4f
-5:  rla     r15
-    inc     r8
-3:  cmp     #0x4000, r15
-    jlo     5b
-4:  push    r8                      ; the three l 2^ls: their high words to the frame
-    mov     TSOL_L(r9), r10
-    mov     TSOL_L+2(r9), r11
-    mov     TSOL_L+4(r9), r12
-    mov     TSOL_L+6(r9), r13
-    mov     TSOL_L+8(r9), r14
-    mov     TSOL_L+10(r9), r15
-    push    r9
-    mov     r8, r9
-    cmp     #8, r9
-    jhs     8f
-    cmp     #4, r9
-    jlo     5f
-    ; 4 <= ls < 8: the same high words as the low words of l / 2^(16 - ls), a byte and at
-    ; most 4 bits to the right
-    BYTER   r10, r11, r8
-    BYTER   r12, r13, r8
-    BYTER   r14, r15, r8
-    sub     #8, r9
-9:  rra     r11
-    rrc     r10
-    rra     r13
-    rrc     r12
-    rra     r15
-    rrc     r14
-    inc     r9
-    jnz     9b
-    mov     r10, r11
-    mov     r12, r13
-    mov     r14, r15
+    jhs     4f
+    sub     #8, r8                  ; ls = 16: the low words
+    mov     TSOL_L(r9), r11
+    mov     TSOL_L+4(r9), r13
+    mov     TSOL_L+8(r9), r15
     jmp     7f
-8:  swpb    r11                     ; (hi lo) 2^8
-    swpb    r10
-    and     #0xff00, r11
-    mov.b   r10, r8
-    bis     r8, r11
-    and     #0xff00, r10
-    swpb    r13
-    swpb    r12
-    and     #0xff00, r13
-    mov.b   r12, r8
-    bis     r8, r13
-    and     #0xff00, r12
-    swpb    r15
-    swpb    r14
-    and     #0xff00, r15
-    mov.b   r14, r8
-    bis     r8, r15
-    and     #0xff00, r14
-    sub     #8, r9
-5:  tst     r9
-    jz      7f
-6:  rla     r10
-    rlc     r11
+4:  cmp     #0x0400, r15
+    jhs     6f
+    rla     r15
+    rla     r15
+    rla     r15
+    rla     r15
     rla     r12
-    rlc     r13
-    rla     r14
-    rlc     r15
-    dec     r9
-    jnz     6b
-7:  pop     r9
-    pop     r8
-    mov     r11, &OW+OW_FRAME
-    mov     r13, &OW+OW_FRAME+2
-    mov     r15, &OW+OW_FRAME+4
-    mov.b   TSOL_X(r9), r10
-    sxt     r10
-    sub     r8, r10
-    sub     #3, r10
-    mov     r10, r8
-    ; M = sum of ((r_k chord) / 2^16)^2: r3 with b1, r1 with b3, r2 with b3 - b1
-    mov     &OW+OW_FRAME+4, &MPYS
+    rla     r12
+    rla     r12
+    rla     r12
+    sub     #4, r8
+    jmp     6f
+5:  rla     r15
+    rla     r12
+    add     #-1, r8
+6:  cmp     #0x4000, r15
+    jlo     5b
+    ; the high words of l 2^ls = lh P + (ll P) / 2^16 (ls <= 15), mod 2^16
+    mov     r12, &MPY
+    mov     TSOL_L(r9), &OP2
+    mov     &RESHI, r11
+    mov     TSOL_L+2(r9), &OP2
+    add     &RESLO, r11
+    mov     TSOL_L+4(r9), &OP2
+    mov     &RESHI, r13
+    mov     TSOL_L+6(r9), &OP2
+    add     &RESLO, r13
+    mov     TSOL_L+8(r9), &OP2
+    mov     &RESHI, r15
+    mov     TSOL_L+10(r9), &OP2
+    add     &RESLO, r15
+    ; M = sum of ((r_k chord) / 2^16)^2: r3 (R15) with b1, r1 (R11) with b3, r2 (R13) with
+    ; b3 - b1
+7:  mov     r15, &MPYS
     mov     r4, &OP2
     mov     &RESHI, r10
     mov     r5, &OP2
-    mov     &RESHI, r11
-    mov     &OW+OW_FRAME, &MPYS
+    mov     &RESHI, r15
+    mov     r11, &MPYS
     mov     r6, &OP2
-    mov     &RESHI, r12
+    mov     &RESHI, r11
     mov     r7, &OP2
-    mov     &RESHI, r13
+    mov     &RESHI, r12
     sub     r4, r6
     sub     r5, r7
-    mov     &OW+OW_FRAME+2, &MPYS
+    mov     r13, &MPYS
     mov     r6, &OP2
-    mov     &RESHI, r14
+    mov     &RESHI, r13
     mov     r7, &OP2
-    mov     &RESHI, r15
+    mov     &RESHI, r14
     mov     r10, &MPYS
     mov     r10, &OP2
     mov     r11, &MACS
