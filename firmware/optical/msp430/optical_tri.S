@@ -99,7 +99,7 @@
     .macro  NEG
     inv     r12
     inv     r13
-    inc     r12
+    sub     #-1, r12
     adc     r13
     .endm
 
@@ -107,7 +107,7 @@
     .macro  NEGR lo, hi
     inv     \lo
     inv     \hi
-    inc     \lo
+    sub     #-1, \lo
     adc     \hi
     .endm
 
@@ -214,7 +214,7 @@ shl:
     jz      3f
 4:  rla     r12
     rlc     r13
-    dec     r14
+    add     #-1, r14
     jnz     4b
 3:  ret
 
@@ -249,7 +249,7 @@ scale:
     jge     1f
     mov     r11, r14
     inv     r14
-    inc     r14
+    sub     #-1, r14
     call    #asr
     clrc
     ret
@@ -261,7 +261,7 @@ scale:
     jn      2f
     rla     r12
     rlc     r13
-    dec     r11
+    add     #-1, r11
     jmp     1b
 2:  setc
     ret
@@ -468,13 +468,13 @@ tri_core_body:
     jge     1f
     inv     r14
     inv     r15
-    inc     r14
+    sub     #-1, r14
     adc     r15
 1:  tst     r13
     jge     2f
     inv     r12
     inv     r13
-    inc     r12
+    sub     #-1, r12
     adc     r13
 2:  bis     r12, r14
     bis     r13, r15
@@ -495,7 +495,7 @@ tri_core_body:
     rlc     r7
     rla     r5
     rlc     r6
-    sub     #1, r11
+    add     #-1, r11
 5:  tst     r11
     jnz     4b
     mov     r4, TSOL_W(r9)
@@ -643,7 +643,7 @@ tri_core_body:
     jge     7f
     inv     r14
     inv     r15
-    inc     r14
+    sub     #-1, r14
     adc     r15
 7:  mov     #0x2000, r13
     call    #lead
@@ -666,7 +666,7 @@ tri_core_body:
     jge     8f
     inv     r14
     inv     r15
-    inc     r14
+    sub     #-1, r14
     adc     r15
     ; |T| in [2^26, 2^28] (K'' in [2^29, 2^30), R' in [2^29 + 16, 2^30]): t = 3, 2 or (at
     ; 2^28) 1, as lead()
@@ -679,13 +679,13 @@ tri_core_body:
     jhs     9f
     rla     r14
     rlc     r15
-    inc     r11
+    sub     #-1, r11
 9:  cmp     #0x4000, r15
     jlo     9f
     clrc
     rrc     r15
     rrc     r14
-    dec     r11
+    add     #-1, r11
 9:  mov     r14, r12
     mov     r15, r13
     tst     r6
@@ -703,7 +703,7 @@ tri_core_body:
     mov     #0x4000, r12
     jmp     3f
 1:  rra     r12
-3:  sub     #1, r11
+3:  add     #-1, r11
     jnz     1b
 2:  mov     r12, &OW+F_K            ; (the products K are done with)
     ; d = T' U^ / 2^32 2^(12 - f - g - t): beacon 2 from the vehicle; the vehicle at -d
@@ -732,7 +732,7 @@ tri_core_body:
 9:  sub     &OW+F_SIG, r8           ; x = e - g - sigma
     mov.b   r8, TSOL_X(r9)
     clr     r12                     ; OPTICAL_OK
-    jmp     tri_ret
+    ret
 inconsistent:
     mov     #9, r12                 ; OPTICAL_E_INCONSISTENT
     ret
@@ -759,7 +759,7 @@ offset:
     sub     &OW+F_SH, r14
     jl      5f
     jz      6f
-    dec     r14
+    add     #-1, r14
     call    #asr
     rra     r13
     rrc     r12
@@ -767,7 +767,7 @@ offset:
     adc     r13
     jmp     6f
 5:  inv     r14
-    inc     r14
+    sub     #-1, r14
     call    #shl
 6:  mov     r12, TSOL_OFF(r4)
     mov     r13, TSOL_OFF+2(r4)
@@ -931,15 +931,15 @@ tri_quality_body:
     tst     r14
     jz      sat                     ; M = 0
     ; to [2^30, 2^32) by factors of 4; the root; S = root R' 2^x / 1000
+    jmp     8f
+7:  rla     r12
+    rlc     r13
+    rla     r12
+    rlc     r13
+    add     #-1, r8
 8:  cmp     #0x4000, r13
-    jhs     9f
-    rla     r12
-    rlc     r13
-    rla     r12
-    rlc     r13
-    dec     r8
-    jmp     8b
-9:  mov     r13, r15                ; the root: k = M / 2^27 - 8 (2 k + 16 in R14), the
+    jlo     7b
+    mov     r13, r15                ; the root: k = M / 2^27 - 8 (2 k + 16 in R14), the
     swpb    r15                     ; fraction f = (M / 2^16) 2^5 mod 2^16 (R13)
     mov.b   r15, r14
     rra     r14
@@ -969,11 +969,10 @@ tri_quality_body:
     mov     &RESHI, r13
     tst     r8
     jge     11f
-    inv     r8                      ; x < 0: floor shift right by -x (0 from 32 on)
-    inc     r8
-    cmp     #32, r8
+    clr     r14                     ; x < 0: floor shift right by -x (0 from 32 on)
+    sub     r8, r14
+    cmp     #32, r14
     jhs     10f
-    mov     r8, r14
     call    #asr
     jmp     q_out
 10: clr     r12
@@ -984,7 +983,7 @@ tri_quality_body:
     rla     r12
     rlc     r13
     jc      sat
-    dec     r8
+    add     #-1, r8
     jmp     11b
 sat:
     mov     #-1, r12
