@@ -338,6 +338,8 @@ tri_core_body:
     mov     @r11+, r6
     mov     @r11+, r7
     mov     @r11, r10
+    ; (optical_triangulate's entry: v in R12..R15, R5, R6, R7, R10, F_V and F_SH set)
+tri_core_v:
     ; |v| or'ed (R11:R4): 2^27 or more OPTICAL_E_ARG
     clr     r4
     clr     r11
@@ -1193,36 +1195,13 @@ optical_triangulate:
     mov     OW+T_PB(r15), r15       ; B1, B2, B3
     mov     OW+T_PB(r11), r4
     mov     OW+T_PB(r14), r14
-    ; v = (B1 - B2, B3 - B2)
-    mov     @r15+, r12
-    mov     @r15+, r13
-    sub     @r4, r12
-    subc    XY_X+2(r4), r13
-    mov     r12, &OW+OW_SV_V
-    mov     r13, &OW+OW_SV_V+2
-    mov     @r15+, r12
-    mov     @r15, r13
-    sub     XY_Y(r4), r12
-    subc    XY_Y+2(r4), r13
-    mov     r12, &OW+OW_SV_V+4
-    mov     r13, &OW+OW_SV_V+6
-    mov     @r14+, r12
-    mov     @r14+, r13
-    sub     @r4, r12
-    subc    XY_X+2(r4), r13
-    mov     r12, &OW+OW_SV_V+8
-    mov     r13, &OW+OW_SV_V+10
-    mov     @r14+, r12
-    mov     @r14, r13
-    sub     XY_Y(r4), r12
-    subc    XY_Y+2(r4), r13
-    mov     r12, &OW+OW_SV_V+12
-    mov     r13, &OW+OW_SV_V+14
     push    r9                      ; (the kernels' bodies keep no register)
     push    r5
     push    r4
+    push    r15
+    push    r14
     ; fx_sin and fx_cos of alpha1, alpha2 straight into the kernels' pairs: Z = (-s2, c2,
-    ; s2, s1, c1, -s1), c1 and c2 also in W (the pointers there are read)
+    ; s2, s1, c1, -s1) (the pointers there are read)
     mov     r6, r12
     mov     r7, r13
     call    #sincos
@@ -1237,9 +1216,29 @@ optical_triangulate:
     PAIR    r12, r13, OW+F_Z+4, r14
     NEGR    r4, r5
     PAIR    r4, r5, OW+F_Z, r14
-    mov     #OW+OW_SV_V, r12
-    mov     #OW+OW_SV_TS, r14
-    call    #tri_core_body
+    ; v = (B1 - B2, B3 - B2) in the core's registers (its work memory: u.sv.v, u.sv.ts)
+    pop     r11                     ; B3
+    pop     r8                      ; B1
+    mov     @r1, r4                 ; B2
+    mov     @r8+, r12
+    mov     @r8+, r13
+    sub     @r4, r12
+    subc    XY_X+2(r4), r13
+    mov     @r8+, r14
+    mov     @r8, r15
+    sub     XY_Y(r4), r14
+    subc    XY_Y+2(r4), r15
+    mov     @r11+, r5
+    mov     @r11+, r6
+    sub     @r4, r5
+    subc    XY_X+2(r4), r6
+    mov     @r11+, r7
+    mov     @r11, r10
+    sub     XY_Y(r4), r7
+    subc    XY_Y+2(r4), r10
+    mov     #OW+OW_SV_V, &OW+F_V
+    mov     #OW+OW_SV_TS, &OW+F_SH
+    call    #tri_core_v
     tst     r12
     jnz     .Ltr_pop
     mov     #OW+OW_SV_V, r12
