@@ -111,6 +111,47 @@
     adc     \hi
     .endm
 
+/*
+ * sin_q1() of fx_trig.c, the table evaluation of fx_sin (firmware/fx/msp430/fx_trig.S's
+ * SIN_BODY from xr on, bit for bit, on fx's tables): R13:R12 = xr, the first-quadrant argument
+ * plus 64 (at most 2^30 + 64) -> R13:R12 = its sine, Q1.30, non-negative. Clobbers R11, R14,
+ * R15. Assembled twice in sincos.
+ */
+    .macro  SINQ
+    rla     r12                     ; xr << 1: i = high byte of R13,
+    rlc     r13                     ; u = low byte of R13 : high byte of R12
+    swpb    r13
+    mov.b   r13, r14                ; i
+    xor     r14, r13
+    swpb    r12
+    mov.b   r12, r12
+    bis     r12, r13                ; u
+    rla     r14                     ; 2i
+    clr     r11
+    mov     fx_sin_corr(r14), &MPY  ; G[i] (2^16 - u)
+    sub     r13, r11
+    mov     r11, &OP2
+    rla     r14                     ; 4i
+    mov     fx_sin_tab+4(r14), r12  ; D = T[i+1] - T[i]
+    mov     fx_sin_tab+6(r14), r15
+    sub     fx_sin_tab(r14), r12
+    subc    fx_sin_tab+2(r14), r15
+    mov     &RESHI, r11             ; + 2 ((G (2^16 - u)) >> 16), 17 bits
+    rla     r11
+    adc     r15
+    add     r11, r12
+    adc     r15                     ; e = R15:R12
+    mov     r13, &MPY               ; (e u) >> 16 = e_hi u + ((e_lo u) >> 16)
+    mov     r12, &OP2
+    mov     &RESHI, r12
+    mov     r15, &OP2
+    add     &RESLO, r12
+    mov     &RESHI, r13
+    adc     r13
+    add     fx_sin_tab(r14), r12    ; + T[i]
+    addc    fx_sin_tab+2(r14), r13
+    .endm
+
     .section .text.optical_tri_kernels,"ax",@progbits
 
 /*
@@ -994,47 +1035,6 @@ q_out:
     ret
 
 /*
- * sin_q1() of fx_trig.c, the table evaluation of fx_sin (firmware/fx/msp430/fx_trig.S's
- * SIN_BODY from xr on, bit for bit, on fx's tables): R13:R12 = xr, the first-quadrant argument
- * plus 64 (at most 2^30 + 64) -> R13:R12 = its sine, Q1.30, non-negative. Clobbers R11, R14,
- * R15.
- */
-sinq:
-    rla     r12                     ; xr << 1: i = high byte of R13,
-    rlc     r13                     ; u = low byte of R13 : high byte of R12
-    swpb    r13
-    mov.b   r13, r14                ; i
-    xor     r14, r13
-    swpb    r12
-    mov.b   r12, r12
-    bis     r12, r13                ; u
-    rla     r14                     ; 2i
-    clr     r11
-    mov     fx_sin_corr(r14), &MPY  ; G[i] (2^16 - u)
-    sub     r13, r11
-    mov     r11, &OP2
-    rla     r14                     ; 4i
-    mov     fx_sin_tab+4(r14), r12  ; D = T[i+1] - T[i]
-    mov     fx_sin_tab+6(r14), r15
-    sub     fx_sin_tab(r14), r12
-    subc    fx_sin_tab+2(r14), r15
-    mov     &RESHI, r11             ; + 2 ((G (2^16 - u)) >> 16), 17 bits
-    rla     r11
-    adc     r15
-    add     r11, r12
-    adc     r15                     ; e = R15:R12
-    mov     r13, &MPY               ; (e u) >> 16 = e_hi u + ((e_lo u) >> 16)
-    mov     r12, &OP2
-    mov     &RESHI, r12
-    mov     r15, &OP2
-    add     &RESLO, r12
-    mov     &RESHI, r13
-    adc     r13
-    add     fx_sin_tab(r14), r12    ; + T[i]
-    addc    fx_sin_tab+2(r14), r13
-    ret
-
-/*
  * R13:R12 = alpha in (0, 2^31) -> R5:R4 = fx_sin(alpha), R13:R12 = fx_cos(alpha), bit for
  * bit. With x = alpha mod 2^30, P = sin_q1(x + 64) and Q = sin_q1(2^30 - x + 64): in the
  * first quadrant sin = P, cos = Q, in the second sin = Q, cos = -P. O8's alpha1 and alpha2
@@ -1058,12 +1058,12 @@ sincos:
     mov     r13, r7
     mov     r4, r12
     mov     r5, r13
-1:  call    #sinq
+1:  SINQ
     mov     r12, r4
     mov     r13, r5
     mov     r6, r12
     mov     r7, r13
-    call    #sinq
+    SINQ
     bit     #0x4000, r9
     jz      2f
     NEG
