@@ -113,43 +113,43 @@
 
 /*
  * sin_q1() of fx_trig.c, the table evaluation of fx_sin (firmware/fx/msp430/fx_trig.S's
- * SIN_BODY from xr on, bit for bit, on fx's tables): R13:R12 = xr, the first-quadrant argument
- * plus 64 (at most 2^30 + 64) -> R13:R12 = its sine, Q1.30, non-negative. Clobbers R11, R14,
- * R15. Assembled twice in sincos.
+ * SIN_BODY from xr on, bit for bit, on fx's tables): \hi:\lo = xr, the first-quadrant
+ * argument plus 64 (at most 2^30 + 64) -> \hi:\lo = its sine, Q1.30, non-negative. Clobbers
+ * R11, R14, R15. Assembled twice in sincos.
  */
-    .macro  SINQ
-    rla     r12                     ; xr << 1: i = high byte of R13,
-    rlc     r13                     ; u = low byte of R13 : high byte of R12
-    swpb    r13
-    mov.b   r13, r14                ; i
-    xor     r14, r13
-    swpb    r12
-    mov.b   r12, r12
-    bis     r12, r13                ; u
+    .macro  SINQ lo, hi
+    rla     \lo                     ; xr << 1: i = high byte of \hi,
+    rlc     \hi                     ; u = low byte of \hi : high byte of \lo
+    swpb    \hi
+    mov.b   \hi, r14                ; i
+    xor     r14, \hi
+    swpb    \lo
+    mov.b   \lo, \lo
+    bis     \lo, \hi                ; u
     rla     r14                     ; 2i
     clr     r11
     mov     fx_sin_corr(r14), &MPY  ; G[i] (2^16 - u)
-    sub     r13, r11
+    sub     \hi, r11
     mov     r11, &OP2
     rla     r14                     ; 4i
-    mov     fx_sin_tab+4(r14), r12  ; D = T[i+1] - T[i]
+    mov     fx_sin_tab+4(r14), \lo  ; D = T[i+1] - T[i]
     mov     fx_sin_tab+6(r14), r15
-    sub     fx_sin_tab(r14), r12
+    sub     fx_sin_tab(r14), \lo
     subc    fx_sin_tab+2(r14), r15
     mov     &RESHI, r11             ; + 2 ((G (2^16 - u)) >> 16), 17 bits
     rla     r11
     adc     r15
-    add     r11, r12
+    add     r11, \lo
     adc     r15                     ; e = R15:R12
-    mov     r13, &MPY               ; (e u) >> 16 = e_hi u + ((e_lo u) >> 16)
-    mov     r12, &OP2
-    mov     &RESHI, r12
+    mov     \hi, &MPY               ; (e u) >> 16 = e_hi u + ((e_lo u) >> 16)
+    mov     \lo, &OP2
+    mov     &RESHI, \lo
     mov     r15, &OP2
-    add     &RESLO, r12
-    mov     &RESHI, r13
-    adc     r13
-    add     fx_sin_tab(r14), r12    ; + T[i]
-    addc    fx_sin_tab+2(r14), r13
+    add     &RESLO, \lo
+    mov     &RESHI, \hi
+    adc     \hi
+    add     fx_sin_tab(r14), \lo    ; + T[i]
+    addc    fx_sin_tab+2(r14), \hi
     .endm
 
     .section .text.optical_tri_kernels,"ax",@progbits
@@ -1046,28 +1046,25 @@ sincos:
     and     #0x3fff, r13
     add     #64, r12                ; P's xr
     adc     r13
-    mov     #0x0080, r6             ; Q's xr = 2^30 + 128 - P's
-    mov     #0x4000, r7
-    sub     r12, r6
-    subc    r13, r7
     bit     #0x4000, r9
-    jz      1f
-    mov     r6, r4                  ; second quadrant: the sine from Q's, the cosine P's
-    mov     r7, r5
-    mov     r12, r6
-    mov     r13, r7
-    mov     r4, r12
-    mov     r5, r13
-1:  SINQ
-    mov     r12, r4
+    jnz     1f
+    mov     r12, r4                 ; first quadrant: the sine from P's, the cosine Q's
     mov     r13, r5
-    mov     r6, r12
-    mov     r7, r13
-    SINQ
+    mov     #0x0080, r12            ; Q's xr = 2^30 + 128 - P's
+    mov     #0x4000, r13
+    sub     r4, r12
+    subc    r5, r13
+    jmp     2f
+1:  mov     #0x0080, r4             ; second quadrant: the sine from Q's, the cosine P's
+    mov     #0x4000, r5
+    sub     r12, r4
+    subc    r13, r5
+2:  SINQ    r4, r5
+    SINQ    r12, r13
     bit     #0x4000, r9
-    jz      2f
+    jz      3f
     NEG
-2:  ret
+3:  ret
 
 /*
  * int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3],
