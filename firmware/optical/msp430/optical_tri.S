@@ -239,22 +239,21 @@ lead:
     jlo     4b
 3:  ret
 
-/* R13:R12 <<= R14 (below 32), whole bytes first. Clobbers R14, R15. */
-shl:
+/* R11:R10 and R13:R12 = floor(each / 2^R14) (R14 below 32), whole bytes first. Clobbers R14,
+ * R15. */
+asr2:
 1:  cmp     #8, r14
     jlo     2f
-    swpb    r12
-    mov.b   r12, r15
-    xor     r15, r12
-    swpb    r13
-    and     #0xff00, r13
-    bis     r15, r13
+    BYTER   r10, r11, r15
+    BYTER   r12, r13, r15
     sub     #8, r14
     jmp     1b
 2:  tst     r14
     jz      3f
-4:  rla     r12
-    rlc     r13
+4:  rra     r11
+    rrc     r10
+    rra     r13
+    rrc     r12
     add     #-1, r14
     jnz     4b
 3:  ret
@@ -750,15 +749,42 @@ tri_core_v:
     jnz     1b
 2:  mov     r12, &OW+F_K            ; (the products K are done with)
     ; d = T' U^ / 2^32 2^(12 - f - g - t): beacon 2 from the vehicle; the vehicle at -d
+    ; relative to it, -d / 2^sigma rounded half up (Q16 m): both components by one shift
+    ; by sigma - sh
     mov     #OW+F_T, r5
     mov     #OW+F_U, r6
-    mov     r9, r4
     call    #offset
     jc      singular
+    mov     r12, r10
+    mov     r13, r11
     mov     #OW+F_U+4, r6
-    add     #4, r4
     call    #offset
     jc      singular
+    mov     &OW+F_SIG, r14
+    sub     &OW+F_SH, r14
+    jl      5f
+    jz      6f
+    add     #-1, r14
+    call    #asr2
+    rra     r11
+    rrc     r10
+    adc     r10
+    adc     r11
+    rra     r13
+    rrc     r12
+    adc     r12
+    adc     r13
+    jmp     6f
+5:  rla     r10                     ; (sigma < sh <= 12: at most 10 bits to the left)
+    rlc     r11
+    rla     r12
+    rlc     r13
+    sub     #-1, r14
+    jnz     5b
+6:  mov     r10, TSOL_OFF(r9)
+    mov     r11, TSOL_OFF+2(r9)
+    mov     r12, TSOL_OFF+4(r9)
+    mov     r13, TSOL_OFF+6(r9)
     ; w: U^ with the sign of K' (the direction to beacon 2)
     tst     r7
     jge     9f
@@ -786,8 +812,7 @@ tri_ret:
 
 /*
  * One component: d' = dot1(@R5, @R6) = d / 2^sh (sh in F_SH; carry set when d = d' 2^sh
- * lies beyond [-2^31, 2^31), by the bound the core left in F_K), then the vehicle relative to beacon 2, -d / 2^sigma rounded
- * half up, to @R4 (one shift by sigma - sh).
+ * lies beyond [-2^31, 2^31), by the bound the core left in F_K), -d' to R13:R12.
  */
 offset:
     call    #dot1
@@ -798,22 +823,6 @@ offset:
 1:  cmp     &OW+F_K, r14
     jhs     4f
     NEG
-    mov     &OW+F_SIG, r14
-    sub     &OW+F_SH, r14
-    jl      5f
-    jz      6f
-    add     #-1, r14
-    call    #asr
-    rra     r13
-    rrc     r12
-    adc     r12
-    adc     r13
-    jmp     6f
-5:  inv     r14
-    sub     #-1, r14
-    call    #shl
-6:  mov     r12, TSOL_OFF(r4)
-    mov     r13, TSOL_OFF+2(r4)
     clrc
 4:  ret
 
