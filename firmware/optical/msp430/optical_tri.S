@@ -503,43 +503,46 @@ tri_core_v:
     call    #dot2
     mov     r12, r5
     mov     r13, r6
-    ; e: the larger |V| to [2^27, 2^28); U^ = V 2^e into out->w and the pairs U
+    ; e (R8): |V| or'ed (R15:R14) to [2^27, 2^28), U^ = V 2^e with it into out->w and the
+    ; pairs U: whole bytes below 2^19, then bits
     mov     r4, r14
     mov     r7, r15
     tst     r15
     jge     1f
-    inv     r14
-    inv     r15
-    sub     #-1, r14
-    adc     r15
+    clr     r14                     ; (MOV and CLR keep the borrow of the low word)
+    sub     r4, r14
+    clr     r15
+    subc    r7, r15
 1:  tst     r13
     jge     2f
-    inv     r12
-    inv     r13
-    sub     #-1, r12
-    adc     r13
+    clr     r12
+    sub     r5, r12
+    clr     r13
+    subc    r6, r13
 2:  bis     r12, r14
     bis     r13, r15
     mov     r14, r13
     bis     r15, r13
     tst     r13
     jz      singular                ; U = 0
-    mov     #0x0800, r13
-    call    #lead
-    mov     r11, r8                 ; e
-3:  cmp     #8, r11
-    jlo     5f
+    clr     r8
+    jmp     5f
+3:  BYTEL   r14, r15, r10
     BYTEL   r4, r7, r10
     BYTEL   r5, r6, r10
-    sub     #8, r11
-    jmp     3b
-4:  rla     r4
+    add     #8, r8
+5:  cmp     #0x0008, r15
+    jlo     3b
+    jmp     7f
+6:  rla     r14
+    rlc     r15
+    rla     r4
     rlc     r7
     rla     r5
     rlc     r6
-    add     #-1, r11
-5:  tst     r11
-    jnz     4b
+    sub     #-1, r8
+7:  cmp     #0x0800, r15
+    jlo     6b
     mov     r4, TSOL_W(r9)
     mov     r7, TSOL_W+2(r9)
     mov     r5, TSOL_W+4(r9)
