@@ -210,35 +210,6 @@ dot_end:
     addc    &SUMEXT, r13
     ret
 
-/*
- * R15:R14 (nonzero, below 2^31), R13 = 2^k (a power of two) -> R11 = the left shifts that
- * bring it to 2^(16 + k) or more (lead() in fastmath.c), R15:R14 shifted. Whole bytes while
- * they stay below. Clobbers R10, R12.
- */
-lead:
-    clr     r11
-    mov     r13, r12
-    swpb    r12
-    and.b   #-1, r12                ; 2^k / 2^8: below it a byte at once
-1:  cmp     r12, r15
-    jhs     2f
-    swpb    r15
-    swpb    r14
-    mov.b   r14, r10
-    xor     r10, r14
-    bis     r10, r15
-    add     #8, r11
-    jmp     1b
-2:  cmp     r13, r15
-    jhs     3f
-    mov     #1, r12                 ; (INC costs a constant's fetch; a register does not)
-4:  rla     r14
-    rlc     r15
-    add     r12, r11
-    cmp     r13, r15
-    jlo     4b
-3:  ret
-
 /* R11:R10 and R13:R12 = floor(each / 2^R14) (R14 below 32), whole bytes first. Clobbers R14,
  * R15. */
 asr2:
@@ -681,18 +652,29 @@ tri_core_v:
     mov     r12, TSOL_R(r9)
     mov     r13, TSOL_R+2(r9)
     PUT     OW+F_R
-    ; K'' = K' 2^f, |K''| in [2^29, 2^30)
+    ; K'' = K' 2^f, |K''| in [2^29, 2^30): |K'| (nonzero, below 2^28) shifted, whole bytes
+    ; below 2^21, then bits, f counted off R5
     mov     TSOL_L+4(r9), r14
     mov     TSOL_L+6(r9), r15
     tst     r15
-    jge     7f
-    inv     r14
-    inv     r15
-    sub     #-1, r14
-    adc     r15
-7:  mov     #0x2000, r13
-    call    #lead
-    sub     r11, r5
+    jge     2f
+    clr     r14                     ; (CLR keeps the borrow of the low word)
+    sub     TSOL_L+4(r9), r14
+    clr     r15
+    subc    TSOL_L+6(r9), r15
+    jmp     2f
+1:  BYTEL   r14, r15, r10
+    sub     #8, r5
+2:  cmp     #0x0020, r15
+    jlo     1b
+    mov     #0x2000, r13
+    mov     #-1, r12
+    jmp     4f
+3:  rla     r14
+    rlc     r15
+    add     r12, r5
+4:  cmp     r13, r15
+    jlo     3b
     mov     r14, r12
     mov     r15, r13
     tst     r7
