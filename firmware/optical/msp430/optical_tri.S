@@ -653,7 +653,7 @@ tri_core_v:
     mov     r13, TSOL_R+2(r9)
     PUT     OW+F_R
     ; K'' = K' 2^f, |K''| in [2^29, 2^30): |K'| (nonzero, below 2^28) shifted, whole bytes
-    ; below 2^21, then bits, f counted off R5
+    ; below 2^21, four bits below 2^25, then bits, f counted off R5
     mov     TSOL_L+4(r9), r14
     mov     TSOL_L+6(r9), r15
     tst     r15
@@ -669,6 +669,17 @@ tri_core_v:
     jlo     1b
     mov     #0x2000, r13
     mov     #-1, r12
+    cmp     #0x0200, r15            ; below 2^25: four bits at once
+    jhs     4f
+    rla     r14
+    rlc     r15
+    rla     r14
+    rlc     r15
+    rla     r14
+    rlc     r15
+    rla     r14
+    rlc     r15
+    sub     #4, r5
     jmp     4f
 3:  rla     r14
     rlc     r15
