@@ -252,34 +252,6 @@ asr:
 3:  ret
 
 /*
- * R13:R12 2^n, n = R11 (signed): floor when n <= 0, else doubled n times, carry set (and the
- * value left half-way) when it leaves [-2^31, 2^31). Clobbers R11, R14, R15.
- */
-scale:
-    tst     r11
-    jge     1f
-    mov     r11, r14
-    inv     r14
-    sub     #-1, r14
-    call    #asr
-    clrc
-    ret
-1:  tst     r11
-    jz      3f
-    mov     r13, r15                ; bits 31 and 30 must agree
-    rla     r15
-    xor     r13, r15
-    jn      2f
-    rla     r12
-    rlc     r13
-    add     #-1, r11
-    jmp     1b
-2:  setc
-    ret
-3:  clrc
-    ret
-
-/*
  * int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out):
  * R12 = v, R13 = sc, R14 = out -> R12 = OPTICAL_OK, OPTICAL_E_ARG, OPTICAL_E_DEGENERATE,
  * OPTICAL_E_SINGULAR or OPTICAL_E_INCONSISTENT. R9 = out, R8 = e (then e - g), R7 the high
@@ -520,14 +492,28 @@ tri_core_v:
     mov     r6, TSOL_W+6(r9)
     PAIR    r4, r7, OW+F_U, r10
     PAIR    r5, r6, OW+F_U+4, r10
-    ; K' = 16 K 2^(e - 4) within [-2^28, 2^28) (else beacon 2 lies beyond 2^31 lambda)
+    ; K' = 16 K 2^(e - 4) within [-2^28, 2^28) (else beacon 2 lies beyond 2^31 lambda): floor
+    ; when e < 4, else doubled, refused as soon as bits 31 and 30 differ
     mov     TSOL_L+4(r9), r12
     mov     TSOL_L+6(r9), r13
     mov     r8, r11
     sub     #4, r11
-    call    #scale
-    jc      singular
-    mov     r13, r14
+    jz      3f
+    jge     2f
+1:  rra     r13
+    rrc     r12
+    sub     #-1, r11
+    jnz     1b
+    jmp     3f
+2:  mov     r13, r15
+    rla     r15
+    xor     r13, r15
+    jn      singular
+    rla     r12
+    rlc     r13
+    add     #-1, r11
+    jnz     2b
+3:  mov     r13, r14
     add     #0x1000, r14
     cmp     #0x2000, r14
     jhs     singular
