@@ -878,8 +878,8 @@ tri_quality_body:
 3:  add     #-1, r8
     jnz     1b
     mov.b   TSOL_X(r9), r8          ; x = s->x - ls - 3 (R8), P = 2^ls (R12): a byte at
-    sxt     r8                      ; once below 2^22 (still below it after the byte: ls =
-    sub     #3, r8                  ; 16), four bits below 2^26, then bits
+    sxt     r8                      ; once below 2^22 (below 2^15: ls = 16), four bits
+    sub     #3, r8                  ; below 2^26, then bits
     mov     #1, r12
     cmp     #0x0040, r15
     jhs     4f
@@ -889,9 +889,9 @@ tri_quality_body:
     bis     r14, r15
     mov     #0x0100, r12
     sub     #8, r8
-    cmp     #0x0040, r15
+    cmp     #0x0080, r15
     jhs     4f
-    sub     #8, r8                  ; ls = 16: the low words
+    sub     #8, r8                  ; ls = 16 (below 2^15): the low words
     mov     TSOL_L(r9), r11
     mov     TSOL_L+4(r9), r13
     mov     TSOL_L+8(r9), r15
