@@ -1,8 +1,10 @@
 /*
  * optical_tri.S - MSP430 versions of the triangulation kernels optical_tri_core and
- * optical_tri_quality (fastmath.c holds the portable C that defines the results; these perform
- * the very same integer steps, and tests/vectors/optical_vectors.c checks them bit for bit on
- * both worlds). Conventions as optical_fast.S.
+ * optical_tri_quality and of optical_triangulate / optical_tri_take (fastmath.c and
+ * triangulate.c hold the portable C that defines the results; these perform the very same
+ * integer steps, and tests/vectors/optical_vectors.c checks them bit for bit on both worlds).
+ * Conventions as optical_fast.S. mspdebug's simulator charges the constant #1 (INC, DEC) like
+ * a memory operand: counts step with #-1 (ADD, SUB) instead.
  *
  * Products: dot() of fastmath.c, sums of x y / 2^32 with every operand split into balanced
  * halves x = h 2^16 + l (l the low word read as signed, h the high word plus bit 15 of l): the
@@ -17,7 +19,7 @@
 /* the kernels' frame in optical_work.u.sv.frame (OW_FRAME_SIZE bytes) */
     .set F_Z,   OW_FRAME+0          ; pairs -s2, c2, s2, s1, c1, -s1
     .set F_B,   OW_FRAME+24         ; b1x, b1y, b3x, b3y (scaled)
-    .set F_W,   OW_FRAME+40         ; ax, cx, ay, cy, c1, c2
+    .set F_W,   OW_FRAME+40         ; ax, cx, ay, cy
     .set F_K,   OW_FRAME+64         ; 4 ax, 4 cx, 4 cy, -4 ay; later the offsets' bound
     .set F_U,   OW_FRAME+80         ; u0, u1 (U^), k (K')
     .set F_KN,  OW_FRAME+92         ; K''
@@ -25,7 +27,7 @@
     .set F_T,   OW_FRAME+100        ; T'
     .set F_V,   OW_FRAME+104        ; the offsets' pointer
     .set F_SIG, OW_FRAME+106        ; sigma (word)
-    .set F_SH,  OW_FRAME+108        ; 12 - f - g - t (word)
+    .set F_SH,  OW_FRAME+108        ; out until sigma is known; then 12 - f - g - t (word)
 
 /* R13:R12 -> the pair at address a: h = R13 + bit 15 of R12 (also left in R14), l = R12. */
     .macro  PUT a
@@ -254,8 +256,9 @@ asr:
 /*
  * int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out):
  * R12 = v, R13 = sc, R14 = out -> R12 = OPTICAL_OK, OPTICAL_E_ARG, OPTICAL_E_DEGENERATE,
- * OPTICAL_E_SINGULAR or OPTICAL_E_INCONSISTENT. R9 = out, R8 = e (then e - g), R7 the high
- * word of K' (its sign), R5 and R6 the dot pointers; 16 K waits in out->l[1].
+ * OPTICAL_E_SINGULAR or OPTICAL_E_INCONSISTENT. The entry puts the sines and cosines into the
+ * frame's pairs Z, the body does the rest: R9 = out, R8 = e (then e - g), R7 the high word of
+ * K' (its sign), R5 and R6 the dot pointers; 16 K waits in out->l[1].
  */
     .section .text.optical_tri_core,"ax",@progbits
     .global optical_tri_core
@@ -300,8 +303,9 @@ optical_tri_core:
     pop     r10
     ret
 
-/* The body: R4..R10 not kept (optical_triangulate calls it directly). The public entry has
- * its own section: the board, which only triangulates, links without it. */
+/* The body, with the pairs Z in place: R4..R10 not kept (optical_triangulate calls its second
+ * entry, tri_core_v, directly). The public entry has its own section: the board, which only
+ * triangulates, links without it. */
     .section .text.optical_tri_kernels,"ax",@progbits
 arg:
     mov     #1, r12                 ; OPTICAL_E_ARG
@@ -1061,14 +1065,15 @@ sincos:
  * int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3],
  * uint32_t quality_max, optical_tri_t *out): R12 = b, R13 = theta, R15:R14 = quality_max,
  * out on the stack. The steps of triangulate.c: O8's ordering (d1 = theta1 - theta0,
- * d2 = theta2 - theta0, the triplet from the one after the largest gap), the offsets from
- * beacon 2 (u.sv.v), the sines and cosines (fx_sin, fx_cos of alpha1, alpha2; u.sv.sc),
- * optical_tri_core, optical_tri_quality, the position, O10's
- * bearing (fx_atan2 of w) and the quality limit. R4 = B2, R5 = B2's angle, R9 = out,
- * R7:R6 = the quality; quality_max at 0(R1).
+ * d2 = theta2 - theta0, the triplet from the one after the largest gap), the sines and
+ * cosines of alpha1, alpha2 (fx_sin's and fx_cos's values, sincos: straight into the core's
+ * pairs), the offsets from beacon 2 (in the core's registers; u.sv.v gets them scaled),
+ * optical_tri_core, optical_tri_quality, the position, O10's bearing (fx_atan2 of w) and the
+ * quality limit. R4 = B2, R5 = B2's angle, R9 = out, R7:R6 = the quality; quality_max at
+ * 0(R1).
  */
-    .set T_PB,  OW_FRAME            ; (in the kernels' frame until they run) the beacons'
-    .set T_PT,  OW_FRAME+6          ; pointers in the given order, the angles' pointers
+    .set T_PB,  OW_FRAME            ; (in the kernels' frame until the sines go there) the
+    .set T_PT,  OW_FRAME+6          ; beacons' pointers in the given order, the angles' ones
 
     .section .text.optical_triangulate,"ax",@progbits
     .global optical_triangulate
