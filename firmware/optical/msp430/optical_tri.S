@@ -728,11 +728,8 @@ tri_core_v:
     tst     r11
     jl      2f
     jz      2f
-    mov     #0x4000, r12
-    jmp     3f
-1:  rra     r12
-3:  add     #-1, r11
-    jnz     1b
+    rla     r11
+    mov     tri_bound-2(r11), r12
 2:  mov     r12, &OW+F_K            ; (the products K are done with)
     ; d = T' U^ / 2^32 2^(12 - f - g - t): beacon 2 from the vehicle; the vehicle at -d
     ; relative to it, -d / 2^sigma rounded half up (Q16 m): both components by one shift
@@ -795,6 +792,14 @@ singular:
     mov     #E_SINGULAR, r12
 tri_ret:
     ret
+
+/* 2^(15 - sh), sh = 1..12: the offsets' bound */
+    .section .rodata.optical_tri_bound,"a",@progbits
+    .p2align 1
+tri_bound:
+    .word   0x4000, 0x2000, 0x1000, 0x0800, 0x0400, 0x0200, 0x0100, 0x0080, 0x0040, 0x0020
+    .word   0x0010, 0x0008
+    .section .text.optical_tri_kernels,"ax",@progbits
 
 /*
  * One component: d' = dot1(@R5, @R6) = d / 2^sh (sh in F_SH; carry set when d = d' 2^sh
