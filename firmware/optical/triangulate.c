@@ -17,7 +17,9 @@
  * units), sin/cos Q1.30, products of balanced 16-bit halves summed in the multiplier, one
  * reciprocal. The arithmetic is the kernels optical_tri_core() and optical_tri_quality()
  * (fastmath.h: assembly on the MSP430). On the MSP430 optical_triangulate itself is assembly
- * too (msp430/optical_tri.S, OPTICAL_ASM), the same steps as the C below.
+ * too (msp430/optical_tri.S, OPTICAL_ASM), the same steps as the C below: the sine and cosine
+ * of each angle from one evaluation of fx's table (fx_sin's and fx_cos's values bit for bit),
+ * handed to optical_tri_core in its own form, as are the offsets.
  */
 #include <stdbool.h>
 

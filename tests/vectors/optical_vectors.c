@@ -531,6 +531,33 @@ static void kernels(void)
             a2 += 0x80000000u;
         tri_kernels((uint8_t)(200u + t), v, a1, a2, NULL, NULL);
     }
+    /* optical_tri_quality on solutions of every scale (on a random stream of its own): the
+     * offsets scaled as the core leaves them, ranges of 2^0 to 2^30 (down to where the
+     * common shift is 16 bits), R' in [2^29, 2^30], exponents that saturate or reach 0. */
+    uint32_t rng_kept = rng;
+    for (uint8_t t = 0; t < 40; t++) {
+        int32_t v[4];
+        for (uint8_t i = 0; i < 4; i++)
+            v[i] = rnd_in(0x0FFFFFFFu);
+        v[t & 3u] = (t & 4u) ? -(int32_t)0x10000000 - rnd_in(0x07FFFFFFu) - 0x08000000
+                             : (int32_t)0x10000000 + rnd_in(0x07FFFFFFu) + 0x08000000;
+        optical_tsol_t ts = {{0, 0}, {0, 0}, {0, 0, 0}, 0, 0};
+        uint8_t k = (uint8_t)(t < 31u ? t : rnd32() % 31u); /* the largest range: 2^k */
+        for (uint8_t i = 0; i < 3; i++) {
+            uint32_t m = (1ul << k) + (rnd32() & ((1ul << k) - 1u));
+            if (i != t % 3u)
+                m >>= rnd32() % 8u;
+            ts.l[i] = (t & 8u) ? -(int32_t)m : (int32_t)m;
+        }
+        ts.r = 0x20000000u + rnd32() % 0x20000001u;
+        ts.x = (int8_t)rnd_in(60);
+        cy_print("triq ");
+        cy_print_dec(t);
+        field("x", (uint32_t)(int32_t)ts.x);
+        field("q", optical_tri_quality(v, &ts));
+        cy_println();
+    }
+    rng = rng_kept;
     cy_bench_report(&st_core);
     cy_bench_report(&st_qual);
     for (uint8_t t = 0; t < 50; t++) {

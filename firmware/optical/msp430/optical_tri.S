@@ -1,8 +1,10 @@
 /*
  * optical_tri.S - MSP430 versions of the triangulation kernels optical_tri_core and
- * optical_tri_quality (fastmath.c holds the portable C that defines the results; these perform
- * the very same integer steps, and tests/vectors/optical_vectors.c checks them bit for bit on
- * both worlds). Conventions as optical_fast.S.
+ * optical_tri_quality and of optical_triangulate / optical_tri_take (fastmath.c and
+ * triangulate.c hold the portable C that defines the results; these perform the very same
+ * integer steps, and tests/vectors/optical_vectors.c checks them bit for bit on both worlds).
+ * Conventions as optical_fast.S. mspdebug's simulator charges the constant #1 (INC, DEC) like
+ * a memory operand: counts step with #-1 (ADD, SUB) instead.
  *
  * Products: dot() of fastmath.c, sums of x y / 2^32 with every operand split into balanced
  * halves x = h 2^16 + l (l the low word read as signed, h the high word plus bit 15 of l): the
@@ -17,7 +19,7 @@
 /* the kernels' frame in optical_work.u.sv.frame (OW_FRAME_SIZE bytes) */
     .set F_Z,   OW_FRAME+0          ; pairs -s2, c2, s2, s1, c1, -s1
     .set F_B,   OW_FRAME+24         ; b1x, b1y, b3x, b3y (scaled)
-    .set F_W,   OW_FRAME+40         ; ax, cx, ay, cy, c1, c2
+    .set F_W,   OW_FRAME+40         ; ax, cx, ay, cy
     .set F_K,   OW_FRAME+64         ; 4 ax, 4 cx, 4 cy, -4 ay; later the offsets' bound
     .set F_U,   OW_FRAME+80         ; u0, u1 (U^), k (K')
     .set F_KN,  OW_FRAME+92         ; K''
@@ -25,7 +27,7 @@
     .set F_T,   OW_FRAME+100        ; T'
     .set F_V,   OW_FRAME+104        ; the offsets' pointer
     .set F_SIG, OW_FRAME+106        ; sigma (word)
-    .set F_SH,  OW_FRAME+108        ; 12 - f - g - t (word)
+    .set F_SH,  OW_FRAME+108        ; out until sigma is known; then 12 - f - g - t (word)
 
 /* R13:R12 -> the pair at address a: h = R13 + bit 15 of R12 (also left in R14), l = R12. */
     .macro  PUT a
@@ -68,6 +70,22 @@
     mov     \lo, &\a+2
     .endm
 
+/* R11:R4 |= |\hi:\lo| (R8 the temporary; BIS and MOV keep the borrow of the low word) */
+    .macro  MAGOR lo, hi
+    tst     \hi
+    jn      8f
+    bis     \lo, r4
+    bis     \hi, r11
+    jmp     9f
+8:  clr     r8
+    sub     \lo, r8
+    bis     r8, r4
+    clr     r8
+    subc    \hi, r8
+    bis     r8, r11
+9:
+    .endm
+
 /* To inconsistent unless R13:R12 is nonzero with the sign of K' (R7). Clobbers R14. */
     .macro  LSIGN
     mov     r12, r14
@@ -83,15 +101,64 @@
     .macro  NEG
     inv     r12
     inv     r13
-    inc     r12
+    sub     #-1, r12
     adc     r13
+    .endm
+
+/* \hi:\lo = -\hi:\lo */
+    .macro  NEGR lo, hi
+    inv     \lo
+    inv     \hi
+    sub     #-1, \lo
+    adc     \hi
+    .endm
+
+/*
+ * sin_q1() of fx_trig.c, the table evaluation of fx_sin (firmware/fx/msp430/fx_trig.S's
+ * SIN_BODY from xr on, bit for bit, on fx's tables): \hi:\lo = xr, the first-quadrant
+ * argument plus 64 (at most 2^30 + 64) -> \hi:\lo = its sine, Q1.30, non-negative. Clobbers
+ * R11, R14, R15. Assembled twice in sincos.
+ */
+    .macro  SINQ lo, hi
+    rla     \lo                     ; xr << 1: i = high byte of \hi,
+    rlc     \hi                     ; u = low byte of \hi : high byte of \lo
+    swpb    \hi
+    mov.b   \hi, r14                ; i
+    xor     r14, \hi
+    swpb    \lo
+    mov.b   \lo, \lo
+    bis     \lo, \hi                ; u
+    rla     r14                     ; 2i
+    clr     r11
+    mov     fx_sin_corr(r14), &MPY  ; G[i] (2^16 - u)
+    sub     \hi, r11
+    mov     r11, &OP2
+    rla     r14                     ; 4i
+    mov     fx_sin_tab+4(r14), \lo  ; D = T[i+1] - T[i]
+    mov     fx_sin_tab+6(r14), r15
+    sub     fx_sin_tab(r14), \lo
+    subc    fx_sin_tab+2(r14), r15
+    mov     &RESHI, r11             ; + 2 ((G (2^16 - u)) >> 16), 17 bits
+    rla     r11
+    adc     r15
+    add     r11, \lo
+    adc     r15                     ; e = R15:R12
+    mov     \hi, &MPY               ; (e u) >> 16 = e_hi u + ((e_lo u) >> 16)
+    mov     \lo, &OP2
+    mov     &RESHI, \lo
+    mov     r15, &OP2
+    add     &RESLO, \lo
+    mov     &RESHI, \hi
+    adc     \hi
+    add     fx_sin_tab(r14), \lo    ; + T[i]
+    addc    fx_sin_tab+2(r14), \hi
     .endm
 
     .section .text.optical_tri_kernels,"ax",@progbits
 
 /*
  * dot1, dot2: R5 -> x pairs, R6 -> y pairs -> R13:R12 = dot(x, y, n). dot3s: the same for
- * three with the x pairs 8 bytes apart. Clobber R14.
+ * three, the first two x pairs 8 bytes apart, the third at R4. Clobber R14.
  */
 dot1:
     mov     @r5, &MPYS              ; h h
@@ -103,7 +170,29 @@ dot1:
     mov     2(r5), &MACS
     mov     @r6, &OP2
     jmp     dot_end
-dot2:
+dot3s:
+    mov     @r5, &MPYS
+    mov     @r6, &OP2
+    mov     8(r5), &MACS
+    mov     4(r6), &OP2
+    mov     @r4, &MACS
+    mov     8(r6), &OP2
+    mov     &RESLO, r12
+    mov     &RESHI, r13
+    mov     @r5, &MPYS
+    mov     2(r6), &OP2
+    mov     2(r5), &MACS
+    mov     @r6, &OP2
+    mov     @r4, &MACS
+    mov     10(r6), &OP2
+    mov     2(r4), &MACS
+    mov     8(r6), &OP2
+    mov     8(r5), &MACS
+    mov     6(r6), &OP2
+    mov     10(r5), &MACS
+    mov     4(r6), &OP2
+    jmp     dot_end
+dot2:                               ; (the most frequent: falls through)
     mov     @r5, &MPYS
     mov     @r6, &OP2
     mov     4(r5), &MACS
@@ -114,30 +203,6 @@ dot2:
     mov     2(r6), &OP2
     mov     2(r5), &MACS
     mov     @r6, &OP2
-    jmp     dot_x2
-dot3s:
-    mov     @r5, &MPYS
-    mov     @r6, &OP2
-    mov     8(r5), &MACS
-    mov     4(r6), &OP2
-    mov     16(r5), &MACS
-    mov     8(r6), &OP2
-    mov     &RESLO, r12
-    mov     &RESHI, r13
-    mov     @r5, &MPYS
-    mov     2(r6), &OP2
-    mov     2(r5), &MACS
-    mov     @r6, &OP2
-    mov     16(r5), &MACS
-    mov     10(r6), &OP2
-    mov     18(r5), &MACS
-    mov     8(r6), &OP2
-    mov     8(r5), &MACS
-    mov     6(r6), &OP2
-    mov     10(r5), &MACS
-    mov     4(r6), &OP2
-    jmp     dot_end
-dot_x2:
     mov     4(r5), &MACS
     mov     6(r6), &OP2
     mov     6(r5), &MACS
@@ -147,52 +212,22 @@ dot_end:
     addc    &SUMEXT, r13
     ret
 
-/*
- * R15:R14 (nonzero, below 2^31), R13 = 2^k (a power of two) -> R11 = the left shifts that
- * bring it to 2^(16 + k) or more (lead() in fastmath.c), R15:R14 shifted. Whole bytes while
- * they stay below. Clobbers R10, R12.
- */
-lead:
-    clr     r11
-    mov     r13, r12
-    swpb    r12
-    and.b   #-1, r12                ; 2^k / 2^8: below it a byte at once
-1:  cmp     r12, r15
-    jhs     2f
-    swpb    r15
-    swpb    r14
-    mov.b   r14, r10
-    xor     r10, r14
-    bis     r10, r15
-    add     #8, r11
-    jmp     1b
-2:  cmp     r13, r15
-    jhs     3f
-    mov     #1, r12                 ; (INC costs a constant's fetch; a register does not)
-4:  rla     r14
-    rlc     r15
-    add     r12, r11
-    cmp     r13, r15
-    jlo     4b
-3:  ret
-
-/* R13:R12 <<= R14 (below 32), whole bytes first. Clobbers R14, R15. */
-shl:
+/* R11:R10 and R13:R12 = floor(each / 2^R14) (R14 below 32), whole bytes first. Clobbers R14,
+ * R15. */
+asr2:
 1:  cmp     #8, r14
     jlo     2f
-    swpb    r12
-    mov.b   r12, r15
-    xor     r15, r12
-    swpb    r13
-    and     #0xff00, r13
-    bis     r15, r13
+    BYTER   r10, r11, r15
+    BYTER   r12, r13, r15
     sub     #8, r14
     jmp     1b
 2:  tst     r14
     jz      3f
-4:  rla     r12
-    rlc     r13
-    dec     r14
+4:  rra     r11
+    rrc     r10
+    rra     r13
+    rrc     r12
+    add     #-1, r14
     jnz     4b
 3:  ret
 
@@ -219,38 +254,11 @@ asr:
 3:  ret
 
 /*
- * R13:R12 2^n, n = R11 (signed): floor when n <= 0, else doubled n times, carry set (and the
- * value left half-way) when it leaves [-2^31, 2^31). Clobbers R11, R14, R15.
- */
-scale:
-    tst     r11
-    jge     1f
-    mov     r11, r14
-    inv     r14
-    inc     r14
-    call    #asr
-    clrc
-    ret
-1:  tst     r11
-    jz      3f
-    mov     r13, r15                ; bits 31 and 30 must agree
-    rla     r15
-    xor     r13, r15
-    jn      2f
-    rla     r12
-    rlc     r13
-    dec     r11
-    jmp     1b
-2:  setc
-    ret
-3:  clrc
-    ret
-
-/*
  * int8_t optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out):
  * R12 = v, R13 = sc, R14 = out -> R12 = OPTICAL_OK, OPTICAL_E_ARG, OPTICAL_E_DEGENERATE,
- * OPTICAL_E_SINGULAR or OPTICAL_E_INCONSISTENT. R9 = out, R8 = e (then e - g), R7 the high
- * word of K' (its sign), R5 and R6 the dot pointers; 16 K waits in out->l[1].
+ * OPTICAL_E_SINGULAR or OPTICAL_E_INCONSISTENT. The entry puts the sines and cosines into the
+ * frame's pairs Z, the body does the rest: R9 = out, R8 = e (then e - g), R7 the high word of
+ * K' (its sign), R5 and R6 the dot pointers; 16 K waits in out->l[1].
  */
     .section .text.optical_tri_core,"ax",@progbits
     .global optical_tri_core
@@ -263,6 +271,28 @@ optical_tri_core:
     push    r6
     push    r5
     push    r4
+    mov     r12, r10
+    mov     r14, r9
+    mov     r13, r8
+    ; the sines: Z = (-s2, c2, s2, s1, c1, -s1); c1, c2 also in W
+    mov     @r8+, r12               ; s1
+    mov     @r8+, r13
+    PUT     OW+F_Z+12
+    NEG
+    PUT     OW+F_Z+20
+    mov     @r8+, r12               ; c1
+    mov     @r8+, r13
+    PUT     OW+F_Z+16
+    mov     @r8+, r12               ; s2
+    mov     @r8+, r13
+    PUT     OW+F_Z+8
+    NEG
+    PUT     OW+F_Z
+    mov     @r8+, r12               ; c2
+    mov     @r8+, r13
+    PUT     OW+F_Z+4
+    mov     r10, r12
+    mov     r9, r14
     call    #tri_core_body
     pop     r4
     pop     r5
@@ -273,81 +303,75 @@ optical_tri_core:
     pop     r10
     ret
 
-/* The body: R4..R10 not kept (optical_triangulate calls it directly). The public entry has
- * its own section: the board, which only triangulates, links without it. */
+/* The body, with the pairs Z in place: R4..R10 not kept (optical_triangulate calls its second
+ * entry, tri_core_v, directly). The public entry has its own section: the board, which only
+ * triangulates, links without it. */
     .section .text.optical_tri_kernels,"ax",@progbits
-tri_core_body:
-    mov     r14, r9
-    mov     r12, &OW+F_V
-    mov     r13, r8
-    ; |v|: beyond 2^27 OPTICAL_E_ARG; b1 = 0, b3 = 0 or b1 = b3 OPTICAL_E_DEGENERATE
-    mov     r12, r4
-    clr     r6
-    clr     r7
-    mov     #4, r5
-1:  mov     @r4+, r12
-    mov     @r4+, r13
-    tst     r13
-    jge     7f
-    inv     r12
-    inv     r13
-    inc     r12
-    adc     r13
-7:  bis     r12, r6
-    bis     r13, r7
-    dec     r5
-    jnz     1b
+arg:
     mov     #1, r12                 ; OPTICAL_E_ARG
-    cmp     #0x0800, r7
-    jhs     1f
-    mov     &OW+F_V, r4
+    ret
+degenerate:
     mov     #E_DEGENERATE, r12
-    mov     @r4, r13
-    bis     2(r4), r13
-    bis     4(r4), r13
-    bis     6(r4), r13
-    tst     r13
-    jz      1f
-    mov     8(r4), r13
-    bis     10(r4), r13
-    bis     12(r4), r13
-    bis     14(r4), r13
-    tst     r13
-    jz      1f
-    cmp     @r4, 8(r4)
+    ret
+tri_core_body:
+    mov     r14, &OW+F_SH           ; (out, for now: R9 counts sigma)
+    mov     r12, &OW+F_V
+    mov     r12, r11                ; v in registers
+    mov     @r11+, r12
+    mov     @r11+, r13
+    mov     @r11+, r14
+    mov     @r11+, r15
+    mov     @r11+, r5
+    mov     @r11+, r6
+    mov     @r11+, r7
+    mov     @r11, r10
+    ; (optical_triangulate's entry: v in R12..R15, R5, R6, R7, R10, F_V and F_SH set)
+tri_core_v:
+    ; |v| or'ed (R11:R4): 2^27 or more OPTICAL_E_ARG
+    clr     r4
+    clr     r11
+    MAGOR   r12, r13
+    MAGOR   r14, r15
+    MAGOR   r5, r6
+    MAGOR   r7, r10
+    cmp     #0x0800, r11
+    jhs     arg
+    ; b1 = 0, b3 = 0 or b1 = b3: OPTICAL_E_DEGENERATE
+    mov     r12, r8
+    bis     r13, r8
+    bis     r14, r8
+    bis     r15, r8
+    tst     r8
+    jz      degenerate
+    mov     r5, r8
+    bis     r6, r8
+    bis     r7, r8
+    bis     r10, r8
+    tst     r8
+    jz      degenerate
+    cmp     r12, r5
     jne     2f
-    cmp     2(r4), 10(r4)
+    cmp     r13, r6
     jne     2f
-    cmp     4(r4), 12(r4)
+    cmp     r14, r7
     jne     2f
-    cmp     6(r4), 14(r4)
-    jne     2f
-1:  br      #tri_ret
-    ; sigma: the largest |v| to [2^28, 2^29)
-2:  mov     r6, r14
-    mov     r7, r15
-    mov     #0x1000, r13
-    call    #lead
-    mov     r11, &OW+F_SIG
-    ; v 2^sigma, in place and as the pairs B: the four values in registers, whole bytes
-    ; while sigma >= 8, then bits (R4 the temporary)
-    mov     @r4, r12
-    mov     2(r4), r13
-    mov     4(r4), r14
-    mov     6(r4), r15
-    mov     8(r4), r5
-    mov     10(r4), r6
-    mov     12(r4), r7
-    mov     14(r4), r10
-3:  cmp     #8, r11
-    jlo     5f
-    BYTEL   r12, r13, r4
-    BYTEL   r14, r15, r4
-    BYTEL   r5, r6, r4
-    BYTEL   r7, r10, r4
-    sub     #8, r11
-    jmp     3b
-4:  rla     r12
+    cmp     r15, r10
+    jeq     degenerate
+    ; sigma (R9): |v| or'ed to [2^28, 2^29), v with it, whole bytes below 2^21, then bits
+2:  clr     r9
+    jmp     5f
+3:  BYTEL   r4, r11, r8
+    BYTEL   r12, r13, r8
+    BYTEL   r14, r15, r8
+    BYTEL   r5, r6, r8
+    BYTEL   r7, r10, r8
+    add     #8, r9
+5:  cmp     #0x0020, r11
+    jlo     3b
+    jmp     7f
+6:  rla     r4
+    rlc     r11
+    rla     r12
     rlc     r13
     rla     r14
     rlc     r15
@@ -355,9 +379,12 @@ tri_core_body:
     rlc     r6
     rla     r7
     rlc     r10
-    sub     #1, r11
-5:  tst     r11
-    jnz     4b
+    sub     #-1, r9
+7:  cmp     #0x1000, r11
+    jlo     6b
+    mov     r9, &OW+F_SIG
+    mov     &OW+F_SH, r9            ; out
+    ; v 2^sigma in place and as the pairs B
     mov     &OW+F_V, r4
     mov     r12, 0(r4)
     mov     r13, 2(r4)
@@ -371,27 +398,6 @@ tri_core_body:
     PAIR    r14, r15, OW+F_B+4, r4
     PAIR    r5, r6, OW+F_B+8, r4
     PAIR    r7, r10, OW+F_B+12, r4
-    ; the sines: Z = (-s2, c2, s2, s1, c1, -s1); c1, c2 also in W
-    mov     @r8+, r12               ; s1
-    mov     @r8+, r13
-    PUT     OW+F_Z+12
-    NEG
-    PUT     OW+F_Z+20
-    mov     @r8+, r12               ; c1
-    mov     @r8+, r13
-    PUT     OW+F_Z+16
-    mov     r14, &OW+F_W+16
-    mov     r12, &OW+F_W+18
-    mov     @r8+, r12               ; s2
-    mov     @r8+, r13
-    PUT     OW+F_Z+8
-    NEG
-    PUT     OW+F_Z
-    mov     @r8+, r12               ; c2
-    mov     @r8+, r13
-    PUT     OW+F_Z+4
-    mov     r14, &OW+F_W+20
-    mov     r12, &OW+F_W+22
     ; A = R(alpha1) b1 / 4, C = R(-alpha2) b3 / 4 into W and (times 4) K
     mov     #OW+F_Z+16, r5          ; ax = (c1, -s1) b1
     mov     #OW+F_B, r6
@@ -444,57 +450,74 @@ tri_core_body:
     call    #dot2
     mov     r12, r5
     mov     r13, r6
-    ; e: the larger |V| to [2^27, 2^28); U^ = V 2^e into out->w and the pairs U
+    ; e (R8): |V| or'ed (R15:R14) to [2^27, 2^28), U^ = V 2^e with it into out->w and the
+    ; pairs U: whole bytes below 2^19, then bits
     mov     r4, r14
     mov     r7, r15
     tst     r15
     jge     1f
-    inv     r14
-    inv     r15
-    inc     r14
-    adc     r15
+    clr     r14                     ; (MOV and CLR keep the borrow of the low word)
+    sub     r4, r14
+    clr     r15
+    subc    r7, r15
 1:  tst     r13
     jge     2f
-    inv     r12
-    inv     r13
-    inc     r12
-    adc     r13
+    clr     r12
+    sub     r5, r12
+    clr     r13
+    subc    r6, r13
 2:  bis     r12, r14
     bis     r13, r15
     mov     r14, r13
     bis     r15, r13
     tst     r13
     jz      singular                ; U = 0
-    mov     #0x0800, r13
-    call    #lead
-    mov     r11, r8                 ; e
-3:  cmp     #8, r11
-    jlo     5f
+    clr     r8
+    jmp     5f
+3:  BYTEL   r14, r15, r10
     BYTEL   r4, r7, r10
     BYTEL   r5, r6, r10
-    sub     #8, r11
-    jmp     3b
-4:  rla     r4
+    add     #8, r8
+5:  cmp     #0x0008, r15
+    jlo     3b
+    jmp     7f
+6:  rla     r14
+    rlc     r15
+    rla     r4
     rlc     r7
     rla     r5
     rlc     r6
-    sub     #1, r11
-5:  tst     r11
-    jnz     4b
+    sub     #-1, r8
+7:  cmp     #0x0800, r15
+    jlo     6b
     mov     r4, TSOL_W(r9)
     mov     r7, TSOL_W+2(r9)
     mov     r5, TSOL_W+4(r9)
     mov     r6, TSOL_W+6(r9)
     PAIR    r4, r7, OW+F_U, r10
     PAIR    r5, r6, OW+F_U+4, r10
-    ; K' = 16 K 2^(e - 4) within [-2^28, 2^28) (else beacon 2 lies beyond 2^31 lambda)
+    ; K' = 16 K 2^(e - 4) within [-2^28, 2^28) (else beacon 2 lies beyond 2^31 lambda): floor
+    ; when e < 4, else doubled, refused as soon as bits 31 and 30 differ
     mov     TSOL_L+4(r9), r12
     mov     TSOL_L+6(r9), r13
     mov     r8, r11
     sub     #4, r11
-    call    #scale
-    jc      singular
-    mov     r13, r14
+    jz      3f
+    jge     2f
+1:  rra     r13
+    rrc     r12
+    sub     #-1, r11
+    jnz     1b
+    jmp     3f
+2:  mov     r13, r15
+    rla     r15
+    xor     r13, r15
+    jn      singular
+    rla     r12
+    rlc     r13
+    add     #-1, r11
+    jnz     2b
+3:  mov     r13, r14
     add     #0x1000, r14
     cmp     #0x2000, r14
     jhs     singular
@@ -505,16 +528,27 @@ tri_core_body:
     bis     r12, r13
     tst     r13
     jz      inconsistent            ; K' = 0: the vehicle on beacon 2
-    ; l1 = (ax, ay, c1) (U^, K'), l3 = (cx, cy, c2) (U^, K'): both with the sign of K'
+    ; l1 = (ax, ay, c1) (U^, K'), l3 = (cx, cy, c2) (U^, K'): both with the sign of K';
+    ; out->l[0] = 4 l1, out->l[2] = 4 l3
     mov     #OW+F_W, r5
     mov     #OW+F_U, r6
+    mov     #OW+F_Z+16, r4
     call    #dot3s
     LSIGN
+    rla     r12
+    rlc     r13
+    rla     r12
+    rlc     r13
     mov     r12, TSOL_L(r9)
     mov     r13, TSOL_L+2(r9)
     mov     #OW+F_W+4, r5
+    mov     #OW+F_Z+4, r4
     call    #dot3s
     LSIGN
+    rla     r12
+    rlc     r13
+    rla     r12
+    rlc     r13
     mov     r12, TSOL_L+8(r9)
     mov     r13, TSOL_L+10(r9)
     ; Q = |U^|^2 / 2^32 in [2^22, 2^25); R' = 2^(52 + g) / Q (recip_q in fastmath.c)
@@ -608,18 +642,40 @@ tri_core_body:
     mov     r12, TSOL_R(r9)
     mov     r13, TSOL_R+2(r9)
     PUT     OW+F_R
-    ; K'' = K' 2^f, |K''| in [2^29, 2^30)
+    ; K'' = K' 2^f, |K''| in [2^29, 2^30): |K'| (nonzero, below 2^28) shifted, whole bytes
+    ; below 2^21, four bits below 2^25, then bits, f counted off R5
     mov     TSOL_L+4(r9), r14
     mov     TSOL_L+6(r9), r15
     tst     r15
-    jge     7f
-    inv     r14
-    inv     r15
-    inc     r14
-    adc     r15
-7:  mov     #0x2000, r13
-    call    #lead
-    sub     r11, r5
+    jge     2f
+    clr     r14                     ; (CLR keeps the borrow of the low word)
+    sub     TSOL_L+4(r9), r14
+    clr     r15
+    subc    TSOL_L+6(r9), r15
+    jmp     2f
+1:  BYTEL   r14, r15, r10
+    sub     #8, r5
+2:  cmp     #0x0020, r15
+    jlo     1b
+    mov     #0x2000, r13
+    mov     #-1, r12
+    cmp     #0x0200, r15            ; below 2^25: four bits at once
+    jhs     4f
+    rla     r14
+    rlc     r15
+    rla     r14
+    rlc     r15
+    rla     r14
+    rlc     r15
+    rla     r14
+    rlc     r15
+    sub     #4, r5
+    jmp     4f
+3:  rla     r14
+    rlc     r15
+    add     r12, r5
+4:  cmp     r13, r15
+    jlo     3b
     mov     r14, r12
     mov     r15, r13
     tst     r7
@@ -638,7 +694,7 @@ tri_core_body:
     jge     8f
     inv     r14
     inv     r15
-    inc     r14
+    sub     #-1, r14
     adc     r15
     ; |T| in [2^26, 2^28] (K'' in [2^29, 2^30), R' in [2^29 + 16, 2^30]): t = 3, 2 or (at
     ; 2^28) 1, as lead()
@@ -651,13 +707,13 @@ tri_core_body:
     jhs     9f
     rla     r14
     rlc     r15
-    inc     r11
+    sub     #-1, r11
 9:  cmp     #0x4000, r15
     jlo     9f
     clrc
     rrc     r15
     rrc     r14
-    dec     r11
+    add     #-1, r11
 9:  mov     r14, r12
     mov     r15, r13
     tst     r6
@@ -672,22 +728,46 @@ tri_core_body:
     tst     r11
     jl      2f
     jz      2f
-    mov     #0x4000, r12
-    jmp     3f
-1:  rra     r12
-3:  sub     #1, r11
-    jnz     1b
+    rla     r11
+    mov     tri_bound-2(r11), r12
 2:  mov     r12, &OW+F_K            ; (the products K are done with)
     ; d = T' U^ / 2^32 2^(12 - f - g - t): beacon 2 from the vehicle; the vehicle at -d
+    ; relative to it, -d / 2^sigma rounded half up (Q16 m): both components by one shift
+    ; by sigma - sh
     mov     #OW+F_T, r5
     mov     #OW+F_U, r6
-    mov     r9, r4
     call    #offset
     jc      singular
+    mov     r12, r10
+    mov     r13, r11
     mov     #OW+F_U+4, r6
-    add     #4, r4
     call    #offset
     jc      singular
+    mov     &OW+F_SIG, r14
+    sub     &OW+F_SH, r14
+    jl      5f
+    jz      6f
+    add     #-1, r14
+    call    #asr2
+    rra     r11
+    rrc     r10
+    adc     r10
+    adc     r11
+    rra     r13
+    rrc     r12
+    adc     r12
+    adc     r13
+    jmp     6f
+5:  rla     r10                     ; (sigma < sh <= 12: at most 10 bits to the left)
+    rlc     r11
+    rla     r12
+    rlc     r13
+    sub     #-1, r14
+    jnz     5b
+6:  mov     r10, TSOL_OFF(r9)
+    mov     r11, TSOL_OFF+2(r9)
+    mov     r12, TSOL_OFF+4(r9)
+    mov     r13, TSOL_OFF+6(r9)
     ; w: U^ with the sign of K' (the direction to beacon 2)
     tst     r7
     jge     9f
@@ -703,37 +783,27 @@ tri_core_body:
     mov     r13, TSOL_W+6(r9)
 9:  sub     &OW+F_SIG, r8           ; x = e - g - sigma
     mov.b   r8, TSOL_X(r9)
-    ; l = (4 l1, K', 4 l3)
-    mov     TSOL_L(r9), r12
-    mov     TSOL_L+2(r9), r13
-    rla     r12
-    rlc     r13
-    rla     r12
-    rlc     r13
-    mov     r12, TSOL_L(r9)
-    mov     r13, TSOL_L+2(r9)
-    mov     TSOL_L+8(r9), r12
-    mov     TSOL_L+10(r9), r13
-    rla     r12
-    rlc     r13
-    rla     r12
-    rlc     r13
-    mov     r12, TSOL_L+8(r9)
-    mov     r13, TSOL_L+10(r9)
     clr     r12                     ; OPTICAL_OK
-    jmp     tri_ret
+    ret
 inconsistent:
     mov     #9, r12                 ; OPTICAL_E_INCONSISTENT
-    jmp     tri_ret
+    ret
 singular:
     mov     #E_SINGULAR, r12
 tri_ret:
     ret
 
+/* 2^(15 - sh), sh = 1..12: the offsets' bound */
+    .section .rodata.optical_tri_bound,"a",@progbits
+    .p2align 1
+tri_bound:
+    .word   0x4000, 0x2000, 0x1000, 0x0800, 0x0400, 0x0200, 0x0100, 0x0080, 0x0040, 0x0020
+    .word   0x0010, 0x0008
+    .section .text.optical_tri_kernels,"ax",@progbits
+
 /*
  * One component: d' = dot1(@R5, @R6) = d / 2^sh (sh in F_SH; carry set when d = d' 2^sh
- * lies beyond [-2^31, 2^31), by the bound the core left in F_K), then the vehicle relative to beacon 2, -d / 2^sigma rounded
- * half up, to @R4 (one shift by sigma - sh).
+ * lies beyond [-2^31, 2^31), by the bound the core left in F_K), -d' to R13:R12.
  */
 offset:
     call    #dot1
@@ -744,22 +814,6 @@ offset:
 1:  cmp     &OW+F_K, r14
     jhs     4f
     NEG
-    mov     &OW+F_SIG, r14
-    sub     &OW+F_SH, r14
-    jl      5f
-    jz      6f
-    dec     r14
-    call    #asr
-    rra     r13
-    rrc     r12
-    adc     r12
-    adc     r13
-    jmp     6f
-5:  inv     r14
-    inc     r14
-    call    #shl
-6:  mov     r12, TSOL_OFF(r4)
-    mov     r13, TSOL_OFF+2(r4)
     clrc
 4:  ret
 
@@ -821,118 +875,86 @@ tri_quality_body:
     mov     @r13+, r11
     tst     r11
     jge     2f
-    inv     r10
-    inv     r11
-    inc     r10
-    adc     r11
+    clr     r12                     ; (BIS and MOV keep the borrow of the low word)
+    sub     r10, r12
+    bis     r12, r14
+    clr     r12
+    subc    r11, r12
+    bis     r12, r15
+    jmp     3f
 2:  bis     r10, r14
     bis     r11, r15
-    dec     r8
+3:  add     #-1, r8
     jnz     1b
-    clr     r8                      ; ls: a byte at once below 2^22, then bits (at most 8
-    cmp     #0x0040, r15            ; from 2^6 on; still below it after the byte: 16)
-    jhs     3f
-    mov     #8, r8
+    mov.b   TSOL_X(r9), r8          ; x = s->x - ls - 3 (R8), P = 2^ls (R12): a byte at
+    sxt     r8                      ; once below 2^22 (below 2^15: ls = 16), four bits
+    sub     #3, r8                  ; below 2^26, then bits
+    mov     #1, r12
+    cmp     #0x0040, r15
+    jhs     4f
     swpb    r15
     swpb    r14
     mov.b   r14, r14
     bis     r14, r15
-    cmp     #0x0040, r15
-    jhs     3f
-    mov     #16, r8
-    jmp     4f
-5:  rla     r15
-    inc     r8
-3:  cmp     #0x4000, r15
-    jlo     5b
-4:  push    r8                      ; the three l 2^ls: their high words to the frame
-    mov     TSOL_L(r9), r10
-    mov     TSOL_L+2(r9), r11
-    mov     TSOL_L+4(r9), r12
-    mov     TSOL_L+6(r9), r13
-    mov     TSOL_L+8(r9), r14
-    mov     TSOL_L+10(r9), r15
-    push    r9
-    mov     r8, r9
-    cmp     #8, r9
-    jhs     8f
-    cmp     #4, r9
-    jlo     5f
-    ; 4 <= ls < 8: the same high words as the low words of l / 2^(16 - ls), a byte and at
-    ; most 4 bits to the right
-    BYTER   r10, r11, r8
-    BYTER   r12, r13, r8
-    BYTER   r14, r15, r8
-    sub     #8, r9
-9:  rra     r11
-    rrc     r10
-    rra     r13
-    rrc     r12
-    rra     r15
-    rrc     r14
-    inc     r9
-    jnz     9b
-    mov     r10, r11
-    mov     r12, r13
-    mov     r14, r15
+    mov     #0x0100, r12
+    sub     #8, r8
+    cmp     #0x0080, r15
+    jhs     4f
+    sub     #8, r8                  ; ls = 16 (below 2^15): the low words
+    mov     TSOL_L(r9), r11
+    mov     TSOL_L+4(r9), r13
+    mov     TSOL_L+8(r9), r15
     jmp     7f
-8:  swpb    r11                     ; (hi lo) 2^8
-    swpb    r10
-    and     #0xff00, r11
-    mov.b   r10, r8
-    bis     r8, r11
-    and     #0xff00, r10
-    swpb    r13
-    swpb    r12
-    and     #0xff00, r13
-    mov.b   r12, r8
-    bis     r8, r13
-    and     #0xff00, r12
-    swpb    r15
-    swpb    r14
-    and     #0xff00, r15
-    mov.b   r14, r8
-    bis     r8, r15
-    and     #0xff00, r14
-    sub     #8, r9
-5:  tst     r9
-    jz      7f
-6:  rla     r10
-    rlc     r11
+4:  cmp     #0x0400, r15
+    jhs     6f
+    rla     r15
+    rla     r15
+    rla     r15
+    rla     r15
     rla     r12
-    rlc     r13
-    rla     r14
-    rlc     r15
-    dec     r9
-    jnz     6b
-7:  pop     r9
-    pop     r8
-    mov     r11, &OW+OW_FRAME
-    mov     r13, &OW+OW_FRAME+2
-    mov     r15, &OW+OW_FRAME+4
-    mov.b   TSOL_X(r9), r10
-    sxt     r10
-    sub     r8, r10
-    sub     #3, r10
-    mov     r10, r8
-    ; M = sum of ((r_k chord) / 2^16)^2: r3 with b1, r1 with b3, r2 with b3 - b1
-    mov     &OW+OW_FRAME+4, &MPYS
+    rla     r12
+    rla     r12
+    rla     r12
+    sub     #4, r8
+    jmp     6f
+5:  rla     r15
+    rla     r12
+    add     #-1, r8
+6:  cmp     #0x4000, r15
+    jlo     5b
+    ; the high words of l 2^ls = lh P + (ll P) / 2^16 (ls <= 15), mod 2^16
+    mov     r12, &MPY
+    mov     TSOL_L(r9), &OP2
+    mov     &RESHI, r11
+    mov     TSOL_L+2(r9), &OP2
+    add     &RESLO, r11
+    mov     TSOL_L+4(r9), &OP2
+    mov     &RESHI, r13
+    mov     TSOL_L+6(r9), &OP2
+    add     &RESLO, r13
+    mov     TSOL_L+8(r9), &OP2
+    mov     &RESHI, r15
+    mov     TSOL_L+10(r9), &OP2
+    add     &RESLO, r15
+    ; M = sum of ((r_k chord) / 2^16)^2: r3 (R15) with b1, r1 (R11) with b3, r2 (R13) with
+    ; b3 - b1
+7:  mov     r15, &MPYS
     mov     r4, &OP2
     mov     &RESHI, r10
     mov     r5, &OP2
-    mov     &RESHI, r11
-    mov     &OW+OW_FRAME, &MPYS
+    mov     &RESHI, r15
+    mov     r11, &MPYS
     mov     r6, &OP2
-    mov     &RESHI, r12
+    mov     &RESHI, r11
     mov     r7, &OP2
-    mov     &RESHI, r13
+    mov     &RESHI, r12
     sub     r4, r6
     sub     r5, r7
-    mov     &OW+OW_FRAME+2, &MPYS
+    mov     r13, &MPYS
     mov     r6, &OP2
-    mov     &RESHI, r14
+    mov     &RESHI, r13
     mov     r7, &OP2
-    mov     &RESHI, r15
+    mov     &RESHI, r14
     mov     r10, &MPYS
     mov     r10, &OP2
     mov     r11, &MACS
@@ -952,15 +974,15 @@ tri_quality_body:
     tst     r14
     jz      sat                     ; M = 0
     ; to [2^30, 2^32) by factors of 4; the root; S = root R' 2^x / 1000
+    jmp     8f
+7:  rla     r12
+    rlc     r13
+    rla     r12
+    rlc     r13
+    add     #-1, r8
 8:  cmp     #0x4000, r13
-    jhs     9f
-    rla     r12
-    rlc     r13
-    rla     r12
-    rlc     r13
-    dec     r8
-    jmp     8b
-9:  mov     r13, r15                ; the root: k = M / 2^27 - 8 (2 k + 16 in R14), the
+    jlo     7b
+    mov     r13, r15                ; the root: k = M / 2^27 - 8 (2 k + 16 in R14), the
     swpb    r15                     ; fraction f = (M / 2^16) 2^5 mod 2^16 (R13)
     mov.b   r15, r14
     rra     r14
@@ -990,11 +1012,10 @@ tri_quality_body:
     mov     &RESHI, r13
     tst     r8
     jge     11f
-    inv     r8                      ; x < 0: floor shift right by -x (0 from 32 on)
-    inc     r8
-    cmp     #32, r8
+    clr     r14                     ; x < 0: floor shift right by -x (0 from 32 on)
+    sub     r8, r14
+    cmp     #32, r14
     jhs     10f
-    mov     r8, r14
     call    #asr
     jmp     q_out
 10: clr     r12
@@ -1005,7 +1026,7 @@ tri_quality_body:
     rla     r12
     rlc     r13
     jc      sat
-    dec     r8
+    add     #-1, r8
     jmp     11b
 sat:
     mov     #-1, r12
@@ -1014,17 +1035,50 @@ q_out:
     ret
 
 /*
+ * R13:R12 = alpha in (0, 2^31) -> R5:R4 = fx_sin(alpha), R13:R12 = fx_cos(alpha), bit for
+ * bit. With x = alpha mod 2^30, P = sin_q1(x + 64) and Q = sin_q1(2^30 - x + 64): in the
+ * first quadrant sin = P, cos = Q, in the second sin = Q, cos = -P. O8's alpha1 and alpha2
+ * lie there: gaps between three distinct sightings that sum to a turn, neither the largest.
+ * Clobbers R6, R7, R9, R11, R14, R15.
+ */
+sincos:
+    mov     r13, r9                 ; bit 14: the second quadrant
+    and     #0x3fff, r13
+    add     #64, r12                ; P's xr
+    adc     r13
+    bit     #0x4000, r9
+    jnz     1f
+    mov     r12, r4                 ; first quadrant: the sine from P's, the cosine Q's
+    mov     r13, r5
+    mov     #0x0080, r12            ; Q's xr = 2^30 + 128 - P's
+    mov     #0x4000, r13
+    sub     r4, r12
+    subc    r5, r13
+    jmp     2f
+1:  mov     #0x0080, r4             ; second quadrant: the sine from Q's, the cosine P's
+    mov     #0x4000, r5
+    sub     r12, r4
+    subc    r13, r5
+2:  SINQ    r4, r5
+    SINQ    r12, r13
+    bit     #0x4000, r9
+    jz      3f
+    NEG
+3:  ret
+
+/*
  * int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3],
  * uint32_t quality_max, optical_tri_t *out): R12 = b, R13 = theta, R15:R14 = quality_max,
  * out on the stack. The steps of triangulate.c: O8's ordering (d1 = theta1 - theta0,
- * d2 = theta2 - theta0, the triplet from the one after the largest gap), the offsets from
- * beacon 2 (u.sv.v), the sines and cosines (fx_sin, fx_cos of alpha1, alpha2; u.sv.sc),
- * optical_tri_core, optical_tri_quality, the position, O10's
- * bearing (fx_atan2 of w) and the quality limit. R4 = B2, R5 = B2's angle, R9 = out,
- * R7:R6 = the quality; quality_max at 0(R1).
+ * d2 = theta2 - theta0, the triplet from the one after the largest gap), the sines and
+ * cosines of alpha1, alpha2 (fx_sin's and fx_cos's values, sincos: straight into the core's
+ * pairs), the offsets from beacon 2 (in the core's registers; u.sv.v gets them scaled),
+ * optical_tri_core, optical_tri_quality, the position, O10's bearing (fx_atan2 of w) and the
+ * quality limit. R4 = B2, R5 = B2's angle, R9 = out, R7:R6 = the quality; quality_max at
+ * 0(R1).
  */
-    .set T_PB,  OW_FRAME            ; (in the kernels' frame until they run) the beacons'
-    .set T_PT,  OW_FRAME+6          ; pointers in the given order, the angles' pointers
+    .set T_PB,  OW_FRAME            ; (in the kernels' frame until the sines go there) the
+    .set T_PT,  OW_FRAME+6          ; beacons' pointers in the given order, the angles' ones
 
     .section .text.optical_triangulate,"ax",@progbits
     .global optical_triangulate
@@ -1139,59 +1193,50 @@ optical_triangulate:
     mov     OW+T_PB(r15), r15       ; B1, B2, B3
     mov     OW+T_PB(r11), r4
     mov     OW+T_PB(r14), r14
-    ; v = (B1 - B2, B3 - B2)
-    mov     @r15+, r12
-    mov     @r15+, r13
-    sub     @r4, r12
-    subc    XY_X+2(r4), r13
-    mov     r12, &OW+OW_SV_V
-    mov     r13, &OW+OW_SV_V+2
-    mov     @r15+, r12
-    mov     @r15, r13
-    sub     XY_Y(r4), r12
-    subc    XY_Y+2(r4), r13
-    mov     r12, &OW+OW_SV_V+4
-    mov     r13, &OW+OW_SV_V+6
-    mov     @r14+, r12
-    mov     @r14+, r13
-    sub     @r4, r12
-    subc    XY_X+2(r4), r13
-    mov     r12, &OW+OW_SV_V+8
-    mov     r13, &OW+OW_SV_V+10
-    mov     @r14+, r12
-    mov     @r14, r13
-    sub     XY_Y(r4), r12
-    subc    XY_Y+2(r4), r13
-    mov     r12, &OW+OW_SV_V+12
-    mov     r13, &OW+OW_SV_V+14
-    ; (s1, c1, s2, c2)
-    mov     r6, r12
-    mov     r7, r13
-    call    #fx_sin
-    mov     r12, &OW+OW_SV_SC
-    mov     r13, &OW+OW_SV_SC+2
-    mov     r6, r12
-    mov     r7, r13
-    call    #fx_cos
-    mov     r12, &OW+OW_SV_SC+4
-    mov     r13, &OW+OW_SV_SC+6
-    mov     r10, r12
-    mov     r8, r13
-    call    #fx_sin
-    mov     r12, &OW+OW_SV_SC+8
-    mov     r13, &OW+OW_SV_SC+10
-    mov     r10, r12
-    mov     r8, r13
-    call    #fx_cos
-    mov     r12, &OW+OW_SV_SC+12
-    mov     r13, &OW+OW_SV_SC+14
-    mov     #OW+OW_SV_V, r12
-    mov     #OW+OW_SV_SC, r13
-    mov     #OW+OW_SV_TS, r14
     push    r9                      ; (the kernels' bodies keep no register)
     push    r5
     push    r4
-    call    #tri_core_body
+    push    r15
+    push    r14
+    ; fx_sin and fx_cos of alpha1, alpha2 straight into the kernels' pairs: Z = (-s2, c2,
+    ; s2, s1, c1, -s1) (the pointers there are read)
+    mov     r6, r12
+    mov     r7, r13
+    call    #sincos
+    PAIR    r4, r5, OW+F_Z+12, r14
+    PAIR    r12, r13, OW+F_Z+16, r14
+    NEGR    r4, r5
+    PAIR    r4, r5, OW+F_Z+20, r14
+    mov     r10, r12
+    mov     r8, r13
+    call    #sincos
+    PAIR    r4, r5, OW+F_Z+8, r14
+    PAIR    r12, r13, OW+F_Z+4, r14
+    NEGR    r4, r5
+    PAIR    r4, r5, OW+F_Z, r14
+    ; v = (B1 - B2, B3 - B2) in the core's registers (its work memory: u.sv.v, u.sv.ts)
+    pop     r11                     ; B3
+    pop     r8                      ; B1
+    mov     @r1, r4                 ; B2
+    mov     @r8+, r12
+    mov     @r8+, r13
+    sub     @r4, r12
+    subc    XY_X+2(r4), r13
+    mov     @r8+, r14
+    mov     @r8, r15
+    sub     XY_Y(r4), r14
+    subc    XY_Y+2(r4), r15
+    mov     @r11+, r5
+    mov     @r11+, r6
+    sub     @r4, r5
+    subc    XY_X+2(r4), r6
+    mov     @r11+, r7
+    mov     @r11, r10
+    sub     XY_Y(r4), r7
+    subc    XY_Y+2(r4), r10
+    mov     #OW+OW_SV_V, &OW+F_V
+    mov     #OW+OW_SV_TS, &OW+F_SH
+    call    #tri_core_v
     tst     r12
     jnz     .Ltr_pop
     mov     #OW+OW_SV_V, r12

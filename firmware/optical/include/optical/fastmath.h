@@ -109,7 +109,8 @@ typedef struct {
             optical_tri_t tri;                     /**< a candidate triplet's solution */
             uint16_t frame[55]; /**< MSP430: the triangulation kernels' work frame */
             int32_t v[4];       /**< optical_triangulate: the offsets (optical_tri_core) */
-            int32_t sc[4];      /**< its sines and cosines */
+            int32_t sc[4];      /**< its sines and cosines (C only: the MSP430's go straight
+                                   into the frame) */
             optical_tsol_t ts;  /**< its solution */
         } sv;
     } u;
