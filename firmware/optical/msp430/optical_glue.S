@@ -553,6 +553,25 @@ optical_resid:
     ret
 
 /*
+ * TAKE_DIFF off: R15:R11 -= |p.off - ap.off| (R12 = p, R13 = ap, 32-bit fields at @p off),
+ * the difference left in R9:R10; the carry of the last step set when the rest stays >= 0
+ * (unsigned).
+ */
+.macro TAKE_DIFF off
+    mov     \off(r12), r10
+    mov     \off+2(r12), r9
+    sub     \off(r13), r10
+    subc    \off+2(r13), r9
+    jn      1f
+    sub     r10, r11
+    subc    r9, r15
+    jmp     2f
+1:  add     r10, r11
+    addc    r9, r15
+2:
+.endm
+
+/*
  * int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap,
  * const optical_config_t *cfg): R12 = p, R13 = ap, R14 = cfg -> R12. R15:R11 = jump_max -
  * jx - jy (then turn_max - |dh|), R9:R10 a difference d: its magnitude taken off by
@@ -568,28 +587,10 @@ optical_jump:
     push    r9
     mov     CFG_JUMP_MAX(r14), r11  ; jx > jump_max or jy > jump_max - jx: the root decides
     mov     CFG_JUMP_MAX+2(r14), r15
-    mov     POSE_X(r12), r10        ; - |p.x - ap.x|
-    mov     POSE_X+2(r12), r9
-    sub     POSE_X(r13), r10
-    subc    POSE_X+2(r13), r9
-    jn      1f
-    sub     r10, r11
-    subc    r9, r15
-    jmp     2f
-1:  add     r10, r11
-    addc    r9, r15
-2:  jnc     3f
-    mov     POSE_Y(r12), r10        ; - |p.y - ap.y|
-    mov     POSE_Y+2(r12), r9
-    sub     POSE_Y(r13), r10
-    subc    POSE_Y+2(r13), r9
-    jn      1f
-    sub     r10, r11
-    subc    r9, r15
-    jmp     2f
-1:  add     r10, r11
-    addc    r9, r15
-2:  jc      4f
+    TAKE_DIFF POSE_X                ; - |p.x - ap.x|
+    jnc     3f
+    TAKE_DIFF POSE_Y                ; - |p.y - ap.y|
+    jc      4f
 3:  push    r12
     push    r13
     push    r14
