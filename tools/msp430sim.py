@@ -25,9 +25,10 @@ The image stops in cy_halt (a breakpoint). The run fails loudly when the sentine
 missing, the image reports FAIL, the simulated cycle count passes --max-cycles (a hang),
 the wall-clock --timeout passes, or mspdebug itself misbehaves.
 
-Simulated devices: the MSP430F249's Timer_A3 at 0x160 (vectors 7/6 in clang's interrupt(N)
-numbering), Timer_B7 at 0x180 (14/13), ports P1 (0x20, vector 5) and P2 (0x28, vector 2) with
-interrupts, the 16 x 16 hardware multiplier, the watchdog, the console and the tracer.
+Simulated devices (tools/mspdebug-f2618.cfg): the MSP430F2618's Timer_A3 at 0x160 (vectors
+0xFFF2/0xFFF0), Timer_B7 at 0x180 (0xFFFA/0xFFF8), ports P1 (0x20, 0xFFE4) and P2 (0x28,
+0xFFE6) with interrupts, the 16 x 16 hardware multiplier, the watchdog, the console and the
+tracer.
 """
 import argparse
 import fcntl
@@ -42,11 +43,11 @@ import subprocess
 import sys
 import time
 
-CONFIG = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mspdebug-f249.cfg")
+CONFIG = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mspdebug-f2618.cfg")
 
 
 def devices():
-    """The simulator set-up commands (tools/mspdebug-f249.cfg, shared with interactive use)."""
+    """The simulator set-up commands (tools/mspdebug-f2618.cfg, shared with interactive use)."""
     with open(CONFIG) as f:
         return [l.strip() for l in f if l.strip() and not l.startswith("#")]
 

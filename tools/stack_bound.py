@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Static worst-case stack bound of an MSP430 image (docs/stack.md).
 
-  stack_bound.py ELF [--objdump llvm-objdump-16] [--limit BYTES] [--ram-end ADDR] [--json OUT]
+  stack_bound.py ELF [--objdump llvm-objdump-16] [--limit BYTES] [--ram-budget BYTES]
+                 [--ram-end ADDR] [--json OUT]
 
 Disassembles the linked ELF and, per function, follows its control flow from the entry with
 the stack depth it has pushed (push/pop, sub/add #N,r1, pushm/popm, decd/incd r1): its frame
@@ -21,7 +22,8 @@ maskable handler. Worst case = reset + the deepest maskable handler + the NMI ha
 
 Prints the table (root, bound, deepest chain as function(frame) names), the worst case and
 the RAM left free (RAM end, __stack_top unless --ram-end, minus __noinit_end) and exits 1 when
-the worst case exceeds the free RAM or --limit, or when a function cannot be analysed.
+the worst case exceeds the free RAM or --limit, when static RAM plus the worst case exceeds
+--ram-budget, or when a function cannot be analysed.
 """
 import argparse
 import json
@@ -523,9 +525,11 @@ def chain_text(chain):
 # ---------------------------------------------------------------------------------------------
 # Roots and the report.
 
-VECTOR_BASE = 0xFFE0
-RESET_VECTOR = 16
-NMI_VECTOR = 15
+# The MSP430F2618's vector table (SLAS541): 32 words at 0xFFC0, vector N at 0xFFC0 + 2N.
+VECTOR_BASE = 0xFFC0
+VECTOR_COUNT = 32
+RESET_VECTOR = 31
+NMI_VECTOR = 30
 INTERRUPT_ENTRY = 4  # PC and SR pushed by the hardware
 # Restores of a GIE state saved before (hal/msp430/irq.c): inside a handler that state has
 # GIE off, so they cannot enable interrupts there.
@@ -551,8 +555,11 @@ def mpy_operands(image, fn):
     return out
 
 
-def report(image, vectors, free_ram, limit, restorers=GIE_RESTORERS, no_mpy_in_isr=False):
+def report(image, vectors, free_ram, limit, restorers=GIE_RESTORERS, no_mpy_in_isr=False,
+           static_ram=None, ram_budget=None):
     """The analysis of an image as a dict; vectors: {vector number: function name}.
+    static_ram, ram_budget: the image's static data (bytes) and the budget it and the worst
+    case must fit together.
     no_mpy_in_isr: no maskable handler may reach code that names a multiplier register (its
     main line then uses the multiplier with interrupts enabled)."""
     errors = []
@@ -614,7 +621,12 @@ def report(image, vectors, free_ram, limit, restorers=GIE_RESTORERS, no_mpy_in_i
         over.append(f"worst case {worst} B exceeds the free RAM {free_ram} B")
     if worst is not None and limit is not None and worst > limit:
         over.append(f"worst case {worst} B exceeds --limit {limit} B")
+    if worst is not None and static_ram is not None and ram_budget is not None and \
+            static_ram + worst > ram_budget:
+        over.append(f"static RAM {static_ram} B + worst case {worst} B = "
+                    f"{static_ram + worst} B exceeds the RAM budget {ram_budget} B")
     return {"roots": roots, "worst": worst, "free_ram": free_ram, "nesting": nesting,
+            "static_ram": static_ram, "ram_budget": ram_budget,
             "address_taken": image.taken, "errors": sorted(set(errors)), "over": over,
             "resets": sorted(n for n in image.taken if image.funcs[n].stack_reset)}
 
@@ -656,6 +668,11 @@ def print_report(r, out=sys.stdout):
         print(f"free RAM: {r['free_ram']} B", file=out)
         if r["worst"] is not None:
             print(f"margin: {r['free_ram'] - r['worst']} B", file=out)
+    if r.get("ram_budget") is not None and r.get("static_ram") is not None and \
+            r["worst"] is not None:
+        used = r["static_ram"] + r["worst"]
+        print(f"RAM budget: static {r['static_ram']} B + stack {r['worst']} B = {used} B "
+              f"of {r['ram_budget']} B ({r['ram_budget'] - used} B left)", file=out)
     for o in r["over"]:
         print(f"stack_bound: {o}", file=out)
 
@@ -679,8 +696,8 @@ def load_image(elf_path, objdump, indirect):
     image = Image(insns, funcs, data, indirect)
     vecs = {}
     allwords = dict(elf.words(lambda s: True))
-    for v in range(1, 17):
-        a = VECTOR_BASE + 2 * (v - 1)
+    for v in range(VECTOR_COUNT):
+        a = VECTOR_BASE + 2 * v
         if a not in allwords:
             raise ValueError(f"{elf_path}: no vector table word at {a:04x}")
         w = allwords[a]
@@ -696,6 +713,9 @@ def main(argv=None):
     ap.add_argument("elf")
     ap.add_argument("--objdump", default="llvm-objdump-16")
     ap.add_argument("--limit", type=int, help="fail when the worst case exceeds this many bytes")
+    ap.add_argument("--ram-budget", type=int,
+                    help="fail when the static RAM (.data, .bss, .noinit) plus the worst case "
+                         "exceeds this many bytes (the board images' budget)")
     ap.add_argument("--ram-end", type=lambda s: int(s, 0),
                     help="end of RAM (default: the image's __stack_top)")
     ap.add_argument("--indirect", action="append", default=[], metavar="SITE=F1,F2",
@@ -724,7 +744,10 @@ def main(argv=None):
     ram_end = args.ram_end if args.ram_end is not None else elf.symbol("__stack_top")
     static_end = elf.symbol("__noinit_end")
     free = ram_end - static_end if ram_end is not None and static_end is not None else None
-    r = report(image, vectors, free, args.limit, no_mpy_in_isr=args.no_mpy_in_isr)
+    ram_start = elf.symbol("__ram_start")
+    static = static_end - ram_start if static_end is not None and ram_start is not None else None
+    r = report(image, vectors, free, args.limit, no_mpy_in_isr=args.no_mpy_in_isr,
+               static_ram=static, ram_budget=args.ram_budget)
     r["image"] = args.elf
     r["ram_end"] = ram_end
     r["static_end"] = static_end

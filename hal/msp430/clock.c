@@ -3,7 +3,7 @@
  * 16,000 counts per interrupt. cy_bench (tests) reads the same free-running TBR.
  */
 #include "hal/clock.h"
-#include "f249.h"
+#include "f2618.h"
 #include "hal/cpu.h"
 #include "hal/irq.h"
 #include "hal/pinmap.h"

@@ -4,7 +4,7 @@
  */
 #include "hal/console.h"
 
-#include "f249.h"
+#include "f2618.h"
 
 #define SIM_CONSOLE CY_REG8(0x00FF)
 

@@ -6,7 +6,7 @@
  */
 #include "hal/console.h"
 
-#include "f249.h"
+#include "f2618.h"
 
 static uint8_t uart_ready;
 static uint16_t dropped;

@@ -3,7 +3,7 @@
  */
 #include "hal/cpu.h"
 
-#include "f249.h"
+#include "f2618.h"
 
 void hal_cpu_init(void)
 {

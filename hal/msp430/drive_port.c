@@ -9,7 +9,7 @@
  * 150 ns). Interrupts are held off for the cycle so that a handler's write cannot split one.
  */
 #include "hal/drive_port.h"
-#include "f249.h"
+#include "f2618.h"
 #include "hal/irq.h"
 
 #define BUS_ADDR_MASK 0x07u /* P5.0..P5.2 */

@@ -6,7 +6,7 @@
  */
 #include <stddef.h>
 
-#include "f249.h"
+#include "f2618.h"
 #include "hal/edge.h"
 #include "hal/irq.h"
 #include "hal/pinmap.h"

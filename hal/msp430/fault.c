@@ -3,7 +3,7 @@
  */
 #include "hal/fault.h"
 
-#include "f249.h"
+#include "f2618.h"
 #include "hal/console.h"
 
 /* Survives in RAM for the debugger: `md hal_fault_code 2` after the CPU stopped. */

@@ -3,7 +3,7 @@
  */
 #include "hal/irq.h"
 
-#include "f249.h"
+#include "f2618.h"
 #include "hal/fault.h"
 
 static uint8_t critical_depth;

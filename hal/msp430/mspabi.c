@@ -30,7 +30,7 @@
  */
 #include <stdint.h>
 
-#include "f249.h"
+#include "f2618.h"
 
 /* Prototypes (the compiler knows these by name; -Wmissing-prototypes wants them here). */
 int16_t __mspabi_mpyi(int16_t a, int16_t b);

@@ -2,7 +2,7 @@
  * signal.c - hal/signal.h: P2.1 (coordinate request) as an active-low output.
  */
 #include "hal/signal.h"
-#include "f249.h"
+#include "f2618.h"
 
 #define COORD_PIN 0x02u /* P2.1 */
 

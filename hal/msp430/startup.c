@@ -4,7 +4,7 @@
  */
 #include <stdint.h>
 
-#include "f249.h"
+#include "f2618.h"
 #include "hal/fault.h"
 
 extern uint16_t __data_load_start[];
@@ -26,8 +26,8 @@ void cy_crt_init(void)
         *dst++ = 0;
 }
 
-/* Every vector without an ISR points here (see ld/f249_sections.ld). */
-__attribute__((interrupt(1))) void cy_isr_unexpected(void)
+/* Every vector without an ISR points here (see ld/f2618_sections.ld). */
+__attribute__((interrupt(0))) void cy_isr_unexpected(void)
 {
     hal_fault(HAL_FAULT_UNEXPECTED_IRQ);
 }

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hal/pinmap.h"
 #include "hal/preempt.h"
 #include "harness_internal.h"
 
@@ -139,7 +140,7 @@ posix_board_state_t *posix_board_state(int board)
 int posix_source_register(int board, int vector, int bit, bool nonmaskable, posix_isr_fn fn,
                           void *ctx)
 {
-    if (vector < 1 || vector > 16 || bit < 0 || bit > 7 || fn == NULL)
+    if (vector < 0 || vector >= HAL_VEC_COUNT || bit < 0 || bit > 7 || fn == NULL)
         return -1;
     board_t *bd = board_at(board);
     int free_slot = -1;

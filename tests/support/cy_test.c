@@ -6,7 +6,7 @@
 #include "hal/console.h"
 
 #ifdef __MSP430__
-#include "f249.h"
+#include "f2618.h"
 #endif
 
 static uint16_t failures;
@@ -143,15 +143,25 @@ void cy_bench_report(const cy_bench_stat_t *st)
 }
 
 #ifdef __MSP430__
-#define STACK_FILL 0xA5A5u
+#define STACK_FILL   0xA5A5u
+/* Bytes below cy_stack_fill()'s frame that a measurement fills and scans: far more than any
+ * measured call needs (a board image's whole worst case is under 1 KB, docs/stack.md), and a
+ * bounded cost per measurement whatever the part's RAM. */
+#define STACK_WINDOW 2048u
 extern uint16_t __noinit_end[]; /* the lowest address the stack may reach (linker script) */
+static uint16_t stack_low;      /* the lowest word the last cy_stack_fill() wrote */
 #endif
 
 void cy_stack_fill(void)
 {
 #ifdef __MSP430__
     uint16_t below = (uint16_t)(cy_sp() - 16u); /* clear of this function's own frame */
-    for (volatile uint16_t *p = __noinit_end; (uint16_t)p < below; p++)
+    uint16_t low = (uint16_t)(uintptr_t)__noinit_end;
+    if (below - low > STACK_WINDOW)
+        low = (uint16_t)(below - STACK_WINDOW);
+    stack_low = low;
+    for (volatile uint16_t *p = (volatile uint16_t *)(uintptr_t)low; (uint16_t)(uintptr_t)p < below;
+         p++)
         *p = STACK_FILL;
 #endif
 }
@@ -159,10 +169,12 @@ void cy_stack_fill(void)
 uint16_t cy_stack_used(uint16_t mark)
 {
 #ifdef __MSP430__
-    const volatile uint16_t *p = __noinit_end;
-    while ((uint16_t)p < mark && *p == STACK_FILL)
+    const volatile uint16_t *p = (const volatile uint16_t *)(uintptr_t)stack_low;
+    while ((uint16_t)(uintptr_t)p < mark && *p == STACK_FILL)
         p++;
-    return (uint16_t)(mark - (uint16_t)p);
+    /* the lowest filled word overwritten: the call may have gone deeper than the window */
+    cy_check((uint16_t)(uintptr_t)p != stack_low, "cy_stack_used: the measurement window is full");
+    return (uint16_t)(mark - (uint16_t)(uintptr_t)p);
 #else
     (void)mark;
     return 0;

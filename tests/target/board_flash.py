@@ -19,16 +19,17 @@ import subprocess
 import sys
 import tempfile
 
-# The MSP430F249 with its whole flash and the RAM up to the flash's start: room for any
-# image, so the link does not stop at the budget this script is measuring against.
+# An MSP430F2618-like map with more flash than the part has below 64 KB (the RAM moved down
+# to make room): room for any image, so the link does not stop at the budget this script is
+# measuring against.
 LAYOUT = """MEMORY
 {
     RAM (rwx)    : ORIGIN = 0x0200, LENGTH = 0x0F00
-    FLASH (rx)   : ORIGIN = 0x1100, LENGTH = 0xEEE0
-    VECTORS (r)  : ORIGIN = 0xFFE0, LENGTH = 0x0020
+    FLASH (rx)   : ORIGIN = 0x1100, LENGTH = 0xEEC0
+    VECTORS (r)  : ORIGIN = 0xFFC0, LENGTH = 0x0040
 }
 CY_STACK_RESERVE = 384;
-INCLUDE f249_sections.ld
+INCLUDE f2618_sections.ld
 """
 
 FLASH_OUTPUTS = (".text", ".rodata", ".data")
@@ -58,7 +59,7 @@ def main():
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("inputs", nargs="+", help="the main board's objects and libraries")
     ap.add_argument("--lld", required=True)
-    ap.add_argument("--ld-dir", required=True, help="hal/msp430/ld (f249_sections.ld)")
+    ap.add_argument("--ld-dir", required=True, help="hal/msp430/ld (f2618_sections.ld)")
     ap.add_argument("--budget", type=int, required=True, help="bytes of flash for the library")
     ap.add_argument("--library", required=True, help="whose objects are summed (libcy_drive.a)")
     ap.add_argument("--map", help="keep the linker map here")

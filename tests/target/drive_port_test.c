@@ -9,7 +9,7 @@
 #include "cy_test.h"
 #include "drive/drive_proto.h"
 #include "drive/drive_seq.h"
-#include "f249.h"
+#include "f2618.h"
 #include "hal/drive_port.h"
 #include "hal/irq.h"
 

@@ -10,7 +10,8 @@ int main(void)
 {
     hal_cpu_init();
     hal_irq_enable();
-    cy_print("@sim tr trigger 7\n"); /* vector 8 (0xFFEE, ADC12): no ISR */
+    cy_print("@sim tr trigger 7\n"); /* simulator irq 7: the word at 0xFFEE, USCI_A0/B0 receive: no
+                                        ISR */
     cy_target_sync();
     cy_print("FAIL the unexpected interrupt was not trapped\n");
     cy_test_end();

@@ -7,7 +7,7 @@
 #include <stdint.h>
 
 #include "cy_test.h"
-#include "f249.h"
+#include "f2618.h"
 #include "hal/capture.h"
 #include "hal/clock.h"
 #include "hal/cpu.h"

@@ -104,15 +104,23 @@ class Frames(unittest.TestCase):
         self.assertEqual(sb.Bounds(narrowed).of("isr")[0], 4 + 2 + 4)
 
     def test_report(self):
-        r = sb.report(self.img, {16: "reset", 5: "isr"}, free_ram=100, limit=None)
+        r = sb.report(self.img, {sb.RESET_VECTOR: "reset", 18: "isr"}, free_ram=100, limit=None)
         self.assertEqual(r["errors"], [])
         self.assertFalse(r["nesting"])
         self.assertEqual(r["worst"], 14 + 20)
         # leaf's pop r2 puts back the SR it pushed: a restore, not an enable
         kinds = {(g["function"], g["kind"]) for x in r["roots"] for g in x["gie"]}
         self.assertEqual(kinds, {("leaf", "restore")})
-        self.assertEqual(sb.report(self.img, {16: "reset", 5: "isr"}, 30, None)["over"],
+        self.assertEqual(sb.report(self.img, {sb.RESET_VECTOR: "reset", 18: "isr"}, 30, None)["over"],
                          ["worst case 34 B exceeds the free RAM 30 B"])
+
+    def test_ram_budget_counts_static_data_and_stack_together(self):
+        vecs = {sb.RESET_VECTOR: "reset", 18: "isr"}
+        fits = sb.report(self.img, vecs, 1000, None, static_ram=66, ram_budget=100)
+        self.assertEqual(fits["over"], [])
+        over = sb.report(self.img, vecs, 1000, None, static_ram=67, ram_budget=100)
+        self.assertEqual(over["over"], ["static RAM 67 B + worst case 34 B = 101 B exceeds "
+                                        "the RAM budget 100 B"])
 
 
 class Errors(unittest.TestCase):
@@ -201,7 +209,7 @@ class Errors(unittest.TestCase):
     1204:      	add	#20, r1
     1208:      	reti
 """
-        r = sb.report(image(text), {16: "reset", 2: "isr_a", 3: "isr_b"}, 1000, None)
+        r = sb.report(image(text), {sb.RESET_VECTOR: "reset", 18: "isr_a", 19: "isr_b"}, 1000, None)
         self.assertTrue(r["nesting"])
         self.assertEqual(r["worst"], 10 + (4 + 2) + (4 + 20))
 
@@ -224,7 +232,7 @@ class Errors(unittest.TestCase):
     1300:      	mov	&400, r12
     1304:      	reti
 """
-        vectors = {16: "reset", 2: "isr_a", 3: "isr_b"}
+        vectors = {sb.RESET_VECTOR: "reset", 18: "isr_a", 19: "isr_b"}
         r = sb.report(image(text), vectors, 1000, None, no_mpy_in_isr=True)
         self.assertEqual(r["errors"], ["isr_a reaches the hardware multiplier: helper "
                                        "1200: mov &314, r12"])

@@ -58,8 +58,8 @@ TEST_F(Harness, HigherVectorFirstThenLowerBit)
 
 TEST_F(Harness, RegisterRejectsBadArguments)
 {
-    EXPECT_EQ(posix_source_register(board, 0, 0, false, log_isr, nullptr), -1);
-    EXPECT_EQ(posix_source_register(board, 17, 0, false, log_isr, nullptr), -1);
+    EXPECT_EQ(posix_source_register(board, -1, 0, false, log_isr, nullptr), -1);
+    EXPECT_EQ(posix_source_register(board, HAL_VEC_COUNT, 0, false, log_isr, nullptr), -1);
     EXPECT_EQ(posix_source_register(board, 3, 8, false, log_isr, nullptr), -1);
     EXPECT_EQ(posix_source_register(board, 3, 0, false, nullptr, nullptr), -1);
     int a = posix_source_register(board, 3, 1, false, log_isr, (void *)"a");

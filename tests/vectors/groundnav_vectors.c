@@ -22,7 +22,7 @@
 #include "hal/pinmap.h"
 
 #ifdef __MSP430__
-#include "f249.h"
+#include "f2618.h"
 #else
 #include "hal_posix/harness.h"
 #endif

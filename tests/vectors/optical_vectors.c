@@ -28,7 +28,7 @@
 #define OPTICAL_FIX_CYCLE_BOUND 20000ul
 
 #ifdef __MSP430__
-#include "f249.h"
+#include "f2618.h"
 #include "hal/capture.h"
 #include "hal/cpu.h"
 #include "hal/irq.h"

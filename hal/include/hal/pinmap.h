@@ -2,10 +2,11 @@
  * hal/pinmap.h - where the logical lines land: vector and bit, shared by both HAL
  * implementations so that interrupt priorities are the same on the MSP430 and in the harness.
  *
- * MSP430F249 pins: P1.0 TACLK (goniometer angle clock), P1.1 CCI0A (index pulse), P1.2 CCI1A
+ * MSP430F2618 pins: P1.0 TACLK (goniometer angle clock), P1.1 CCI0A (index pulse), P1.2 CCI1A
  * (photodetector), P1.4..P1.7 nav-board pulse inputs, P2.0 delta-S, P2.7 test line, the
  * RST/NMI pin (NMI mode) the nav board's coordinate request.
- * Vectors use clang's interrupt(N) numbering (vector N at 0xFFE0 + 2(N-1)).
+ * Vectors use TI's numbering of the F261x table (datasheet SLAS541, interrupt vector
+ * addresses): vector N is the word at 0xFFC0 + 2N and has priority N (31 = reset, highest).
  */
 #ifndef HAL_PINMAP_H
 #define HAL_PINMAP_H
@@ -13,18 +14,20 @@
 #include "hal/capture.h"
 #include "hal/edge.h"
 
-/** Vector numbers of the MSP430F249 (clang interrupt(N) numbering). */
-#define HAL_VEC_PORT2   2  /* 0xFFE2 */
-#define HAL_VEC_LINK_TX 3  /* 0xFFE4 USCIAB1TX */
-#define HAL_VEC_LINK_RX 4  /* 0xFFE6 USCIAB1RX */
-#define HAL_VEC_PORT1   5  /* 0xFFE8 */
-#define HAL_VEC_TIMERA1 6  /* 0xFFEA */
-#define HAL_VEC_TIMERA0 7  /* 0xFFEC */
-#define HAL_VEC_WDT     11 /* 0xFFF4 */
-#define HAL_VEC_TIMERB1 13 /* 0xFFF8 */
-#define HAL_VEC_TIMERB0 14 /* 0xFFFA */
-#define HAL_VEC_NMI     15 /* 0xFFFC */
-#define HAL_VEC_RESET   16 /* 0xFFFE */
+/** Vector numbers of the MSP430F2618 (word at 0xFFC0 + 2N; a higher N is served first). */
+#define HAL_VEC_LINK_TX 16 /* 0xFFE0 USCIAB1TX */
+#define HAL_VEC_LINK_RX 17 /* 0xFFE2 USCIAB1RX */
+#define HAL_VEC_PORT1   18 /* 0xFFE4 */
+#define HAL_VEC_PORT2   19 /* 0xFFE6 */
+#define HAL_VEC_TIMERA1 24 /* 0xFFF0 TACCR1-2, TAIFG */
+#define HAL_VEC_TIMERA0 25 /* 0xFFF2 TACCR0 */
+#define HAL_VEC_WDT     26 /* 0xFFF4 */
+#define HAL_VEC_TIMERB1 28 /* 0xFFF8 TBCCR1-6, TBIFG */
+#define HAL_VEC_TIMERB0 29 /* 0xFFFA TBCCR0 */
+#define HAL_VEC_NMI     30 /* 0xFFFC */
+#define HAL_VEC_RESET   31 /* 0xFFFE */
+/** Number of vectors (0..HAL_VEC_COUNT-1). */
+#define HAL_VEC_COUNT   32
 
 /** Port (1 or 2) of each edge line; 0 for the NMI pin. */
 #define HAL_EDGE_PORT_OF(line)                                                                     \

@@ -4,8 +4,8 @@
  * portable firmware.
  *
  * Model (mirrors the MSP430):
- *  - Each board has 16 vectors, numbered 1..16 like clang's interrupt(N) (vector N lives at
- *    0xFFE0 + 2(N-1)); a higher number is a higher priority. Several sources may share one
+ *  - Each board has the MSP430F2618's 32 vectors, numbered 0..31 as in hal/pinmap.h (vector N
+ *    lives at 0xFFC0 + 2N); a higher number is a higher priority. Several sources may share one
  *    vector (the pins of a port); within a vector the lower source bit is served first.
  *  - A source is pending (its flag) and enabled (its mask). Delivery needs the board's global
  *    enable (GIE), except for non-maskable sources (NMI), which are never nested into
@@ -66,9 +66,9 @@ void posix_board_wake(int board);
 bool posix_board_take_wake(int board);
 
 /**
- * Register a source on @p board: vector 1..16, bit 0..7 within the vector, handler @p fn.
- * Returns the source id, or -1 when the arguments are out of range or the table is full.
- * Registering the same (vector, bit) again replaces the handler and keeps the id.
+ * Register a source on @p board: vector 0..HAL_VEC_COUNT-1 (hal/pinmap.h), bit 0..7 within the
+ * vector, handler @p fn. Returns the source id, or -1 when the arguments are out of range or the
+ * table is full. Registering the same (vector, bit) again replaces the handler and keeps the id.
  */
 int posix_source_register(int board, int vector, int bit, bool nonmaskable, posix_isr_fn fn,
                           void *ctx);

@@ -1,10 +1,10 @@
 /*
- * f249.h - the MSP430F249 registers this HAL touches (private to hal/msp430 and target
- * tests). Addresses from the MSP430F24x data sheet (SLAS547) and the 2xx family guide
+ * f2618.h - the MSP430F2618 registers this HAL touches (private to hal/msp430 and target
+ * tests). Addresses from the MSP430F261x data sheet (SLAS541) and the 2xx family guide
  * (SLAU144). Vector numbers are in hal/pinmap.h.
  */
-#ifndef CY_F249_H
-#define CY_F249_H
+#ifndef CY_F2618_H
+#define CY_F2618_H
 
 #include <stdint.h>
 
@@ -148,9 +148,9 @@ static inline void cy_gie_restore(uint16_t sr)
 }
 
 /*
- * CY_ISR(vector, name) defines an interrupt service routine for clang's interrupt(N) numbering
- * (vector N at 0xFFE0 + 2(N-1)) and publishes it as __cy_vector_N for the linker script,
- * which fills every unused vector with cy_isr_unexpected.
+ * CY_ISR(vector, name) defines an interrupt service routine for vector N of hal/pinmap.h (the
+ * word at 0xFFC0 + 2N) and publishes it as __cy_vector_N for the linker script, which fills
+ * every unused vector with cy_isr_unexpected. (clang's own interrupt(N) section is discarded.)
  */
 #define CY_ISR_(vec, name)                                                                         \
     __asm__(".global __cy_vector_" #vec "\n.set __cy_vector_" #vec ", " #name "\n");               \
