@@ -166,11 +166,10 @@ class Drawing:
         return self.path
 
 
-def run(dxf, *args, out=None):
+def run(dxf, *args, out):
     """The tool's exit code, stderr and output (None unless it succeeded). Its main() runs in
     this process (importing ezdxf once per tool run would take most of the test's time);
     test_command_line runs the executable itself."""
-    out = out or dxf + ".json"
     if os.path.exists(out):
         os.remove(out)
     err = io.StringIO()
@@ -207,12 +206,12 @@ class Dxf2PathTest(unittest.TestCase):
         return Drawing(self.tmp, name, version)
 
     def ok(self, dxf, *args):
-        rc, err, data = run(dxf, *args)
+        rc, err, data = run(dxf, *args, out=os.path.join(self.tmp, "out.json"))
         self.assertEqual(rc, 0, err)
         return data
 
     def fails(self, dxf, *args, says=()):
-        rc, err, data = run(dxf, *args)
+        rc, err, data = run(dxf, *args, out=os.path.join(self.tmp, "out.json"))
         self.assertEqual(rc, 2, f"expected exit 2, got {rc}: {err}")
         self.assertIn("dxf2path: error:", err)
         for s in says:
@@ -409,7 +408,7 @@ class Dxf2PathTest(unittest.TestCase):
         d.lw([(0, 0), (4, 0)])
         d.lw([(4, 0), (4, 3), (8, 3)])
         d.msp.add_text("aisle 3")  # ignored, with a warning
-        rc, err, data = run(d.save())
+        rc, err, data = run(d.save(), out=os.path.join(self.tmp, "out.json"))
         self.assertEqual(rc, 0, err)
         self.assertIn("1 TEXT ignored", err)
         self.assert_follows(data, ref_polyline([(0, 0), (4, 0), (4, 3), (8, 3)]), 0.5)
@@ -549,7 +548,7 @@ class Dxf2PathTest(unittest.TestCase):
                            (["--min-radius", "0.1"], "--min-radius 0.1"),
                            (["--radius-multiplier", "nan"], "--radius-multiplier nan"),
                            (["--frobnicate"], "unrecognized arguments")):
-            rc, err, _ = run(f, *args)
+            rc, err, _ = run(f, *args, out=os.path.join(self.tmp, "out.json"))
             self.assertEqual(rc, 2, (args, err))
             self.assertIn(says, err)
 
@@ -563,7 +562,7 @@ class Dxf2PathTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("1 corner(s) blended (radii 0.505 m)", r.stdout)
         with open(out) as fh:
-            self.assertEqual(json.load(fh), run(f)[2])
+            self.assertEqual(json.load(fh), self.ok(f))
         r = subprocess.run([TOOL, f, "-o", out, "--min-radius", "2"], capture_output=True,
                            text=True)
         self.assertEqual(r.returncode, 2)
