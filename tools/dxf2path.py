@@ -204,7 +204,7 @@ def read_polylines(filename):
         if t == "LWPOLYLINE":
             sign = plane_sign(e, name)
             pts, bulges = [], []
-            for i, (x, y, b) in enumerate(e.get_points("xyb")):
+            for x, y, b in e.get_points("xyb"):
                 pts.append((sign * float(x), float(y)))
                 bulges.append(sign * float(b))
             vnames = [f"vertex {i} of {name}" for i in range(len(pts))]
@@ -236,9 +236,10 @@ def order_polylines(polys, ignored, filename):
         found = ", ".join(f"{n} {t}" for t, n in sorted(ignored.items())) or "nothing"
         raise PathError(f"{filename}: empty drawing: no LWPOLYLINE or POLYLINE in the model "
                         f"space (found: {found})")
+    for poly in polys:
+        if not poly.pts:
+            raise PathError(f"{poly.name}: a polyline without vertices")
     allpts = [p for poly in polys for p in poly.pts]
-    if not allpts:
-        raise PathError(f"{polys[0].name}: a polyline without vertices")
     size = max(max(abs(p[0]), abs(p[1])) for p in allpts)
     size = max(size, max(p[0] for p in allpts) - min(p[0] for p in allpts),
                max(p[1] for p in allpts) - min(p[1] for p in allpts))
@@ -255,7 +256,7 @@ def order_polylines(polys, ignored, filename):
             if dist(end, start) > tol:
                 hint = ""
                 if dist(end, poly.pts[-1]) <= tol:
-                    hint = f" (it ends there: it was drawn the other way round)"
+                    hint = " (it ends there: it was drawn the other way round)"
                 raise PathError(
                     f"{poly.name} (polyline {i + 1} in drawing order) starts at {xy(start)}, "
                     f"{fmt(dist(end, start))} drawing units from where {prev.name} ends "
@@ -289,7 +290,7 @@ def build_elements(chain, kx, ky, min_radius, tol):
         if dist(p, q) <= tol:
             continue  # a repeated vertex
         p0, p1 = (p[0] * kx, p[1] * ky), (q[0] * kx, q[1] * ky)
-        origin = {"from": na, "to": nb, "at": q, "bulge": b}
+        origin = {"from": na, "to": nb}
         if abs(b) > 1e-12:
             arc = arc_from_bulge(p0, p1, b, origin)
             if arc.r < RADIUS_ROOM * min_radius:
@@ -379,7 +380,8 @@ def fillet(a, b, vertex, sigma, rho):
 
 def blend(elems, k_mult, k_mean, min_radius):
     """The pieces of the blended path: the elements, shortened where a corner's arc takes
-    over, and the corners' arcs; and a list of the corners (vertex, radii, arc)."""
+    over, and the corners' arcs; and the corners: name, turn (degrees, left positive),
+    radius (m)."""
     cut_start = [0.0] * len(elems)
     cut_end = [0.0] * len(elems)
     arcs = [None] * len(elems)  # arcs[i]: the blend between elems[i] and elems[i + 1]
@@ -415,15 +417,15 @@ def blend(elems, k_mult, k_mean, min_radius):
                     "segment")
         cut_end[i], cut_start[i + 1] = ta, tb
         arcs[i] = arc
-        corners.append({"name": name, "vertex": vertex, "deg": math.degrees(delta),
-                        "rho_eq": rho_eq, "rho": rho, "arc": arc, "tangent": (ta, tb)})
+        corners.append({"name": name, "deg": math.degrees(delta), "rho": rho})
     pieces = []
     for i, e in enumerate(elems):
         s0, s1 = cut_start[i], e.length - cut_end[i]
         if s1 - s0 > 1e-12:
             part = e.part(s0, s1)
             part.role = "bulge" if e.kind == "arc" else "line"
-            part.name = e.origin["from"]
+            part.name = (f"the bulge arc from {e.origin['from']}" if e.kind == "arc" else
+                         f"the segment from {e.origin['from']}")
             pieces.append(part)
         if arcs[i] is not None:
             arcs[i].role = "blend"
@@ -436,7 +438,7 @@ def blend(elems, k_mult, k_mean, min_radius):
 # Poses.
 
 
-def sample(pieces, step, speed):
+def sample(pieces, step):
     """Poses at equal distances (the fewest intervals not longer than step) from the start to
     the end of the path; checks the heading change between consecutive poses."""
     starts = [0.0]
@@ -610,7 +612,7 @@ def main(argv=None):
         elems = build_elements(chain, a.scale_x, a.scale_y, a.min_radius, tol)
         pieces, corners = blend(elems, a.radius_multiplier, (a.scale_x + a.scale_y) / 2.0,
                                 a.min_radius)
-        poses, total, spacing = sample(pieces, a.step, a.speed)
+        poses, total, spacing = sample(pieces, a.step)
         out = to_json(poses, a.speed)
         if a.plot:
             title = (f"{a.dxf}: {len(corners)} corners blended, {total:.3f} m, "

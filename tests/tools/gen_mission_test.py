@@ -8,7 +8,6 @@ import logging
 import os
 import re
 import subprocess
-import sys
 import tempfile
 import unittest
 
