@@ -605,7 +605,7 @@ def main(argv=None):
     a = parse_args(argv)
     try:
         polys, ignored = read_polylines(a.dxf)
-        for t, n in sorted(ignored.items()):
+        for t, n in sorted(ignored.items()) if polys else ():
             print(f"dxf2path: warning: {n} {t} ignored (only polylines make the path)",
                   file=sys.stderr)
         chain, closed, tol = order_polylines(polys, ignored, a.dxf)

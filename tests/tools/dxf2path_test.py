@@ -640,6 +640,32 @@ class Dxf2PathTest(unittest.TestCase):
         self.assertLessEqual(max(worst_dev.values()), DOC_DEVIATION_M)
         self.assertLessEqual(max(worst_long.values()), DOC_DEVIATION_LONG_M)
 
+    @unittest.skipUnless(AGVCALC or "--agvcalc" in sys.argv, "needs --agvcalc")
+    def test_why_the_one_percent_room(self):
+        """Poses (rounded to the tool's 1e-6) on a circle of exactly the minimum radius, 0.05
+        to 0.5 m apart, both senses, 100 places around it: the solver refuses most legs; on a
+        circle 1 % wider, none."""
+        counts = {}
+        for r in (0.5, 0.505):
+            reqs = []
+            for s in (0.05, 0.1, 0.25, 0.5):
+                for i in range(100):
+                    a0 = 2 * math.pi * i / 100
+                    for sense in (1, -1):
+                        ends = [{"x": round(r * math.cos(a), 6), "y": round(r * math.sin(a), 6),
+                                 "heading_deg": round(math.degrees(a + sense * math.pi / 2)
+                                                      % 360, 6)}
+                                for a in (a0, a0 + sense * s / r)]
+                        reqs.append({"op": "doublearc", "from": ends[0], "to": ends[1],
+                                     "min_radius_m": 0.5, "wheelbase_m": 0.75})
+            out = subprocess.run([AGVCALC], input="".join(json.dumps(q) + "\n" for q in reqs),
+                                 capture_output=True, text=True, check=True).stdout
+            counts[r] = (sum(not json.loads(line)["ok"] for line in out.splitlines()), len(reqs))
+        print(f"\nlegs on a circle of the minimum radius: {counts[0.5][0]} of {counts[0.5][1]} "
+              f"refused; 1 % wider: {counts[0.505][0]} of {counts[0.505][1]}")
+        self.assertGreater(counts[0.5][0], counts[0.5][1] // 2)
+        self.assertEqual(counts[0.505][0], 0)
+
     @unittest.skipUnless(AGV_SIM or "--agv-sim" in sys.argv, "needs --agv-sim")
     def test_scenario_runs_in_agv_sim(self):
         """DXF -> path -> agv-sim: seed 002's three-segment drawing, pasted into its scenario
