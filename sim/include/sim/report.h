@@ -10,6 +10,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "sim/scenario.h"
+
 /** Samples of one quantity: mean, RMS, max, 95th percentile. */
 typedef struct {
     double *v;
@@ -35,12 +37,23 @@ typedef struct {
     sim_stat_t fix_error;     /* m, accepted fixes vs truth at their reference instant */
     sim_stat_t heading_error; /* deg, absolute */
     bool reached_goal;
-    sim_stat_t cross_track; /* m, sampled along the travelled distance */
-    double final_error;     /* m, truth at the end vs the last prescribed point */
+    bool fault, stop_requested; /* why the goal was not reached: a fault, the nav board's stop */
+    sim_stat_t cross_track;     /* m, sampled along the travelled distance */
+    double final_error;         /* m, truth at the end vs the last prescribed point */
     const char *isr_name[SIM_MAX_ISR_NAMES];
     uint64_t isr_count[SIM_MAX_ISR_NAMES];
     size_t n_isr;
 } sim_report_t;
+
+/**
+ * Judge the run against the scenario's criteria @p c. Returns 1 when every criterion is met,
+ * else 0 with the misses in @p why ("; "-separated, each with the measured value and its
+ * limit).
+ */
+int sim_report_judge(sim_report_t *r, const sim_success_t *c, char *why, size_t whylen);
+
+/** Free the samples the report holds. */
+void sim_report_free(sim_report_t *r);
 
 /** Write the report as JSON to @p path. Returns 0 or -1 (errno set). */
 int sim_report_write(sim_report_t *r, const char *path);
