@@ -28,6 +28,16 @@ void sim_drive_init(sim_drive_t *d, const drive_board_t *units, double wheelbase
     d->ctx = ctx;
 }
 
+void sim_drive_command_si(const sim_drive_t *d, const drive_cmd_t *cmd, double steer_deg[2],
+                          double length_m[2], double *speed_mps)
+{
+    for (int i = 0; i < 2; i++) {
+        steer_deg[i] = (128 - cmd->steer[i]) * 180.0 / 256;
+        length_m[i] = cmd->arc[i] / fx_q16_to_double(d->units.counts_per_m);
+    }
+    *speed_mps = cmd->speed * fx_q16_to_double(d->units.speed_lsb);
+}
+
 sim_pose_t sim_drive_pose(const sim_drive_t *d, double t)
 {
     return sim_segment_pose(&d->seg, t);
@@ -125,7 +135,8 @@ void sim_drive_write(sim_drive_t *d, uint8_t reg, uint8_t value)
         return;
     double t = sim_clock_now();
     double L = d->wheelbase;
-    double cpm = 173.2283, lsb = 0.01755;
+    double cpm = fx_q16_to_double(d->units.counts_per_m),
+           lsb = fx_q16_to_double(d->units.speed_lsb);
     if (ev.type == DRIVE_EV_LOAD) {
         if (d->on_command)
             d->on_command(d->ctx, t, &ev);
@@ -135,7 +146,7 @@ void sim_drive_write(sim_drive_t *d, uint8_t reg, uint8_t value)
             double k = tan(alpha) / L;
             d->arc[i].alpha = alpha;
             d->arc[i].left = ev.cmd.arc[i] / cpm / sqrt(1 + L * L * k * k);
-            d->arc[i].pulse = ev.cmd.arc[i] < 3;
+            d->arc[i].pulse = ev.cmd.arc[i] < d->units.min_pulse_counts;
         }
         d->cur = d->arc[0].left > 0 ? 0 : (d->arc[1].left > 0 ? 1 : 2);
         d->braking = 0;

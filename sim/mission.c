@@ -10,9 +10,7 @@
 
 #include "drive/drive.h"
 #include "fx/fx_host.h"
-
-#define STOP_DISTANCE 5.0 /* m: the nav board's stop request without a fix (G6) */
-#define ARC_SPACING   0.8 /* m: secondary points on the path (the double-arc length) */
+#include "mission/mission.h"
 
 static fx_q16_t q16(double v)
 {
@@ -96,15 +94,9 @@ int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, siz
     mc->board = seed_board;
     mc->board.wheelbase = q16(sc->wheelbase);
     mc->board.min_radius = q16(sc->min_radius);
-    mc->path_cfg.nominal_radius = q16(sc->min_radius);
-    mc->path_cfg.spacing = q16(ARC_SPACING);
-    mc->path_cfg.reverse = false;
-    mc->seq_cfg.mode = sc->full_travel ? DRIVE_MODE_FULL : DRIVE_MODE_SIMPLIFIED;
-    mc->seq_cfg.load_ms = 35;
-    mc->seq_cfg.settle_ms = 50;
-    mc->seq_cfg.stop_speed = q16(0.15);
-    mc->seq_cfg.advance = q16(0.4);
-    mc->seq_cfg.max_fix_failures = 3;
+    mc->path_cfg = (drive_path_config_t)MISSION_PATH_CONFIG(q16(sc->min_radius));
+    mc->seq_cfg = (drive_seq_config_t)MISSION_SEQ_CONFIG(sc->full_travel ? DRIVE_MODE_FULL
+                                                                         : DRIVE_MODE_SIMPLIFIED);
     mc->counts_per_turn = (uint16_t)sc->counts;
     optical_config_default(&mc->optical);
     mc->optical.beacon_diameter = q16(sc->world.beacon[0].diameter);
@@ -115,7 +107,7 @@ int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, siz
     g->wheelbase = q16(sc->wheelbase);
     g->dl_q40 = (uint32_t)llround(sc->dl * 1099511627776.0);
     g->gyro_step_q48 = (uint64_t)llround(sc->gyro_step / (2 * M_PI) * 281474976710656.0);
-    g->stop_distance = q16(STOP_DISTANCE);
+    g->stop_distance = MISSION_STOP_DISTANCE;
     m->nav.start.x = q16(sc->start_x + sc->start_err_x);
     m->nav.start.y = q16(sc->start_y + sc->start_err_y);
     m->nav.start.heading = fx_angle_from_rad(sc->start_heading + sc->start_err_heading);

@@ -317,11 +317,8 @@ void sim_telemetry_state(void *ctx, drive_state_t st)
 void sim_telemetry_command(void *ctx, double t, const drive_event_t *ev)
 {
     sim_telemetry_t *tm = ctx;
-    double steer[2], len[2], speed = ev->cmd.speed * 0.01755;
-    for (int i = 0; i < 2; i++) {
-        steer[i] = (128 - ev->cmd.steer[i]) * 180.0 / 256;
-        len[i] = ev->cmd.arc[i] / 173.2283;
-    }
+    double steer[2], len[2], speed;
+    sim_drive_command_si(tm->drive, &ev->cmd, steer, len, &speed);
     int load = ev->type == DRIVE_EV_LOAD;
     if (tm->f_cmd) {
         if (load)

@@ -70,6 +70,13 @@ void sim_drive_write(sim_drive_t *d, uint8_t reg, uint8_t value);
 /** Schedule the board's next event (a delta-S, an arc's end, a braking step) from @p t (s). */
 void sim_drive_schedule(sim_drive_t *d, double t);
 
+/**
+ * A command in SI units: each arc's steering angle (degrees, left positive) and front-wheel
+ * length (m), and the speed (m/s, negative in reverse), in the board's units.
+ */
+void sim_drive_command_si(const sim_drive_t *d, const drive_cmd_t *cmd, double steer_deg[2],
+                          double length_m[2], double *speed_mps);
+
 /** The vehicle's true pose at @p t (s, not before the current segment began). */
 sim_pose_t sim_drive_pose(const sim_drive_t *d, double t);
 
