@@ -95,8 +95,8 @@ int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, siz
     mc->board.wheelbase = q16(sc->wheelbase);
     mc->board.min_radius = q16(sc->min_radius);
     mc->path_cfg = (drive_path_config_t)MISSION_PATH_CONFIG(q16(sc->min_radius));
-    mc->seq_cfg = (drive_seq_config_t)MISSION_SEQ_CONFIG(sc->full_travel ? DRIVE_MODE_FULL
-                                                                         : DRIVE_MODE_SIMPLIFIED);
+    mc->seq_cfg = (drive_seq_config_t)MISSION_SEQ_CONFIG(
+        sc->mode == SIM_SCENARIO_MODE_FULL ? DRIVE_MODE_FULL : DRIVE_MODE_SIMPLIFIED);
     mc->counts_per_turn = (uint16_t)sc->counts;
     optical_config_default(&mc->optical);
     mc->optical.beacon_diameter = q16(sc->world.beacon[0].diameter);

@@ -129,7 +129,7 @@ char *sim_report_json(sim_report_t *r)
     json_t *root = json_object();
     json_object_set_new(root, "scenario", json_string(r->scenario));
     json_object_set_new(root, "seed", json_integer((json_int_t)r->seed));
-    json_object_set_new(root, "mode", json_string(r->full_travel ? "full" : "simplified"));
+    json_object_set_new(root, "mode", json_string(r->mode));
     json_object_set_new(root, "sim_time_s", num(r->sim_time, 6));
     json_object_set_new(root, "wall_time_s", num(r->wall_time, 6));
 

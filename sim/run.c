@@ -201,7 +201,7 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
 
     snprintf(r->scenario, sizeof r->scenario, "%s", sc->name);
     r->seed = sc->seed;
-    r->full_travel = sc->full_travel;
+    r->mode = sim_scenario_mode_name(sc->mode);
     r->sim_time = sim_clock_now();
     r->wall_time = wall_since(&w0);
     main_board_stats_t ms;

@@ -217,7 +217,7 @@ TEST(Scenario, ParsesTheContractExample)
     char err[256];
     ASSERT_EQ(sim_scenario_parse(kScenario, &sc, err, sizeof err), 0) << err;
     EXPECT_STREQ(sc.name, "unit");
-    EXPECT_EQ(sc.full_travel, 1);
+    EXPECT_EQ(sc.mode, SIM_SCENARIO_MODE_FULL);
     EXPECT_EQ(sc.world.n_beacons, 3u);
     EXPECT_NEAR(sc.start_heading, M_PI / 2, 1e-15);
     EXPECT_EQ(sc.counts, 50000u);

@@ -31,7 +31,7 @@ void sim_stat_free(sim_stat_t *s);
 typedef struct {
     char scenario[64];
     uint64_t seed;
-    int full_travel;
+    const char *mode; /* travel mode, as in the scenario file */
     double sim_time, wall_time;
     uint32_t fixes_attempted, fixes_accepted, fixes_rejected;
     sim_stat_t fix_error;     /* m, accepted fixes vs truth at their reference instant */
