@@ -71,9 +71,9 @@ int main(int argc, char **argv)
         fprintf(stderr,
                 "agv-sim: stats {\"sim_time_s\":%.6f,\"events\":%" PRIu64 ",\"samples\":%" PRIu64
                 ",\"pieces\":%" PRIu64 ",\"pieces_indexed\":%" PRIu64
-                ",\"pieces_examined\":%" PRIu64 "}\n",
+                ",\"pieces_examined\":%" PRIu64 ",\"cpu_time_s\":%.6f}\n",
                 r.sim_time, stats.events, stats.samples, stats.pieces, stats.pieces_indexed,
-                stats.pieces_examined);
+                stats.pieces_examined, stats.cpu_time_s);
 
     char why[512];
     int ok = sim_report_judge(&r, &sc.success, why, sizeof why);

@@ -30,7 +30,7 @@ void sim_cli_usage(FILE *f)
             "  --trace           every fix attempt (dead-reckoning pose, truth and fix at the\n"
             "                    reference latch, sightings, status) and travel state on stderr\n"
             "  --stats           the run's work counters (events, cross-track samples, path\n"
-            "                    pieces examined) as one JSON line on stderr\n"
+            "                    pieces examined) and its CPU time as one JSON line on stderr\n"
             "  -h, --help        this text\n"
             "  --version         the version\n"
             "Exit status: 0 criteria met, 1 criteria missed, 2 bad input.\n"

@@ -163,8 +163,9 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
         return -1;
     }
 
-    struct timespec w0;
+    struct timespec w0, c0, c1;
     clock_gettime(CLOCK_MONOTONIC, &w0);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
     posix_board_select(R.nav_b);
     hal_irq_enable();
     posix_board_select(R.main_b);
@@ -197,6 +198,8 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
             }
         }
     }
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
+    stats->cpu_time_s = (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
     sim_telemetry_close(&R.tm);
 
     snprintf(r->scenario, sizeof r->scenario, "%s", sc->name);

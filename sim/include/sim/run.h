@@ -21,8 +21,10 @@ typedef struct {
     int trace;           /* every fix attempt and travel state on stderr */
 } sim_run_options_t;
 
-/** Work counters of a run: deterministic (the same scenario and seed give the same). */
+/** Work counters of a run: deterministic (the same scenario and seed give the same), and the
+ * processor time the run took (which is not). */
 typedef struct {
+    double cpu_time_s;        /* processor time of the run's loop, s (varies) */
     uint64_t events;          /* harness events run */
     uint64_t samples;         /* cross-track samples */
     uint64_t pieces;          /* pieces of the nominal path */
