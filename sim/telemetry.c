@@ -46,8 +46,11 @@ static int make_dirs(const char *dir, char *err, size_t errlen)
         struct stat st;
         if (mkdir(path, 0777) != 0 &&
             !(errno == EEXIST && stat(path, &st) == 0 && S_ISDIR(st.st_mode))) {
-            snprintf(err, errlen, "--log-dir: cannot create %s: %s", path,
-                     errno == EEXIST ? "not a directory" : strerror(errno));
+            if (errno == EEXIST)
+                snprintf(err, errlen, "--log-dir: cannot create %s: %s is not a directory", dir,
+                         path);
+            else
+                snprintf(err, errlen, "--log-dir: cannot create %s: %s", path, strerror(errno));
             return -1;
         }
         *p = c;

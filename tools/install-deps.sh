@@ -28,7 +28,7 @@ if [ -n "$missing" ]; then
     apt-get install -y -q --no-install-recommends $missing
 fi
 
-if ! python3 -c "import lcm, numpy, matplotlib" 2>/dev/null; then
+if ! python3 -c "import lcm, numpy, matplotlib, jsonschema" 2>/dev/null; then
     echo "install-deps: installing Python packages from tools/requirements.txt"
     if ! python3 -m pip install -q --disable-pip-version-check -r "$here/requirements.txt" 2>/tmp/cy-pip.log; then
         if grep -q externally-managed /tmp/cy-pip.log; then
