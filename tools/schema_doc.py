@@ -36,7 +36,7 @@ def fmt(v):
 def rows(node, path, required, out):
     t = node.get("type", "")
     if t == "object" and "properties" in node:
-        if path:
+        if path and not path.endswith("[]"):
             out.append((path, "object", "", "", "", "yes" if required else "no",
                         node.get("description", "")))
         req = set(node.get("required", []))
