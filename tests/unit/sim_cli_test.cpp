@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,20 +18,23 @@ struct Parsed {
     int rc;
     sim_cli_t cli;
     std::string out, err;
+    std::shared_ptr<std::vector<std::string>> args; // cli points into these
 };
 
-Parsed parse(std::vector<std::string> args)
+Parsed parse(std::vector<std::string> list)
 {
-    args.insert(args.begin(), "agv-sim");
+    auto args = std::make_shared<std::vector<std::string>>(std::move(list));
+    args->insert(args->begin(), "agv-sim");
     std::vector<char *> argv;
-    for (auto &a : args)
+    for (auto &a : *args)
         argv.push_back(a.data());
     argv.push_back(nullptr);
     char *ob = nullptr, *eb = nullptr;
     size_t on = 0, en = 0;
     FILE *o = open_memstream(&ob, &on), *e = open_memstream(&eb, &en);
     Parsed p;
-    p.rc = sim_cli_parse((int)args.size(), argv.data(), &p.cli, o, e);
+    p.args = args;
+    p.rc = sim_cli_parse((int)args->size(), argv.data(), &p.cli, o, e);
     fclose(o);
     fclose(e);
     p.out = ob;
