@@ -2,7 +2,7 @@
  * mission.h - a scenario turned into what the boards are told before a run (the base
  * station's download): the main board's map, path, vehicle and travel configuration, the nav
  * board's vehicle, sensors and initial vector; and the nominal path that cross_track_m is
- * measured against (CONTRACT.md: the chain of double arcs the drive routine's solver gives
+ * measured against (docs/interfaces.md: the chain of double arcs the drive routine's solver gives
  * between consecutive prescribed poses, the start first, computed once from them).
  */
 #ifndef SIM_MISSION_H

@@ -1,6 +1,6 @@
 /*
  * path.h - the nominal path: a chain of circular arcs and straights (double precision),
- * and the distance of a point to it (the cross-track error of CONTRACT.md).
+ * and the distance of a point to it (the cross-track error of docs/interfaces.md).
  */
 #ifndef SIM_PATH_H
 #define SIM_PATH_H

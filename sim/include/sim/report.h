@@ -1,5 +1,5 @@
 /*
- * report.h - what agv-sim measures and writes (CONTRACT.md "Report"): fix accuracy, path
+ * report.h - what agv-sim measures and writes (docs/interfaces.md "Report file"): fix accuracy, path
  * tracking, interrupt counts. Numbers are rounded to fixed decimals so that the same run gives
  * the same bytes (wall time aside).
  */
