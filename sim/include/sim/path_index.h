@@ -1,5 +1,5 @@
 /*
- * path_index.h - the distance from a point to the nominal path (CONTRACT.md's cross_track_m:
+ * path_index.h - the distance from a point to the nominal path (docs/interfaces.md's cross_track_m:
  * the minimum over every piece of the path), at a cost that does not grow with the path's
  * length. The pieces are filed in a uniform grid of square cells by their bounding boxes; a
  * query visits the cells in rings around the point and stops when no unvisited cell can hold

@@ -1,6 +1,6 @@
 /*
- * report.h - what agv-sim measures and writes (docs/interfaces.md "Report file"): fix accuracy, path
- * tracking, interrupt counts. Numbers are rounded to fixed decimals so that the same run gives
+ * report.h - what agv-sim measures and writes (docs/interfaces.md "Report file"): fix accuracy,
+ * path tracking, interrupt counts. Numbers are rounded to fixed decimals so that the same run gives
  * the same bytes (wall time aside).
  */
 #ifndef SIM_REPORT_H
