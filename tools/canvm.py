@@ -510,13 +510,15 @@ def vm_tools_error():
 
 
 def prepare(args):
-    """(kernel dir, initramfs path), downloaded and built when missing."""
+    """(kernel dir, initramfs path, accelerator, why that one): the kernel downloaded, the
+    initramfs built and KVM probed when not done before."""
     err = vm_tools_error()
     if err:
         raise Unavailable(err)
     with Lock(args.cache):
         kdir = fetch_kernel(args, args.cache)
-        return kdir, build_initramfs(args, kdir)
+        initramfs = build_initramfs(args, kdir)
+        return (kdir, initramfs) + choose_accel(args, kdir, initramfs)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -594,7 +596,7 @@ def kvm_usable(args, kdir, initramfs):
     except OSError as e:
         return False, f"/dev/kvm: {e.strerror}"
     qver = sh([QEMU, "--version"]).stdout.split("\n")[0]
-    key = f"{boot_id()} {qver} {os.path.basename(kdir)} {os.path.basename(initramfs)}"
+    key = f"{boot_id()} {qver}"
     memo = os.path.join(args.cache, "kvm-probe.json")
     try:
         with open(memo) as f:
@@ -666,8 +668,7 @@ class Pump:
 
 
 def run_vm(args, cmd, deadline):
-    kdir, initramfs = prepare(args)
-    accel, why = choose_accel(args, kdir, initramfs)
+    kdir, initramfs, accel, why = prepare(args)
     jobs = os.path.join(args.cache, "jobs")
     os.makedirs(jobs, exist_ok=True)
     boot = boot_id()[:8]
@@ -805,11 +806,10 @@ def cmd_check(args):
 
 def cmd_prepare(args):
     try:
-        kdir, initramfs = prepare(args)
+        kdir, initramfs, accel, why = prepare(args)
     except Unavailable as e:
         print(f"canvm: VM unavailable: {e}", file=sys.stderr)
         return EXIT_SKIP
-    accel, why = choose_accel(args, kdir, initramfs)
     print(f"kernel: {kdir}\ninitramfs: {initramfs}\naccelerator: {accel} ({why})")
     return 0
 
@@ -880,6 +880,10 @@ def main():
     r.add_argument("command", nargs=argparse.REMAINDER, help="-- CMD ARGS...")
     args = ap.parse_args()
     args.iface = args.iface or ["vcan0"]
+    for name in args.iface:
+        if not re.fullmatch(r"[A-Za-z0-9_.-]{1,15}", name):
+            ap.error(f"--iface {name!r}: an interface name is 1 to 15 letters, digits, '_', "
+                     "'.' or '-'")
     args.cache = os.path.abspath(args.cache)
     if args.sub == "run":
         args.build_dir = os.path.abspath(args.build_dir)
