@@ -531,14 +531,14 @@ def set_pdeathsig():
     ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
 
 
-def qemu_argv(kdir, initramfs, accel, append, shares):
+def qemu_argv(kdir, initramfs, accel, append, shares, smp=1, mem_mb=1024):
     kernel = os.path.join(kdir, "vmlinux")
     if not os.path.exists(kernel):
         kernel = os.path.join(kdir, "vmlinuz")
     argv = [QEMU, "-machine", "q35", "-accel", accel, "-cpu", "host" if accel == "kvm" else "max",
-            "-m", "1024", "-smp", "1", "-nodefaults", "-no-user-config", "-display", "none",
-            "-vga", "none", "-serial", "stdio", "-monitor", "none", "-no-reboot",
-            "-kernel", kernel, "-initrd", initramfs,
+            "-m", str(mem_mb), "-smp", str(smp), "-nodefaults", "-no-user-config",
+            "-display", "none", "-vga", "none", "-serial", "stdio", "-monitor", "none",
+            "-no-reboot", "-kernel", kernel, "-initrd", initramfs,
             "-append", "console=ttyS0 panic=-1 quiet loglevel=3 " + append]
     for tag, path, ro in shares:
         argv += ["-virtfs", f"local,path={path},mount_tag={tag},security_model=none,"
@@ -702,7 +702,7 @@ def run_vm(args, cmd, deadline):
             progress(args, f"{' '.join(args.iface)} up in the VM after {t:.1f} s; running")
         elif line.startswith("canvm-init: FAIL"):
             progress(args, line)
-    q = Qemu(qemu_argv(kdir, initramfs, accel, "", shares), on_line)
+    q = Qemu(qemu_argv(kdir, initramfs, accel, "", shares, args.smp, args.mem), on_line)
     try:
         while q.p.poll() is None:
             for p in pumps:
@@ -875,6 +875,10 @@ def main():
     r.add_argument("--rw", action="append", default=[], metavar="DIR",
                    help="another host directory the VM may write (repeatable); the rest of the "
                         "host's files are read-only in the VM, and /tmp is the VM's own")
+    r.add_argument("--smp", type=int, default=1, choices=range(1, 9), metavar="N",
+                   help="virtual CPUs of the VM (default 1; under TCG more rarely help)")
+    r.add_argument("--mem", type=int, default=1024, metavar="MB",
+                   help="memory of the VM in MB (default 1024)")
     r.add_argument("--keep-job", action="store_true",
                    help="keep the VM's job directory (build/canvm/jobs/...) for inspection")
     r.add_argument("command", nargs=argparse.REMAINDER, help="-- CMD ARGS...")
@@ -886,6 +890,10 @@ def main():
                      "'.' or '-'")
     args.cache = os.path.abspath(args.cache)
     if args.sub == "run":
+        if args.timeout <= 0:
+            r.error(f"--timeout {args.timeout:g}: must be more than 0 seconds")
+        if not 256 <= args.mem <= 65536:
+            r.error(f"--mem {args.mem}: must be 256 to 65536 MB")
         args.build_dir = os.path.abspath(args.build_dir)
         args.rw = [os.path.abspath(d) for d in args.rw]
         for d in [args.build_dir] + args.rw:
