@@ -50,7 +50,7 @@ EXIT_SKIP = 77
 EXIT_TIMEOUT = 124
 EXIT_FAIL = 125
 KVM_PROBE_TIMEOUT_S = 8.0
-CACHE_LAYOUT = 1  # bump when what fetch_kernel() leaves in the cache changes
+CACHE_LAYOUT = 2  # bump when what fetch_kernel() leaves in the cache changes
 QEMU = os.environ.get("CANVM_QEMU", "qemu-system-x86_64")
 BUSYBOX = "/bin/busybox"
 NINEP = "trans=virtio,version=9p2000.L,msize=262144"
@@ -221,7 +221,8 @@ def kernel_cached(kdir):
     """Whether kdir holds a kernel unpacked by this version of canvm."""
     try:
         with open(os.path.join(kdir, "kernel.json")) as f:
-            return json.load(f).get("layout") == CACHE_LAYOUT
+            k = json.load(f)
+        return k.get("layout") == CACHE_LAYOUT and k.get("wanted") == VM_MODULES
     except (OSError, ValueError):
         return False
 
@@ -291,8 +292,10 @@ def has_pvh_note(elf):
     return False
 
 
-def unpack_kernel(args, deb, dest):
-    """vmlinuz and the VM's modules (with their dependencies) from the kernel package."""
+def unpack_kernel(deb, dest):
+    """Writes into dest the kernel to boot (the ELF vmlinux when the bzImage holds one QEMU can
+    boot, else vmlinuz) and the VM's modules with their dependencies, from the kernel package.
+    Returns (uname -r, the kernel's file name, module names)."""
     def members(want):
         """Yields (tarinfo, bytes) of the package's members for which want(name) holds."""
         p = subprocess.Popen(["dpkg-deb", "--fsys-tarfile", deb], stdout=subprocess.PIPE)
@@ -336,18 +339,33 @@ def unpack_kernel(args, deb, dest):
             m = norm(modinfo(blob)["name"])
             found[m] = found[m][:2] + (blob,)
     os.makedirs(dest)
-    with open(os.path.join(dest, "vmlinuz"), "wb") as f:
-        f.write(vmlinuz)
     elf = vmlinux_of(vmlinuz)
-    if elf:
-        with open(os.path.join(dest, "vmlinux"), "wb") as f:
-            f.write(elf)
+    kernel = "vmlinux" if elf else "vmlinuz"
+    with open(os.path.join(dest, kernel), "wb") as f:
+        f.write(elf or vmlinuz)
     for m in sorted(need):
         path = os.path.join(dest, "modules", found[m][0])
         os.makedirs(os.path.dirname(path), exist_ok=True)
         with open(path, "wb") as f:
             f.write(found[m][2])
-    return version, sorted(need)
+    return version, kernel, sorted(need)
+
+
+def download(args, cache, dl):
+    """(package, version, .deb path) of the current kernel package, downloaded into dl. When
+    the download fails (lists older than the mirror), root updates apt's lists and resolves
+    and downloads again."""
+    for attempt in (1, 2):
+        pkg, ver = resolve_kernel_package(cache)
+        progress(args, f"downloading {pkg} {ver} (apt-get download, about 70 MB)")
+        r = sh(["apt-get", "download", f"{pkg}={ver}"], cwd=dl)
+        debs = [f for f in os.listdir(dl) if f.endswith(".deb")]
+        if r.returncode == 0 and len(debs) == 1:
+            return pkg, ver, os.path.join(dl, debs[0])
+        if attempt == 1 and os.geteuid() == 0:
+            progress(args, "apt-get download failed; apt-get update, then once more")
+            sh(["apt-get", "update", "-q"])
+    raise Unavailable(f"apt-get download {pkg}={ver} failed: {r.stderr.strip()[-500:]}")
 
 
 def fetch_kernel(args, cache):
@@ -360,44 +378,34 @@ def fetch_kernel(args, cache):
             progress(args, f"{e}; using the cached {os.path.basename(have[0])}")
             return have[0]
         raise
-    key = f"{pkg}_{ver}".replace(":", "%3a")
-    kdir = os.path.join(cache, key)
+    kdir = os.path.join(cache, f"{pkg}_{ver}".replace(":", "%3a"))
     if kernel_cached(kdir):
         return kdir
-    shutil.rmtree(kdir, ignore_errors=True)
     dl = tempfile.mkdtemp(prefix="dl-", dir=cache)
     try:
         t0 = time.monotonic()
-        progress(args, f"downloading {pkg} {ver} (apt-get download, about 70 MB)")
-        r = sh(["apt-get", "download", f"{pkg}={ver}"], cwd=dl)
-        if r.returncode != 0 and os.geteuid() == 0:
-            progress(args, "apt-get download failed; apt-get update, then once more")
-            sh(["apt-get", "update", "-q"])
-            r = sh(["apt-get", "download", f"{pkg}={ver}"], cwd=dl)
-        debs = [f for f in os.listdir(dl) if f.endswith(".deb")]
-        if r.returncode != 0 or len(debs) != 1:
-            raise Unavailable(f"apt-get download {pkg}={ver} failed: "
-                              f"{r.stderr.strip()[-500:]}")
-        deb = os.path.join(dl, debs[0])
+        pkg, ver, deb = download(args, cache, dl)
+        kdir = os.path.join(cache, f"{pkg}_{ver}".replace(":", "%3a"))
         t1 = time.monotonic()
         progress(args, f"downloaded {os.path.getsize(deb) / 1e6:.1f} MB in {t1 - t0:.1f} s; "
-                 "unpacking vmlinuz and modules (dpkg-deb)")
+                 "unpacking the kernel and modules (dpkg-deb)")
         tmp = os.path.join(dl, "kernel")
-        version, mods = unpack_kernel(args, deb, tmp)
-        os.rename(deb, os.path.join(tmp, debs[0]))
+        uname_r, kernel, mods = unpack_kernel(deb, tmp)
         with open(os.path.join(tmp, "kernel.json"), "w") as f:
-            json.dump({"layout": CACHE_LAYOUT, "package": pkg, "version": ver,
-                       "uname_r": version, "modules": mods, "deb": debs[0],
-                       "download_s": round(t1 - t0, 2),
+            json.dump({"layout": CACHE_LAYOUT, "wanted": VM_MODULES, "package": pkg,
+                       "version": ver, "deb": os.path.basename(deb),
+                       "deb_bytes": os.path.getsize(deb), "uname_r": uname_r, "kernel": kernel,
+                       "modules": mods, "download_s": round(t1 - t0, 2),
                        "unpack_s": round(time.monotonic() - t1, 2)}, f, indent=1)
+        shutil.rmtree(kdir, ignore_errors=True)
         os.rename(tmp, kdir)
-        progress(args, f"unpacked kernel {version} and {len(mods)} modules in "
+        progress(args, f"unpacked kernel {uname_r} ({kernel}) and {len(mods)} modules in "
                  f"{time.monotonic() - t1:.1f} s")
     finally:
         shutil.rmtree(dl, ignore_errors=True)
-    for old in cached_kernels(cache):  # keep only the current kernel
-        if old != kdir:
-            shutil.rmtree(old, ignore_errors=True)
+    for old in os.listdir(cache):  # keep only the current kernel
+        if old.startswith("linux-image-") and os.path.join(cache, old) != kdir:
+            shutil.rmtree(os.path.join(cache, old), ignore_errors=True)
     return kdir
 
 
@@ -532,9 +540,8 @@ def set_pdeathsig():
 
 
 def qemu_argv(kdir, initramfs, accel, append, shares, smp=1, mem_mb=1024):
-    kernel = os.path.join(kdir, "vmlinux")
-    if not os.path.exists(kernel):
-        kernel = os.path.join(kdir, "vmlinuz")
+    with open(os.path.join(kdir, "kernel.json")) as f:
+        kernel = os.path.join(kdir, json.load(f)["kernel"])
     argv = [QEMU, "-machine", "q35", "-accel", accel, "-cpu", "host" if accel == "kvm" else "max",
             "-m", str(mem_mb), "-smp", str(smp), "-nodefaults", "-no-user-config",
             "-display", "none", "-vga", "none", "-serial", "stdio", "-monitor", "none",
