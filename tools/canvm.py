@@ -76,15 +76,16 @@ case " $(cat /proc/cmdline) " in *" canvm.probe "*) say "PROBE-OK"; reboot -f;; 
 mkdir -p /job /host
 mount -t 9p -o NINEP,cache=none job /job || die "mount of the job directory failed"
 mount -t 9p -o NINEP,cache=loose,ro hostroot /host || die "mount of the host root failed"
-while read -r tag dir; do
-    mount -t 9p -o NINEP,cache=none "$tag" "/host$dir" || die "mount of $dir failed"
-done < /job/mounts
 mount -t proc proc /host/proc && mount -t sysfs sysfs /host/sys &&
     mount -t devtmpfs devtmpfs /host/dev && mkdir -p /host/dev/pts /host/dev/shm &&
     mount -t devpts devpts /host/dev/pts && mount -t tmpfs tmpfs /host/dev/shm &&
     mount -t tmpfs tmpfs /host/tmp && mount -t tmpfs tmpfs /host/run ||
     die "mounting proc, sys, dev, tmp in the host root failed"
 [ -d /host/var/tmp ] && mount -t tmpfs tmpfs /host/var/tmp
+while read -r tag dir; do
+    mkdir -p "/host$dir" 2> /dev/null
+    mount -t 9p -o NINEP,cache=none "$tag" "/host$dir" || die "mount of $dir failed"
+done < /job/mounts
 chroot /host ip link set lo up || die "ip link set lo up failed"
 for i in $(cat /job/ifaces); do
     chroot /host ip link add dev "$i" type vcan && chroot /host ip link set up "$i" ||
@@ -649,8 +650,9 @@ def job_script(cmd):
                                                                       "_"):
             lines.append(f"export {k}={shlex.quote(v)}")
     cwd = os.getcwd()
-    lines.append(f"cd {shlex.quote(cwd)} || {{ echo 'canvm: no directory {cwd} in the VM' >&2;"
-                 f" exit {EXIT_FAIL}; }}")
+    lines.append(f"cd {shlex.quote(cwd)} || {{ echo 'canvm: the current directory is not in the "
+                 "VM (its /tmp, /run, /var/tmp and /dev/shm are its own): run from the build "
+                 f"tree or share it with --rw' >&2; exit {EXIT_FAIL}; }}")
     lines.append(f"exec /bin/sh -c {shlex.quote(cmd)} < /dev/null")
     return "\n".join(lines) + "\n"
 
