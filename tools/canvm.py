@@ -415,9 +415,11 @@ def busybox_path():
     if not bb:
         raise Unavailable("busybox not found (Debian package busybox-static)")
     with open(bb, "rb") as f:
-        head = f.read(1 << 20)
-    if b"/lib64/ld-linux" in head or b"ld-linux-x86-64" in head:
-        raise Unavailable(f"{bb} is dynamically linked (install busybox-static)")
+        elf = f.read(1 << 16)
+    phoff, = struct.unpack_from("<Q", elf, 0x20)
+    phentsize, phnum = struct.unpack_from("<HH", elf, 0x36)
+    if any(struct.unpack_from("<I", elf, phoff + i * phentsize)[0] == 3 for i in range(phnum)):
+        raise Unavailable(f"{bb} is dynamically linked (PT_INTERP); install busybox-static")
     return bb
 
 
@@ -913,6 +915,9 @@ def main():
         return {"check": cmd_check, "prepare": cmd_prepare, "run": cmd_run}[args.sub](args)
     except KeyboardInterrupt:
         return 130
+    except (RuntimeError, OSError, ValueError, subprocess.SubprocessError) as e:
+        print(f"canvm: error: {e}", file=sys.stderr)
+        return EXIT_FAIL
 
 
 if __name__ == "__main__":
