@@ -21,7 +21,7 @@
  * (0.7), and spare.
  *
  * Cost: the per-beacon work (expected angle, range bound, window) and the window scans are
- * the kernels optical_first_scan / optical_expect_scan and optical_eval (fastmath.h); the
+ * the kernels optical_scan / optical_expect_scan and optical_eval (fastmath.h); the
  * precise fixed-point work is left to the selected triplet (triangulate.c). docs/optical.md
  * lists the measured cycles.
  */
@@ -765,7 +765,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
      * and the first identification pass (O3). */
     W.gate8 = sat15(((uint32_t)threshold(&x, (uint8_t)kept) + (uint32_t)cfg->window_pos) >> 8);
     uint16_t h0 = half0(cfg);
-    if (optical_first_scan(0, h0)) /* (O4 left every mark NONE or DROPPED) */
+    if (optical_scan(0, h0)) /* (O4 left every mark NONE or DROPPED) */
         return fail(out, approx, OPTICAL_E_ARG);
     if (n < 3)
         return fail(out, approx, OPTICAL_E_FEW);

@@ -194,7 +194,7 @@ static void reflectors(void)
 }
 
 /*
- * O7's selection (select.c; msp430/optical_sel.S on the target) on random sets of 0 to 15
+ * O7's selection (select.c) on random sets of 0 to 15
  * angles: sorted on the 50,000-count grid, on a coarse grid (tied gaps), with high words
  * tied (gaps within 2^16), unsorted (gaps modulo a turn, some near 2^32), all equal.
  */
@@ -236,7 +236,7 @@ static void selections(void)
 }
 
 /*
- * optical_triangulate (triangulate.c; msp430/optical_tri.S on the target): random beacons and
+ * optical_triangulate (triangulate.c, on the kernels of tri_k.c): random beacons and
  * vehicles (every O8 ordering and both sides of the circle, some 3 to 39 times farther out),
  * random angles (mostly refused), coincident sightings and beacons, a tight quality limit;
  * then vehicles straight and diagonally off the middle beacon, where |U^| reaches the ends of

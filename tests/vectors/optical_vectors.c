@@ -158,7 +158,7 @@ static int32_t rnd_mag(void)
     return (rnd32() & 1u) ? (int32_t)(0u - v) : (int32_t)v;
 }
 
-/* The two helpers of fastmath.h (assembly on the target): edge cases, then random. */
+/* optical_angle16 (ident.c): edge cases, then random. */
 static void helpers(void)
 {
     static const int32_t edge[] = {0,
@@ -212,7 +212,7 @@ static void print_marks(void)
     }
 }
 
-/* One scan's results (optical_expect_scan, optical_first_scan), printed. */
+/* One scan's results (optical_expect_scan, optical_scan), printed. */
 static void print_scan(const char *what, uint8_t t, uint8_t st)
 {
     cy_print(what);
@@ -364,7 +364,7 @@ static void kernels(void)
     }
     cy_bench_report(&st_exs);
     cy_bench_report(&st_eval);
-    /* optical_first_scan: the marks as optical_drop leaves them (the scene's NONE and
+    /* optical_scan: the marks as optical_drop leaves them (the scene's NONE and
      * DROPPED), printed; optical_expect_scan must give the same after the marks were
      * scrambled (stale matches, MULTI: it clears them, DROPPED stays). On a random stream of
      * its own: the cases after it stay as they were. */
@@ -376,7 +376,7 @@ static void kernels(void)
         uint8_t sm0[OPTICAL_MAX_SIGHTINGS];
         for (uint8_t j = 0; j < KW.n; j++)
             sm0[j] = KW.sm[j];
-        uint8_t st = optical_first_scan(mid, half);
+        uint8_t st = optical_scan(mid, half);
         print_scan("exf ", t, st);
         if (st)
             continue;
