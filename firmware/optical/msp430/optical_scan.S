@@ -12,9 +12,26 @@
  * (tools/stack_bound.py --no-mpy-in-isr checks the image; docs/optical.md).
  * Cycle counts are mspdebug's: it charges the constant-generator immediates #1, #2, #4, #8 and
  * #-1 like memory operands (see firmware/fx/msp430/fx_trig.S).
- * Structure offsets and sizes, match codes and the margin come from layout.h.
+ * Structure offsets and sizes, match codes and the margin come from optical_offsets.h,
+ * generated from the C headers (msp430/optical_offsets.c); the element sizes the loops step
+ * by are checked below.
  */
-#include "layout.h"
+#include "optical_offsets.h"
+
+#define OW optical_work             /* the work area (optical/fastmath.h) */
+
+/* The 16 x 16 hardware multiplier (MSP430F2618, SLAS541) */
+    .set MPY,   0x0130
+    .set OP2,   0x0138
+    .set RESLO, 0x013a
+    .set RESHI, 0x013c
+
+    .if OW_TH_ELEM != 2 || OW_PSI_ELEM != 2 || OW_SM_ELEM != 1 || OW_BM_ELEM != 1
+    .error "optical_scan.S steps through th, lev, we, psi, e, g by words, sm, bm, cand by bytes"
+    .endif
+    .if XY8_X != 0 || XY8_Y != 2 || XY8_SIZE != 4 || OW_BSTART_N != 16
+    .error "optical_scan.S reads b8[k] as (x, y) words and 16 buckets"
+    .endif
 
 /* The current window centre and half-width. */
     .section .bss.optical_scan_args,"aw",@nobits

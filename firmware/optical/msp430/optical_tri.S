@@ -12,9 +12,20 @@
  * keep both below 2^31), l l dropped, the second chain's high word added. The operands live in
  * the kernels' own static frame as (h, l) pairs of 4 bytes; the dot routines take pointers to
  * two lists of pairs. The multiplier is used with interrupts enabled: no interrupt handler of
- * the main board touches it (tools/stack_bound.py --no-mpy-in-isr).
+ * the main board touches it (tools/stack_bound.py --no-mpy-in-isr). The offsets of
+ * optical_tsol_t and the status codes come from optical_offsets.h, generated from the C
+ * headers (msp430/optical_offsets.c).
  */
-#include "layout.h"
+#include "optical_offsets.h"
+
+/* The 16 x 16 hardware multiplier (MSP430F2618, SLAS541) */
+    .set MPY,    0x0130
+    .set MPYS,   0x0132
+    .set MACS,   0x0136
+    .set OP2,    0x0138
+    .set RESLO,  0x013a
+    .set RESHI,  0x013c
+    .set SUMEXT, 0x013e
 
 /* the kernels' frame, tri_frame below */
     .set F_Z,   0                   ; pairs -s2, c2, s2, s1, c1, -s1
@@ -270,7 +281,7 @@ optical_tri_core:
 /* The body, with the pairs Z in place: R4..R10 not kept. */
     .section .text.optical_tri_kernels,"ax",@progbits
 arg:
-    mov     #1, r12                 ; OPTICAL_E_ARG
+    mov     #E_ARG, r12
     ret
 degenerate:
     mov     #E_DEGENERATE, r12
@@ -746,7 +757,7 @@ tri_core_body:
     clr     r12                     ; OPTICAL_OK
     ret
 inconsistent:
-    mov     #9, r12                 ; OPTICAL_E_INCONSISTENT
+    mov     #E_INCONSISTENT, r12
     ret
 singular:
     mov     #E_SINGULAR, r12
