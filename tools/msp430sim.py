@@ -13,6 +13,10 @@ The image talks to this runner through the simulator's console device (address 0
   CY-TEST-END PASS | CY-TEST-END FAIL <n>
                             the sentinel: the verdict of the image itself.
   FAULT 0x....              printed by hal_fault() before the CPU stops.
+  KERNEL-MISMATCH <kernel> ...
+                            a kernel check image (docs/kernels.md) found the assembly and
+                            the C twin of a kernel disagreeing, and stopped: the run fails
+                            (or, with --expect-kernel-mismatch, passes on exactly that).
   anything else             a data line, compared with the host's output (--compare-cmd)
                             and/or handed to a checker (--check).
 
@@ -53,6 +57,7 @@ def devices():
 
 
 SENTINEL = "CY-TEST-END"
+MISMATCH = "KERNEL-MISMATCH"
 PC_RE = re.compile(r"\(\s*PC:\s*([0-9a-fA-F]+)\)")
 DUMP_RE = re.compile(r"\s*\(\s*PC:")
 ERROR_RE = re.compile(r"(can't|invalid|unknown|failed|expected|error|no such)", re.I)
@@ -339,7 +344,7 @@ def run_image(args, log):
 
 
 def data_lines(lines):
-    return [l for l in lines if l and not l.startswith(("@", "#", SENTINEL))]
+    return [l for l in lines if l and not l.startswith(("@", "#", SENTINEL, MISMATCH))]
 
 
 def main():
@@ -356,6 +361,9 @@ def main():
     ap.add_argument("--expect-gie", action="store_true",
                     help="with --until: interrupts must be enabled there")
     ap.add_argument("--expect-fault", help="pass only if the image stops with this fault code")
+    ap.add_argument("--expect-kernel-mismatch", metavar="KERNEL",
+                    help="pass only if the image stops at its first line KERNEL-MISMATCH, "
+                         "naming KERNEL (the proof that a check image can fail)")
     ap.add_argument("--compare-cmd", help="host command whose stdout data lines must equal "
                                           "the image's, line by line (bit-identical results)")
     ap.add_argument("--check", help="Python file with check(lines) -> list of errors, run on "
@@ -382,7 +390,23 @@ def main():
 
     failures = []
     faults = [l for l in console if l.startswith("FAULT ")]
-    if args.until:
+    mismatches = [l for l in console if l.startswith(MISMATCH)]
+    if args.expect_kernel_mismatch:
+        rest = [l for l in console if l and not l.startswith("@stack ")]
+        if len(mismatches) != 1 or not mismatches[0].startswith(
+                f"{MISMATCH} {args.expect_kernel_mismatch} "):
+            failures.append(f"expected one `{MISMATCH} {args.expect_kernel_mismatch} ...`, "
+                            f"the image printed {mismatches or 'none'}")
+        elif rest[-1] != mismatches[0]:
+            failures.append(f"the image went on after `{mismatches[0]}`: `{rest[-1]}`")
+        else:
+            print(f"  stopped as expected: {mismatches[0]}")
+        args.compare_cmd = None  # the run stopped early on purpose
+    elif mismatches:
+        failures.append(f"kernel check: {mismatches[0]}")
+    if args.expect_kernel_mismatch:
+        pass
+    elif args.until:
         stops = [l for l in console if l.startswith("@until ")]
         if not stops:
             failures.append(f"never reached {args.until}")
