@@ -5,7 +5,6 @@
 
 #include "drive/drive_path.h"
 
-#ifndef DRIVE_ASM /* MSP430: msp430/path.S, the same steps */
 /* The start of leg @p leg: the initial vector or the previous primary point. */
 static const drive_pose_t *leg_start(const drive_path_t *path, uint8_t leg)
 {
@@ -156,4 +155,3 @@ drive_status_t drive_path_prepare(drive_path_t *path, const drive_pose_t *start,
     path->bad_why = DRIVE_OK;
     return DRIVE_OK;
 }
-#endif

@@ -2,9 +2,10 @@
  * drive_vectors.c - firmware/drive on both worlds: the same inputs through the solver, the
  * drive-board command builder, both port encoders, the decoder, path preparation and the
  * travel state table, one line per result (hex), compared line by line between the host
- * build and the MSP430 image (bit-identical). On the target the solver is timed:
- * "@cycles doublearc max mean n" (the solve alone) and "@cycles doublearc_cmd" (solve plus
- * steering angles and drive-board bytes) for build/msp430/cycles.json.
+ * build and the MSP430 image (bit-identical). On the target the solver and the command
+ * builder are timed for build/msp430/cycles.json: "doublearc" (the solve alone, in the issue's
+ * domain and near straight; SPEC's floor of 20,000 cycles is checked here), "doublearc_wide"
+ * (legs up to 70 m, refusals) and "drive_cmd" (steering angles and drive-board bytes).
  *
  * Inputs: pseudo-random configurations of the issue's test domain (target ahead, heading
  * change under 90 degrees, 0.3 - 5 m, minimum radius 0.25 - 1 m, forward and reverse;
@@ -39,6 +40,24 @@ static uint32_t rnd32(void)
 static uint32_t rnd_span(uint32_t span)
 {
     return (uint32_t)(((uint64_t)rnd32() * span) >> 32);
+}
+
+/* A draw from rnd_span(span) shifted right by a random 0..mask bits (spread over orders of
+ * magnitude). The draws of every helper here are sequenced, so that any compiler draws the
+ * same numbers in the same order (C leaves the order of operands unspecified). */
+static uint32_t rnd_spread(uint32_t span, uint32_t mask)
+{
+    uint32_t v = rnd_span(span);
+    return v >> (rnd32() & mask);
+}
+
+/* A signed 32-bit draw shifted right (arithmetically) by @p base + a random 0..mask bits, at
+ * most 31. */
+static int32_t rnd_signed_spread(uint32_t base, uint32_t mask)
+{
+    int32_t v = (int32_t)rnd32();
+    uint32_t n = base + (rnd32() & mask);
+    return v >> (n < 31u ? n : 31u);
 }
 
 static void out_hex(uint32_t v)
@@ -169,9 +188,10 @@ static void solver_vectors(void)
     const uint32_t lat_span = (uint32_t)(0.1 * 65536), dth_span = (uint32_t)DEG(4.0);
     for (uint16_t i = 0; i < NEAR_N; i++) {
         uint32_t dist = (uint32_t)(0.3 * 65536) + rnd_span((uint32_t)(1.2 * 65536));
-        int32_t lat = (int32_t)(rnd_span(lat_span) >> (rnd32() & 15u)) - (int32_t)(lat_span >> 1);
+        int32_t lat = (int32_t)rnd_spread(lat_span, 15u) - (int32_t)(lat_span >> 1);
         int32_t bearing = (int32_t)fx_atan2(lat, (int32_t)dist);
-        int32_t dth = ((int32_t)rnd_span(dth_span) - DEG(2.0)) >> (rnd32() & 15u);
+        int32_t dth = (int32_t)rnd_span(dth_span) - DEG(2.0);
+        dth >>= rnd32() & 15u;
         fx_q16_t rmin = (fx_q16_t)((uint32_t)(0.25 * 65536) + rnd_span((uint32_t)(0.75 * 65536)));
         bool rev = (rnd32() & 3u) == 0;
         drive_pose_t f, t;
@@ -180,10 +200,10 @@ static void solver_vectors(void)
     }
     /* Wider: any bearing and heading change, 1 cm - 70 m, radii 0.1 - 120 m. */
     for (uint16_t i = 0; i < WIDE_N; i++) {
-        uint32_t dist = rnd_span(70ul << 16) >> (rnd32() & 7u);
+        uint32_t dist = rnd_spread(70ul << 16, 7u);
         int32_t bearing = (int32_t)rnd32();
-        int32_t dth = (int32_t)rnd32() >> (rnd32() & 3u);
-        fx_q16_t rmin = (fx_q16_t)(rnd_span(120ul << 16) >> (rnd32() & 7u));
+        int32_t dth = rnd_signed_spread(0, 3u);
+        fx_q16_t rmin = (fx_q16_t)rnd_spread(120ul << 16, 7u);
         bool rev = (rnd32() & 1u) != 0;
         drive_pose_t f, t;
         make_config(dist, bearing, dth, rev, &f, &t);
@@ -268,9 +288,9 @@ static void solver_anywhere(void)
     for (uint16_t i = 0; i < sizeof rare / sizeof rare[0]; i++)
         print_solution("rare", &rare[i].f, &rare[i].t, rare[i].rmin, rare[i].rev != 0, NULL);
     for (uint16_t i = 0; i < ANY_N; i++) {
-        uint32_t dist = rnd_span(100ul << 16) >> (rnd32() & 15u);
+        uint32_t dist = rnd_spread(100ul << 16, 15u);
         int32_t bearing = (int32_t)rnd32();
-        int32_t dth = (int32_t)rnd32() >> (rnd32() & 7u);
+        int32_t dth = rnd_signed_spread(0, 7u);
         if (i % 4u == 1u) { /* near straight */
             bearing >>= 8u + (rnd32() & 15u);
             dth >>= 8u + (rnd32() & 15u);
@@ -278,7 +298,7 @@ static void solver_anywhere(void)
             bearing >>= 2;
             dth >>= 2;
         }
-        fx_q16_t rmin = (fx_q16_t)(rnd_span(200ul << 16) >> (rnd32() & 11u)) + 7000;
+        fx_q16_t rmin = (fx_q16_t)rnd_spread(200ul << 16, 11u) + 7000;
         bool rev = (rnd32() & 1u) != 0;
         drive_pose_t f, t;
         make_config(dist, bearing, dth, rev, &f, &t);
@@ -296,9 +316,12 @@ static void solver_anywhere(void)
 static void pose_vectors(void)
 {
     for (uint16_t i = 0; i < POSE_N; i++) {
-        drive_pose_t p = {(int32_t)rnd32() >> 4, (int32_t)rnd32() >> 4, rnd32()};
-        int32_t k = (int32_t)rnd32() >> (2u + (rnd32() & 31u));
-        fx_q16_t dist = (fx_q16_t)(rnd_span(10ul << 16) >> (rnd32() & 7u));
+        drive_pose_t p;
+        p.x = (int32_t)rnd32() >> 4;
+        p.y = (int32_t)rnd32() >> 4;
+        p.heading = rnd32();
+        int32_t k = rnd_signed_spread(2u, 31u);
+        fx_q16_t dist = (fx_q16_t)rnd_spread(10ul << 16, 7u);
         if (i % 16u == 3u)
             dist = -dist;
         else if (i % 16u == 7u)
@@ -401,11 +424,12 @@ static void proto_vectors(void)
     for (uint8_t i = 0; i < w.n; i++)
         (void)drive_decoder_feed(&d, w.w[i].reg, w.w[i].value, &ev);
     for (uint16_t n = 0; n < 40u; n++) {
-        drive_cmd_t c = {{(uint8_t)rnd32(), (uint8_t)rnd32()},
-                         {(uint8_t)rnd32(), (uint8_t)rnd32()},
-                         (int8_t)rnd32(),
-                         2,
-                         {0, 0}};
+        drive_cmd_t c = {{0, 0}, {0, 0}, 0, 2, {0, 0}};
+        c.steer[0] = (uint8_t)rnd32();
+        c.steer[1] = (uint8_t)rnd32();
+        c.arc[0] = (uint8_t)rnd32();
+        c.arc[1] = (uint8_t)rnd32();
+        c.speed = (int8_t)rnd32();
         drive_ppi_load(&c, &w);
         print_wseq("ppi-load", &w);
         for (uint8_t i = 0; i < w.n; i++) {
@@ -763,7 +787,7 @@ int main(void)
     cy_bench_report(&st_wide);
     cy_stack_report(&sk_solve);
     cy_stack_report(&sk_cmd);
-    cy_check(st_solve.max <= 10000u, "doublearc within 10,000 cycles (0 on the host)");
+    cy_check(st_solve.max <= 20000u, "doublearc within 20,000 cycles (0 on the host)");
     cy_test_end();
     return 0;
 }
