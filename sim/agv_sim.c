@@ -27,6 +27,7 @@
 #include <time.h>
 
 #include "drive/drive.h"
+#include "drive/drive_path.h"
 #include "drive/drive_proto.h"
 #include "fx/fx_host.h"
 #include "hal/capture.h"
@@ -576,28 +577,30 @@ static drive_pose_t dpose(double x, double y, double th)
 
 static void build_nominal(const main_board_config_t *mc)
 {
-    /* CONTRACT.md: the chain of double arcs the solver gives between consecutive prescribed
-     * poses (the start first), computed once from them. */
+    /* CONTRACT.md: the chain of double arcs the board's path preparation gives between
+     * consecutive prescribed poses (the start first; a turn over 90 degrees as two, through
+     * the pose it inserts), computed once from them. */
     drive_pose_t from = mc->start;
     sim_pose_t s0 = {S.sc.start_x, S.sc.start_y, S.sc.start_heading};
     S.nominal->n = 0;
     for (size_t i = 0; i < S.sc.n_path; i++) {
         drive_pose_t to = mc->path[i].pose;
-        drive_solution_t sol;
+        drive_leg_t leg;
         drive_status_t st =
-            drive_solve(&from, &to, mc->path_cfg.nominal_radius, mc->path_cfg.reverse, &sol, NULL);
+            drive_leg_solve(&from, &to, mc->path_cfg.nominal_radius, mc->path_cfg.reverse, &leg);
         if (st != DRIVE_OK) {
-            char msg[256];
+            char msg[384];
             snprintf(msg, sizeof msg,
                      "path[%zu]: no double arc from the previous point: %s (min_radius_m %.3f)", i,
                      drive_status_text(st), S.sc.min_radius);
             die_input(msg);
         }
-        for (int k = 0; k < 2; k++) {
-            double len = fx_q16_to_double(sol.seg[k].length);
+        for (int k = 0; k < 2 * leg.parts; k++) {
+            const drive_segment_t *g = &leg.sol[k / 2].seg[k % 2];
+            double len = fx_q16_to_double(g->length);
             if (len <= 0)
                 continue;
-            double kap = (double)sol.seg[k].curvature / (double)(1l << DRIVE_CURV_SHIFT);
+            double kap = (double)g->curvature / (double)(1l << DRIVE_CURV_SHIFT);
             /* Each leg starts at its prescribed pose (the solver lands within 0.05 mm). */
             if (k == 0 || S.nominal->n == 0)
                 sim_path_append_from(S.nominal, s0, kap, len, mc->path_cfg.reverse);

@@ -145,15 +145,38 @@ static int32_t along(const drive_pose_t *pose, const drive_pose_t *target, bool 
     return u;
 }
 
+/* Solve from @p pose toward the secondary point @p cur and build its command into
+ * seq->pending (the status in seq->solve_status too); *reached: nothing left to drive there
+ * (too close, behind, or arcs too short for a pulse). */
+static drive_status_t solve_toward(drive_seq_t *seq, const drive_pose_t *pose,
+                                   drive_path_cursor_t cur, bool *reached)
+{
+    drive_path_t *path = seq->path;
+    drive_pose_t tp;
+    fx_q16_t speed;
+    drive_solution_t sol;
+    drive_status_t st = drive_path_target(path, cur, &tp, &speed);
+    if (st == DRIVE_OK)
+        st = drive_solve(pose, &tp, path->board->min_radius, path->cfg.reverse, &sol, NULL);
+    if (st == DRIVE_OK)
+        st = drive_cmd_build(&sol, path->board, speed, path->cfg.reverse, &seq->pending);
+    seq->solve_status = st;
+    *reached = st == DRIVE_ERR_TOO_CLOSE || st == DRIVE_ERR_BEHIND ||
+               (st == DRIVE_OK && seq->pending.pulses == 0);
+    return st;
+}
+
 /*
  * From @p pose: skip targets nearer than cfg.advance along their direction (full travel),
  * solve toward the target, and on failure (or nothing left to drive) move on to the next
- * point; the last point reached with nothing to drive means arrived.
+ * point; the last point reached with nothing to drive means arrived. When the target after a
+ * skipped one cannot be driven to in one double arc (in a tight turn its front-wheel length
+ * can exceed the drive board's byte), the skipped one is driven to instead.
  */
 static uint8_t pick(drive_seq_t *seq, const drive_pose_t *pose)
 {
     drive_path_t *path = seq->path;
-    bool rev = path->cfg.reverse;
+    drive_path_cursor_t skipped = {0, 0}; /* sub 0: none */
     for (uint8_t tries = 0; tries < 4u; tries++) {
         drive_pose_t tp;
         fx_q16_t speed;
@@ -162,21 +185,24 @@ static uint8_t pick(drive_seq_t *seq, const drive_pose_t *pose)
             seq->solve_status = st;
             return PICK_FAILED;
         }
-        bool last = drive_path_is_last(path, seq->target);
-        if (last || seq->cfg.mode != DRIVE_MODE_FULL || along(pose, &tp, rev) >= seq->cfg.advance) {
-            drive_solution_t sol;
-            st = drive_solve(pose, &tp, path->board->min_radius, rev, &sol, NULL);
-            if (st == DRIVE_OK)
-                st = drive_cmd_build(&sol, path->board, speed, rev, &seq->pending);
-            seq->solve_status = st;
-            bool reached = st == DRIVE_ERR_TOO_CLOSE || st == DRIVE_ERR_BEHIND ||
-                           (st == DRIVE_OK && seq->pending.pulses == 0);
-            if (st == DRIVE_OK && !reached) {
-                seq->pending_last = last;
+        bool last = drive_path_is_last(path, seq->target), reached;
+        if (!last && seq->cfg.mode == DRIVE_MODE_FULL &&
+            along(pose, &tp, path->cfg.reverse) < seq->cfg.advance) {
+            skipped = seq->target;
+        } else if (solve_toward(seq, pose, seq->target, &reached) == DRIVE_OK && !reached) {
+            seq->pending_last = last;
+            return PICK_SOLVED;
+        } else if (!reached && skipped.sub != 0) {
+            drive_status_t why = seq->solve_status;
+            seq->target = skipped;
+            if (solve_toward(seq, pose, skipped, &reached) == DRIVE_OK && !reached) {
+                seq->pending_last = false;
                 return PICK_SOLVED;
             }
-            if (last)
-                return reached ? PICK_ARRIVED : PICK_FAILED;
+            seq->solve_status = why;
+            return PICK_FAILED;
+        } else if (last) {
+            return reached ? PICK_ARRIVED : PICK_FAILED;
         }
         seq->target = drive_path_next(path, seq->target);
     }

@@ -75,6 +75,9 @@ const char *drive_status_text(drive_status_t st)
         return "value out of the drive board's 8-bit range";
     case DRIVE_ERR_PATH:
         return "path not acceptable";
+    case DRIVE_ERR_TURN:
+        return "turn over 90 degrees: no corner of the nominal radius fits between the poses "
+               "(the target must lie inside the turn; a U-turn needs two radii across)";
     }
     return "unknown status";
 }

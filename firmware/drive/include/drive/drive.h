@@ -86,7 +86,8 @@ typedef enum {
     DRIVE_ERR_RADIUS,    /**< every path of the cases needs a radius below the minimum    */
     DRIVE_ERR_SWEEP,     /**< the double arc would turn a full circle or more             */
     DRIVE_ERR_RANGE,     /**< a drive-board byte cannot hold the value (drive_cmd.h)      */
-    DRIVE_ERR_PATH       /**< path preparation: see drive_path.h                         */
+    DRIVE_ERR_PATH,      /**< path preparation: see drive_path.h                         */
+    DRIVE_ERR_TURN       /**< a turn over 90 degrees has no corner of the radius (drive_path.h) */
 } drive_status_t;
 
 /** Short English reason for a status ("ok" for DRIVE_OK). */
