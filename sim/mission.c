@@ -35,8 +35,8 @@ static int build_nominal(sim_mission_t *m, const sim_scenario_t *sc, char *err, 
          * path preparation inserts (drive_leg_solve()). */
         drive_pose_t to = mc->path[i].pose;
         drive_leg_t leg;
-        drive_status_t st = drive_leg_solve(&from, &to, mc->path_cfg.nominal_radius,
-                                            mc->path_cfg.reverse, &leg);
+        drive_status_t st =
+            drive_leg_solve(&from, &to, mc->path_cfg.nominal_radius, mc->path_cfg.reverse, &leg);
         if (st != DRIVE_OK) {
             snprintf(err, errlen,
                      "path[%zu]: no double arc from the previous point: %s (min_radius_m %.3f)", i,
