@@ -141,7 +141,11 @@
 #define RESHI CY_REG16(0x013C)
 
 /* Status register bits */
-#define SR_GIE 0x0008u
+#define SR_GIE    0x0008u
+#define SR_CPUOFF 0x0010u
+#define SR_OSCOFF 0x0020u
+#define SR_SCG0   0x0040u
+#define SR_SCG1   0x0080u
 
 #ifndef __ASSEMBLER__
 /* Status register access. */
