@@ -234,7 +234,7 @@ def merge_cycles(path, entries, images_dir, stack=None, source=None):
 
     Entries carry the image that measured them (`source`): a run replaces all of that image's
     earlier entries, so an entry the image no longer prints does not linger in a reused build
-    directory."""
+    directory. The static bounds tools/cycle_bound.py put into an entry (static_* keys) stay."""
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     with open(path + ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
@@ -245,12 +245,20 @@ def merge_cycles(path, entries, images_dir, stack=None, source=None):
                     report = json.load(f)
             except (OSError, ValueError):
                 pass
-        by_name = {e["name"]: e for e in report.get("entries", [])
-                   if source is None or e.get("image") != source}
+        # The static bounds of tools/cycle_bound.py (static_* keys) stay with their entry.
+        by_name = {}
+        for e in report.get("entries", []):
+            if source is not None and e.get("image") == source:
+                e = {k: v for k, v in e.items() if k == "name" or k.startswith("static_")}
+                if len(e) == 1:
+                    continue
+            by_name[e["name"]] = e
         for e in entries:
             if source is not None:
                 e["image"] = source
-            by_name[e["name"]] = e
+            old = by_name.get(e["name"], {})
+            by_name[e["name"]] = {**{k: v for k, v in old.items() if k.startswith("static_")},
+                                  **e}
         report["entries"] = [by_name[k] for k in sorted(by_name)]
         images = []
         if images_dir and os.path.isdir(images_dir):
@@ -371,8 +379,16 @@ class Chip:
         self.hooks = []
 
     def on_nmi(self):
-        self.set_bits(IE1, NMIIE, False)
-        self.set_bits(IFG1, NMIIFG, True)
+        """IE1 .. IFG2 read and written back in one command each: NMIIE off, NMIIFG on."""
+        for line in self.sim.cmd("md 0x0000 4"):
+            m = MD_RE.match(line)
+            if m:
+                b = [int(x, 16) for x in m.group(2).split()]
+                b[IE1] &= ~NMIIE & 0xFF
+                b[IFG1] |= NMIIFG
+                self.sim.cmd("mw 0x0000 " + " ".join(f"0x{x:02x}" for x in b))
+                return
+        raise SimError("`md 0x0000 4` returned nothing")
 
     def on_watch(self):
         """A stop that was no breakpoint: a watchpoint fired. mspdebug does not say which:

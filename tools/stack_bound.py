@@ -602,6 +602,8 @@ def nmi_rearm(image, root, reach):
                               "instruction before RETI (SLAU144): nested NMIs are not bounded")
     if not sites:
         return 0, "NMIIE not set again by the handler: no nesting", errors
+    if errors:
+        return 0, "NMIIE set before the handler's last instruction: nesting not bounded", errors
     return INTERRUPT_ENTRY, "NMIIE set as the last instruction before RETI: one more NMI on " \
         "the first one's 4 bytes", errors
 
