@@ -565,6 +565,21 @@ def vector_words(elf_path):
     return {a: w for a, w in elf.words(lambda s: s["name"] == ".vectors")}
 
 
+def write_script(args):
+    """The commands that set up an interactive simulator session like a run of this tool
+    (without the stops of the NMI emulation: mspdebug's own NMI entry applies there)."""
+    lines = ["# Written by tools/msp430sim.py --mspdebug-script: mspdebug -C THIS sim"]
+    lines += devices()
+    lines += [f"prog {os.path.abspath(args.elf)}", "reset",
+              f"mw 0x{IFG2:04x} 0x{UCA0TXIFG:02x}", f"mw 0x{UC1IFG:04x} 0x{UCA1TXIFG:02x}"]
+    cal = DCO_CAL[args.dco_cal]
+    if cal is not None:
+        lines.append(f"mw 0x{CAL_ADDR:04x} " + " ".join(f"0x{b:02x}" for b in cal))
+    os.makedirs(os.path.dirname(os.path.abspath(args.mspdebug_script)), exist_ok=True)
+    with open(args.mspdebug_script, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
 def data_lines(lines):
     return [l for l in lines if l and not l.startswith(("@", "#", SENTINEL))]
 
@@ -573,6 +588,10 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--elf", required=True, help="image to run")
+    ap.add_argument("--mspdebug-script", metavar="OUT",
+                    help="write the start-up commands of an interactive session instead of "
+                         "running: the devices, the image loaded and reset, the chip's reset "
+                         "state (`mspdebug -C OUT sim`; make debug SIM=1)")
     ap.add_argument("--max-cycles", type=int, default=200_000_000,
                     help="fail when the simulated MCLK count passes this (default 2e8)")
     ap.add_argument("--timeout", type=float, default=120, help="wall-clock limit, s")
@@ -610,6 +629,9 @@ def main():
     ap.add_argument("--verbose", action="store_true", help="echo the console")
     args = ap.parse_args()
 
+    if args.mspdebug_script:
+        write_script(args)
+        return 0
     log = open(args.log, "w") if args.log else None
     name = os.path.basename(args.elf)
     try:
