@@ -101,7 +101,7 @@ class Session:
             for dev, pin in STIMULI * 2:
                 for level in (1, 0):
                     self.sim.cmd(f"simio config {dev} set {pin} {level}")
-                    pc, regs = self.run_to(set(entries), slice_s=1.0)
+                    pc, regs = self.run_to(set(entries), slice_s=0.3)
                     if pc is not None:
                         return pc, regs
         finally:
