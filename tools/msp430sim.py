@@ -520,7 +520,9 @@ def run_image(args, log):
                 pending_line = ""
                 take(done)
                 pending_line = rest
-            cycles = sim.cycles()
+            # The count is read when a slice ran out (a hang shows there) or at the end, not
+            # at every breakpoint: a run with thousands of stops saves as many commands.
+            cycles = sim.cycles() if broken or pc in (halt_pc, until_pc) else 0
             if until_pc is not None and pc == until_pc:
                 sr = next(int(m.group(1), 16) for m in
                           (re.search(r"\(\s*SR:\s*([0-9a-fA-F]+)\)", l) for l in lines) if m)
