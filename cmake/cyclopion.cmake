@@ -41,14 +41,15 @@ if(CY_TARGET_MSP430)
     set(CY_BOARD_FLASH_BUDGET 49152)
     set(CY_BOARD_RAM_BUDGET 6144)
 
-    # cy_msp430_image(NAME KIND board|test SOURCES src... [LINK lib...])
+    # cy_msp430_image(NAME KIND board|test SOURCES src... [LINK lib...] [CONSOLE uart])
     # An MSP430 ELF in bin/. Board images get the UART console, test images the simulator
-    # console; both the F2618's memory map. Board images are checked against the project
+    # console (CONSOLE uart: the board's, for tests of it under tools/msp430sim.py --uart);
+    # both the F2618's memory map. Board images are checked against the project
     # budget (48 KB flash, 6 KB RAM with the stack: the static part here, static + proven
     # worst-case stack in target.stack_bound.*), test images against the part; the sizes are
     # recorded in images/<name>.json.
     function(cy_msp430_image name)
-        cmake_parse_arguments(A "" "KIND" "SOURCES;LINK" ${ARGN})
+        cmake_parse_arguments(A "" "KIND;CONSOLE" "SOURCES;LINK" ${ARGN})
         add_executable(${name} ${A_SOURCES})
         cy_warnings(${name})
         if(A_KIND STREQUAL "board")
@@ -57,6 +58,9 @@ if(CY_TARGET_MSP430)
         else()
             set(ld ${PROJECT_SOURCE_DIR}/hal/msp430/ld/f2618_test.ld)
             set(console cy_hal_msp430_simcon)
+        endif()
+        if(A_CONSOLE STREQUAL "uart")
+            set(console cy_hal_msp430_uart)
         endif()
         target_link_libraries(${name} PRIVATE ${A_LINK} cy_hal_msp430 ${console} cy_mspabi)
         target_link_options(${name} PRIVATE -T ${ld} -L ${PROJECT_SOURCE_DIR}/hal/msp430/ld
