@@ -3,6 +3,8 @@
  */
 #include "sim/gonio.h"
 
+#include "sim/scenario_keys.h" /* generated: SIM_BEACON_KIND_* */
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,6 +31,7 @@ typedef struct {
     double t_index;
     double tx, ty;
     double half; /* half of the apparent width (angle), < 0: a glint of fixed width */
+    int flat;    /* a flat strip facing the vehicle (else a post) */
     double side; /* -1 rising edge (beam at centre - half), +1 falling (centre + half) */
 } crossing_t;
 
@@ -38,6 +41,8 @@ static double target_half(const crossing_t *c, double px, double py)
         return -c->half;
     double d = hypot(c->tx - px, c->ty - py);
     double r = c->half; /* diameter / 2 */
+    if (c->flat) /* a strip of width 2r facing the vehicle */
+        return d > 0.0 ? atan(r / d) : 0.5 * M_PI;
     return d > r ? asin(r / d) : 0.5 * M_PI;
 }
 
@@ -96,13 +101,13 @@ static int by_time(const void *a, const void *b)
  */
 static size_t add_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const sim_segment_t *seg,
                         double t_index, double t_from, double t_to, sim_rng_t *rng, double tx,
-                        double ty, double half, int16_t target, sim_gonio_event_t *out, size_t n,
-                        size_t max)
+                        double ty, double half, int flat, int16_t target, sim_gonio_event_t *out,
+                        size_t n, size_t max)
 {
     double wrate = 2.0 * M_PI * cfg->rev_per_s;
     double te[2];
     for (int e = 0; e < 2; e++) {
-        crossing_t c = {cfg, seg, t_index, tx, ty, half, e == 0 ? -1.0 : 1.0};
+        crossing_t c = {cfg, seg, t_index, tx, ty, half, flat, e == 0 ? -1.0 : 1.0};
         te[e] = solve(&c, t_from, t_to);
         if (isnan(te[e]))
             continue;
@@ -140,10 +145,11 @@ size_t sim_gonio_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const s
     size_t n = 0;
     for (size_t i = 0; i < w->n_beacons; i++)
         n = add_edges(cfg, w, seg, t_index, t_from, t_to, rng, w->beacon[i].x, w->beacon[i].y,
-                      0.5 * w->beacon[i].diameter, (int16_t)i, out, n, max);
+                      0.5 * w->beacon[i].diameter, w->beacon[i].kind == SIM_BEACON_KIND_FLAT,
+                      (int16_t)i, out, n, max);
     for (size_t i = 0; i < w->n_spurious; i++)
         n = add_edges(cfg, w, seg, t_index, t_from, t_to, rng, w->spurious[i].x, w->spurious[i].y,
-                      -0.5 * w->spurious[i].width, (int16_t)(-1 - (int)i), out, n, max);
+                      -0.5 * w->spurious[i].width, 0, (int16_t)(-1 - (int)i), out, n, max);
     qsort(out, n, sizeof out[0], by_time);
     return n;
 }

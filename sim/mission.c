@@ -78,8 +78,18 @@ int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, siz
     for (size_t i = 0; i < sc->world.n_beacons; i++) {
         m->beacons[i].x = q16(sc->world.beacon[i].x);
         m->beacons[i].y = q16(sc->world.beacon[i].y);
+        m->refl[i].d = q16(sc->world.beacon[i].diameter);
+        m->refl[i].flat = sc->world.beacon[i].kind == SIM_BEACON_KIND_FLAT;
     }
-    if (!optical_map_compile(&mc->map, m->beacons, (uint8_t)sc->world.n_beacons, m->beacons8)) {
+    uint8_t bad[2];
+    int8_t st = optical_map_compile(&mc->map, m->beacons, m->refl, (uint8_t)sc->world.n_beacons,
+                                    m->beacons8, m->dk, bad);
+    if (st == OPTICAL_E_DEGENERATE) {
+        snprintf(err, errlen, "beacons[%u] and beacons[%u] coincide: the main board's map refuses "
+                 "them", bad[0], bad[1]);
+        return -1;
+    }
+    if (st != OPTICAL_OK) {
         snprintf(err, errlen,
                  "beacons: %zu of them; the main board needs 3..%d within +-128 m of one "
                  "point (a site of at most 256 m by 256 m)",
@@ -103,7 +113,11 @@ int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, siz
         sc->mode == SIM_SCENARIO_MODE_FULL ? DRIVE_MODE_FULL : DRIVE_MODE_SIMPLIFIED);
     mc->counts_per_turn = (uint16_t)sc->counts;
     optical_config_default(&mc->optical);
-    mc->optical.beacon_diameter = q16(sc->world.beacon[0].diameter);
+    /* the sighting's error bounds of this goniometer and gyro */
+    fx_angle_t noise = fx_angle_from_rad(sc->gonio_noise), step = fx_angle_from_rad(sc->gyro_step);
+    mc->optical.bearing_err = OPTICAL_BEARING_ERR(noise);
+    mc->optical.bearing_err_moving = OPTICAL_BEARING_ERR_MOVING(noise, step);
+
     if (build_nominal(m, sc, err, errlen))
         return -1;
 

@@ -4,6 +4,7 @@
  */
 #include "sim/scenario.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -27,6 +28,16 @@ static int parse_root(json_t *root, const char *who, sim_scenario_t *sc, char *e
     for (size_t i = 0; i < sc->n_path; i++)
         if (sc->path[i].speed == 0.0)
             sc->path[i].speed = sc->speed;
+    /* Two reflectors in one place: an impossible world (and an ambiguous map). */
+    size_t a, b;
+    if (sim_world_coincident(&sc->world, &a, &b)) {
+        const sim_beacon_t *p = &sc->world.beacon[a], *q = &sc->world.beacon[b];
+        return ac_fail(err, errlen,
+                       "beacons[%zu] (%g, %g) and beacons[%zu] (%g, %g) coincide: %.4g m apart, "
+                       "closer than their radii (%g + %g m)",
+                       a, p->x, p->y, b, q->x, q->y, hypot(p->x - q->x, p->y - q->y),
+                       0.5 * p->diameter, 0.5 * q->diameter);
+    }
     return 0;
 }
 

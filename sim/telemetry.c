@@ -22,6 +22,9 @@
 
 #define DEG (M_PI / 180.0)
 
+/* A quality in Q16 m per mrad to m per count of a 50,000-count goniometer. */
+#define SIM_PER_COUNT (2.0 * M_PI / 50000.0 * 1000.0 / 65536.0)
+
 static double wrap_deg(double d)
 {
     d = fmod(d, 360.0);
@@ -77,12 +80,13 @@ static FILE *open_log(const char *dir, const char *name, const char *header, cha
 static int write_static_logs(const char *dir, const sim_scenario_t *sc, const sim_path_t *nominal,
                              char *err, size_t errlen)
 {
-    FILE *f = open_log(dir, "beacons.csv", "x_m,y_m,diameter_m\n", err, errlen);
+    FILE *f = open_log(dir, "beacons.csv", "x_m,y_m,diameter_m,kind\n", err, errlen);
     if (!f)
         return -1;
     for (size_t i = 0; i < sc->world.n_beacons; i++)
-        fprintf(f, "%.4f,%.4f,%.4f\n", sc->world.beacon[i].x, sc->world.beacon[i].y,
-                sc->world.beacon[i].diameter);
+        fprintf(f, "%.4f,%.4f,%.4f,%s\n", sc->world.beacon[i].x, sc->world.beacon[i].y,
+                sc->world.beacon[i].diameter,
+                sc->world.beacon[i].kind == SIM_BEACON_KIND_FLAT ? "flat" : "cylinder");
     fclose(f);
     f = open_log(dir, "path.csv", "s_m,x_m,y_m\n", err, errlen);
     if (!f)
@@ -118,7 +122,8 @@ int sim_telemetry_open(sim_telemetry_t *tm, const char *log_dir, const char *lcm
                                 : NULL;
         tm->f_fix = tm->f_est ? open_log(log_dir, "fixes.csv",
                                          "t_s,ref_t_s,accepted,x_m,y_m,heading_deg,error_m,"
-                                         "heading_error_deg,quality,used,status\n",
+                                         "heading_error_deg,quality,err_m,gate_m,jump_m,"
+                                         "resid_deg,agree,dropped,used,status,reason\n",
                                          err, errlen)
                               : NULL;
         tm->f_cmd = tm->f_fix ? open_log(log_dir, "commands.csv",
@@ -231,9 +236,31 @@ static void trace_fix(const main_board_fix_event_t *ev, double t, sim_pose_t tp,
                     : "");
 }
 
+/* The quality figures of a fix attempt (optical_fix_t), in the logs' units. */
+typedef struct {
+    double quality; /* m per count (-1: no solution) */
+    double err, gate, jump, resid_deg;
+} fix_quality_t;
+
+static fix_quality_t quality_of(const main_board_fix_event_t *ev)
+{
+    fix_quality_t q = {-1, -1, 0, -1, 0};
+    const optical_fix_t *f = &ev->fix;
+    if (f->quality != UINT32_MAX && ev->n > 0) {
+        q.quality = f->quality * SIM_PER_COUNT;
+        q.err = fx_q16_to_double(f->err);
+        q.jump = hypot(fx_q16_to_double(f->pose.x - ev->approx.x),
+                       fx_q16_to_double(f->pose.y - ev->approx.y));
+    }
+    q.gate = fx_q16_to_double(f->gate);
+    q.resid_deg = f->resid * 360.0 / 65536.0;
+    return q;
+}
+
 static void publish_fix(sim_telemetry_t *tm, const main_board_fix_event_t *ev, double tref,
                         int accepted, double err)
 {
+    fix_quality_t q = quality_of(ev);
     cyclopion_fix_t m;
     memset(&m, 0, sizeof m);
     m.utime = (int64_t)(posix_now_ns() / 1000);
@@ -242,12 +269,18 @@ static void publish_fix(sim_telemetry_t *tm, const main_board_fix_event_t *ev, d
     m.x = fx_q16_to_double(ev->fix.pose.x);
     m.y = fx_q16_to_double(ev->fix.pose.y);
     m.heading_deg = fx_angle_to_deg(ev->fix.pose.heading);
-    m.quality = ev->fix.quality / 65536.0;
+    m.quality = q.quality;
+    m.err_m = q.err;
+    m.gate_m = q.gate;
+    m.jump_m = q.jump;
+    m.resid_deg = q.resid_deg;
+    m.agree = (int8_t)ev->fix.n_agree;
+    m.dropped = (int8_t)ev->fix.n_dropped;
     m.error_m = err;
     for (int i = 0; i < 3; i++)
         m.used[i] = accepted ? ev->fix.used[i] : -1;
-    char reason[32];
-    snprintf(reason, sizeof reason, accepted ? "" : "status %d", ev->status);
+    char reason[16];
+    snprintf(reason, sizeof reason, "%s", optical_status_name(ev->status));
     m.reason = reason;
     cyclopion_fix_t_publish(tm->lcm, "CYCLOPION_FIX", &m);
 
@@ -296,12 +329,17 @@ void sim_telemetry_fix(void *ctx, const main_board_fix_event_t *ev)
     } else {
         r->fixes_rejected++;
     }
-    if (tm->f_fix)
-        fprintf(tm->f_fix, "%.6f,%.6f,%d,%.6f,%.6f,%.5f,%.6f,%.5f,%u,%d;%d;%d,%d\n", t, tref,
-                accepted, fx_q16_to_double(ev->fix.pose.x), fx_q16_to_double(ev->fix.pose.y),
-                fx_angle_to_deg(ev->fix.pose.heading), err, herr, ev->fix.quality,
+    if (tm->f_fix) {
+        fix_quality_t q = quality_of(ev);
+        fprintf(tm->f_fix,
+                "%.6f,%.6f,%d,%.6f,%.6f,%.5f,%.6f,%.5f,%.6f,%.6f,%.6f,%.6f,%.4f,%u,%u,%d;%d;%d,%d,"
+                "%s\n",
+                t, tref, accepted, fx_q16_to_double(ev->fix.pose.x),
+                fx_q16_to_double(ev->fix.pose.y), fx_angle_to_deg(ev->fix.pose.heading), err, herr,
+                q.quality, q.err, q.gate, q.jump, q.resid_deg, ev->fix.n_agree, ev->fix.n_dropped,
                 accepted ? ev->fix.used[0] : -1, accepted ? ev->fix.used[1] : -1,
-                accepted ? ev->fix.used[2] : -1, ev->status);
+                accepted ? ev->fix.used[2] : -1, ev->status, optical_status_name(ev->status));
+    }
     if (tm->lcm)
         publish_fix(tm, ev, tref, accepted, err);
 }

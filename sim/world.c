@@ -1,7 +1,23 @@
 /*
- * world.c - line of sight in the simulated building.
+ * world.c - the simulated building: overlapping beacons, line of sight.
  */
 #include "sim/world.h"
+
+#include <math.h>
+
+bool sim_world_coincident(const sim_world_t *w, size_t *i, size_t *j)
+{
+    for (size_t a = 0; a < w->n_beacons; a++)
+        for (size_t b = a + 1; b < w->n_beacons; b++) {
+            const sim_beacon_t *p = &w->beacon[a], *q = &w->beacon[b];
+            if (hypot(p->x - q->x, p->y - q->y) < 0.5 * (p->diameter + q->diameter)) {
+                *i = a;
+                *j = b;
+                return true;
+            }
+        }
+    return false;
+}
 
 /* Signed area of the triangle (a, b, c): > 0 when c is left of a->b. */
 static double orient(double ax, double ay, double bx, double by, double cx, double cy)

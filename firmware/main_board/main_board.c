@@ -61,6 +61,10 @@ static struct {
     optical_pose_t approx; /* the last sighting's latch: the reference instant */
     optical_fix_t fix;
     uint16_t fix_ref; /* reference latch of the last good fix */
+    /* What dead reckoning is worth (O6): its uncertainty since the last accepted fix, grown
+     * from one attempt's reference pose to the next (last). */
+    optical_unc_t unc;
+    optical_pose_t last;
     /* the pose request */
     uint8_t pose_state;
     uint16_t pose_ms;
@@ -296,17 +300,18 @@ static int32_t rise_of(uint8_t i)
  * a width later (up to a few ms: millimetres at 1 m/s). Each sighting's pose is interpolated
  * between its latch and the next one (extrapolated for the last) by the angle clock, which
  * is time; then the poses are put in the sightings' (angle) order. In place: RAM is short.
+ * The @p n poses are those of capture-order sightings skip..skip + n - 1 (@p order counts
+ * from skip).
  */
-static __attribute__((noinline)) void centre_and_sort(const uint8_t *order)
+static __attribute__((noinline)) void centre_and_sort(const uint8_t *order, uint8_t n, uint8_t skip)
 {
     optical_pose_t *l = mb.latched;
-    uint8_t n = mb.n;
     optical_pose_t before_last = l[n - 2]; /* the last one extrapolates from it */
     for (uint8_t i = 0; i < n; i++) {
         uint8_t a = i + 1u < n ? i : (uint8_t)(i - 1u), b = (uint8_t)(a + 1u);
         const optical_pose_t pa = i + 1u < n ? l[a] : before_last, pb = l[b];
-        int32_t span = rise_of(b) - rise_of(a);
-        int32_t half = (int32_t)((mb.rev->s[i].width + 1u) >> 1);
+        int32_t span = rise_of((uint8_t)(b + skip)) - rise_of((uint8_t)(a + skip));
+        int32_t half = (int32_t)((mb.rev->s[i + skip].width + 1u) >> 1);
         int32_t frac = 0; /* Q16 */
         if (span > 0 && fx_div_shift(half, span, 16, &frac)) {
             l[i].x += fx_mul_q16(pb.x - pa.x, frac);
@@ -331,6 +336,46 @@ static __attribute__((noinline)) void centre_and_sort(const uint8_t *order)
     }
 }
 
+/*
+ * Latches lost (the nav board keeps its last 16: a revolution of more pulses overwrites its
+ * first ones before the request is served): when only the first k of the revolution are
+ * missing, its other sightings still make a fix. Drops the sorted sightings of capture order
+ * below k from @p s and @p order (the rest renumbered from k), the first k latches, and moves
+ * latch_first on; returns k, or -1 when others are missing or fewer than three would remain.
+ */
+static __attribute__((noinline)) int8_t drop_unlatched(optical_sighting_t *s, uint8_t *order)
+{
+    uint8_t k = 0, n = mb.n;
+    while (k < n && !(mb.latch_have & (1u << k)))
+        k++;
+    uint16_t rest = (uint16_t)(((1u << n) - 1u) & ~((1u << k) - 1u));
+    if (mb.latch_have != rest || n - k < 3)
+        return -1;
+    uint8_t m = 0;
+    for (uint8_t j = 0; j < n; j++) {
+        if (order[j] < k)
+            continue;
+        s[m] = s[j];
+        order[m++] = (uint8_t)(order[j] - k);
+    }
+    for (uint8_t i = k; i < n; i++)
+        mb.latched[i - k] = mb.latched[i];
+    mb.latch_first = (uint16_t)(mb.latch_first + k);
+    return (int8_t)k;
+}
+
+/* The dead reckoning's uncertainty grown from the last attempt's reference pose to this one's
+ * (mb.approx): the straight distance and the heading change between them (revolutions come
+ * half a second apart: the chord is the travel). */
+static __attribute__((noinline)) void grow_unc(void)
+{
+    int32_t dx = mb.approx.x - mb.last.x, dy = mb.approx.y - mb.last.y;
+    int32_t dh = (int32_t)(mb.approx.heading - mb.last.heading);
+    uint32_t d = fx_hypot(dx, dy);
+    optical_unc_grow(&mb.cfg->optical, &mb.unc, d > (uint32_t)INT32_MAX ? INT32_MAX : (fx_q16_t)d,
+                     dh < 0 ? 0u - (uint32_t)dh : (uint32_t)dh);
+}
+
 /* All latches in (or the wait is over): run the optical pipeline. */
 static __attribute__((noinline)) void fix_finish(void)
 {
@@ -343,18 +388,27 @@ static __attribute__((noinline)) void fix_finish(void)
         fix_done(OPTICAL_E_REV, s, 0);
         return;
     }
-    if (mb.latch_have != all) {
+    int8_t skip = 0;
+    if (mb.latch_have != all && (skip = drop_unlatched(s, order)) < 0) {
         mb.stats.latch_timeouts++;
         fix_done(OPTICAL_E_REV, s, mb.n);
         return;
     }
+    uint8_t m = (uint8_t)(mb.n - (uint8_t)skip);
     /* Reference instant: the last sighting's rising edge; its latch is the approximate pose
      * and the nav board applies the fix to that latch. */
-    mb.approx = mb.latched[mb.n - 1];
-    centre_and_sort(order);
+    mb.approx = mb.latched[m - 1u];
+    centre_and_sort(order, m, (uint8_t)skip);
+    grow_unc();
     int8_t st =
-        optical_fix(&mb.cfg->map, &mb.cfg->optical, &mb.approx, s, mb.n, mb.latched, &mb.fix);
-    fix_done(st, s, mb.n);
+        optical_fix(&mb.cfg->map, &mb.cfg->optical, &mb.approx, &mb.unc, s, m, mb.latched, &mb.fix);
+    if (st == OPTICAL_OK) {
+        optical_unc_after_fix(&mb.cfg->optical, &mb.fix, &mb.unc);
+        mb.last = mb.fix.pose;
+    } else {
+        mb.last = mb.approx;
+    }
+    fix_done(st, s, m);
 }
 
 /* Send the fix to the nav board (Buffer Full) for its reference latch. */
@@ -499,6 +553,12 @@ drive_status_t main_board_init(const main_board_config_t *cfg)
         cfg->counts_per_turn == 0)
         return DRIVE_ERR_PARAM;
     mb.cfg = cfg;
+    /* Nothing known of the initial vector but the configuration's largest uncertainty. */
+    mb.unc.pos = cfg->optical.jump_max;
+    mb.unc.heading = cfg->optical.turn_max;
+    mb.last.x = cfg->start.x;
+    mb.last.y = cfg->start.y;
+    mb.last.heading = cfg->start.heading;
 
     optical_capture_init(&mb.cap);
     hal_capture_init(HAL_CAPTURE_INDEX, on_index, &mb.cap);

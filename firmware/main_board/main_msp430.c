@@ -14,12 +14,14 @@
 
 static const optical_xy_t beacons[MISSION_N_BEACONS] = MISSION_BEACONS;
 static const optical_xy8_t beacons8[MISSION_N_BEACONS] = MISSION_BEACONS8;
+static const uint32_t reflectors_dk[MISSION_N_BEACONS] = MISSION_DK;
 /* RAM: the board prepares the points in place. */
 static drive_path_point_t path[MISSION_N_PATH] = MISSION_PATH;
 
 /* The download, a constant in flash (the board keeps it by reference). */
 static const main_board_config_t cfg = {
-    .map = {beacons, MISSION_N_BEACONS, beacons8, MISSION_ORIGIN_X, MISSION_ORIGIN_Y},
+    .map = {beacons, MISSION_N_BEACONS, beacons8, MISSION_ORIGIN_X, MISSION_ORIGIN_Y,
+            reflectors_dk, MISSION_DKMIN},
     .path = path,
     .n_path = MISSION_N_PATH,
     .start = MISSION_START,
@@ -27,7 +29,7 @@ static const main_board_config_t cfg = {
     .path_cfg = MISSION_PATH_CONFIG(MISSION_MIN_RADIUS),
     .seq_cfg = MISSION_SEQ_CONFIG(MISSION_FULL_TRAVEL ? DRIVE_MODE_FULL : DRIVE_MODE_SIMPLIFIED),
     .counts_per_turn = MISSION_COUNTS,
-    .optical = OPTICAL_CONFIG_DEFAULT(MISSION_BEACON_DIAMETER),
+    .optical = OPTICAL_CONFIG(MISSION_GONIO_NOISE, MISSION_GYRO_STEP),
 };
 
 int main(void)

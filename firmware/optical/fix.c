@@ -36,17 +36,15 @@
 #define MULTI   OPTICAL_MULTI
 #define DROPPED OPTICAL_DROPPED
 
-/* O6: other identified sightings whose residual is checked at most (a misidentified triplet
- * moves the fix so far that any of them shows it). */
-#define CHECK_MAX 4
-
-/* Heading-interval refinement passes at most. */
-#define MAX_PASSES 6
+/* Heading-interval refinement passes at most, and the identified beyond three that end them
+ * early (enough to check the fix). */
+#define MAX_PASSES  6
+#define PASS_ENOUGH 4
 
 /* The work area (fastmath.h: the kernels share it). */
 #define W (optical_work)
 
-static const optical_config_t defaults = OPTICAL_CONFIG_DEFAULT(5243 /* 0.08 m */);
+static const optical_config_t defaults = OPTICAL_CONFIG_DEFAULT;
 
 void optical_config_default(optical_config_t *cfg)
 {
@@ -101,14 +99,36 @@ static bool coords_ok(fx_q16_t x, fx_q16_t y)
 
 /* ------------------------------------------------------------------ map */
 
-bool optical_map_compile(optical_map_t *map, const optical_xy_t *b, uint8_t n, optical_xy8_t *b8)
+/* Do beacons i and j overlap: centres closer than the sum of their radii (d_i + d_j) / 2?
+ * In 2^-12 m (each component and the sum floored: the squares stay within 32 bits). */
+static bool coincide(const optical_xy_t *b, const optical_refl_t *r, uint8_t i, uint8_t j)
 {
-    if (map == NULL || b == NULL || b8 == NULL || n < 3 || n > OPTICAL_MAX_BEACONS)
-        return false;
+    uint32_t rs = ((uint32_t)r[i].d + (uint32_t)r[j].d) >> 5;
+    uint32_t dx = umag(b[i].x - b[j].x) >> 4, dy = umag(b[i].y - b[j].y) >> 4;
+    return dx < rs && dy < rs && dx * dx + dy * dy < rs * rs;
+}
+
+static int8_t compile_fail(uint8_t bad[2], uint8_t i, uint8_t j, int8_t st)
+{
+    if (bad) {
+        bad[0] = i;
+        bad[1] = j;
+    }
+    return st;
+}
+
+int8_t optical_map_compile(optical_map_t *map, const optical_xy_t *b, const optical_refl_t *refl,
+                           uint8_t n, optical_xy8_t *b8, uint32_t *dk, uint8_t bad[2])
+{
+    if (map == NULL || b == NULL || refl == NULL || b8 == NULL || dk == NULL || n < 3 ||
+        n > OPTICAL_MAX_BEACONS)
+        return compile_fail(bad, 0, 0, OPTICAL_E_ARG);
     int32_t lo[2] = {INT32_MAX, INT32_MAX}, hi[2] = {INT32_MIN, INT32_MIN};
+    fx_q16_t dmin = OPTICAL_REFL_MAX;
     for (uint8_t k = 0; k < n; k++) {
-        if (!coords_ok(b[k].x, b[k].y))
-            return false;
+        if (!coords_ok(b[k].x, b[k].y) || refl[k].d <= 0 || refl[k].d > OPTICAL_REFL_MAX)
+            return compile_fail(bad, k, k, OPTICAL_E_ARG);
+        dmin = refl[k].d < dmin ? refl[k].d : dmin;
         int32_t v[2] = {b[k].x, b[k].y};
         for (uint8_t c = 0; c < 2; c++) {
             lo[c] = v[c] < lo[c] ? v[c] : lo[c];
@@ -121,18 +141,25 @@ bool optical_map_compile(optical_map_t *map, const optical_xy_t *b, uint8_t n, o
         int32_t mid = lo[c] + (int32_t)(((uint32_t)hi[c] - (uint32_t)lo[c]) >> 1);
         o[c] = (int32_t)((uint32_t)mid & ~(uint32_t)(FX_Q16_ONE - 1));
         if (hi[c] - o[c] >= OPTICAL_MAP_REACH || o[c] - lo[c] > OPTICAL_MAP_REACH)
-            return false;
+            return compile_fail(bad, 0, 0, OPTICAL_E_ARG);
     }
+    for (uint8_t i = 0; i < n; i++)
+        for (uint8_t j = (uint8_t)(i + 1u); j < n; j++)
+            if (coincide(b, refl, i, j))
+                return compile_fail(bad, i, j, OPTICAL_E_DEGENERATE);
     for (uint8_t k = 0; k < n; k++) { /* floor((b - o) / 2^8), in [-2^15, 2^15) */
         b8[k].x = (int16_t)(uint16_t)((uint32_t)(b[k].x - o[0]) >> 8);
         b8[k].y = (int16_t)(uint16_t)((uint32_t)(b[k].y - o[1]) >> 8);
+        dk[k] = optical_dk(refl[k].d) | (refl[k].flat ? OPTICAL_DK_FLAT : 0u);
     }
     map->b = b;
     map->n = n;
     map->b8 = b8;
     map->ox = o[0];
     map->oy = o[1];
-    return true;
+    map->dk = dk;
+    map->dkmin = optical_dk(dmin);
+    return OPTICAL_OK;
 }
 
 /* ------------------------------------------------------------------ revolution */
@@ -184,12 +211,12 @@ int8_t optical_rev_order(const optical_rev_t *rev, uint16_t counts_per_turn,
  * written) when @p map is NULL, map->n lies outside [3, OPTICAL_MAX_BEACONS] or approx's x or
  * y outside (-OPTICAL_COORD_LIMIT, OPTICAL_COORD_LIMIT); else true and: b, nb from @p map;
  * x, y and head = a16(heading) from @p approx; amax8 = eps8 = min(m8 + 2, 0xFFFF) with m8 =
- * min(ceil(window_pos / 2^8), 0xFFFF) (2^-8 m), lever8 = 0 (as standing); @p wd: dk = (D
- * 10430 mod 2^32) >> 8, x, y as approx, eps8 = m8, tol8 = min(dist_tol >> 8, 0xFFFF), rel16 =
- * min(dist_rel, 0xFFFF), flat.
+ * min(ceil(@p pos / 2^8), 0xFFFF) (2^-8 m: the windows' position uncertainty), lever8 = 0 (as
+ * standing); @p wd: x, y as approx, eps8 = m8, tol8 = min(dist_tol >> 8, 0xFFFF), rel16 =
+ * min(dist_rel, 0xFFFF).
  */
 static bool setup(const optical_map_t *map, const optical_config_t *cfg,
-                  const optical_pose_t *approx, optical_width_t *wd)
+                  const optical_pose_t *approx, fx_q16_t pos, optical_width_t *wd)
 {
     if (map == NULL || map->n < 3 || map->n > OPTICAL_MAX_BEACONS ||
         !coords_ok(approx->x, approx->y))
@@ -204,15 +231,12 @@ static bool setup(const optical_map_t *map, const optical_config_t *cfg,
     W.head = a16(approx->heading);
     /* the expected angles come from offsets floored to 2^-8 m: that adds up to sqrt 2 units
      * to the position uncertainty */
-    uint16_t e8 = m8((uint32_t)cfg->window_pos);
+    uint16_t e8 = m8((uint32_t)pos);
     W.amax8 = W.eps8 = sat16((uint32_t)e8 + 2u);
     W.lever8 = 0;
-    /* D (m) * 2^8 * 2^16 / (2 pi) = D (Q16) * 10430.378 / 2^8 */
-    wd->dk = ((uint32_t)cfg->beacon_diameter * 10430u) >> 8;
     wd->eps8 = e8;
     wd->tol8 = sat16((uint32_t)cfg->dist_tol >> 8);
     wd->rel16 = sat16((uint32_t)cfg->dist_rel);
-    wd->flat = cfg->beacon_flat;
     return true;
 }
 
@@ -223,7 +247,11 @@ static void fix_init(optical_fix_t *out)
     for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++)
         out->ident[i] = -1;
     out->n_ident = 0;
+    out->n_agree = 0;
+    out->n_dropped = 0;
     out->widened = 0;
+    out->gate = 0;
+    out->resid = 0;
 }
 
 /* The bucket index of the sorted th[0..n): bstart[b] = the first j with th[j] >> 12 >= b, 0
@@ -260,12 +288,13 @@ static uint8_t sort_standing(const optical_sighting_t *s, uint16_t wmin)
 
 /*
  * The both-ways uniqueness: every sorted sighting j whose match k = sm[j] is a beacon is kept
- * when bm[k] = j and its width fits (O5, asked once per (j, k): wchk[j] caches k, bit 7 set
+ * when bm[k] = j and its width fits beacon k's compiled reflector @p dk[k] (O5, asked once per (j, k): wchk[j] caches k, bit 7 set
  * for a misfit); otherwise sm[j] becomes NONE. With @p lohi non-NULL, every kept match
  * narrows the heading-offset interval [lohi[0], lohi[1]] (2^-16 turn) to its offset +- its
  * position part. Returns the kept.
  */
-static int8_t unique(const optical_width_t *wd, const optical_sighting_t *s, int16_t *lohi)
+static int8_t unique(const optical_width_t *wd, const uint32_t *dk, const optical_sighting_t *s,
+                     int16_t *lohi)
 {
     int8_t found = 0;
     for (uint8_t j = 0; j < W.n; j++) {
@@ -276,7 +305,7 @@ static int8_t unique(const optical_width_t *wd, const optical_sighting_t *s, int
             uint8_t c = W.wchk[j];
             if ((c & 0x7Fu) != k) {
                 c = k;
-                if (!optical_width_ok(wd, &W.b[k], s[W.ord[j]].width))
+                if (!optical_width_ok(wd, &W.b[k], dk[k], s[W.ord[j]].width))
                     c |= 0x80u;
                 W.wchk[j] = c;
             }
@@ -297,39 +326,46 @@ static int8_t unique(const optical_width_t *wd, const optical_sighting_t *s, int
     return found;
 }
 
-/* O6's plausibility of the fix @p p against the approximate pose @p ap: OPTICAL_E_JUMP beyond
- * cfg->jump_max (|dx| + |dy| <= jump_max bounds the distance without the root), else
- * OPTICAL_E_TURN beyond cfg->turn_max, else OPTICAL_OK. */
-static int8_t jump_check(const optical_pose_t *p, const optical_pose_t *ap,
-                         const optical_config_t *cfg)
+/* Error bounds are capped at 4096 m (2^28 in Q16): four of them and a dead-reckoning
+ * uncertainty (at most jump_max, 8192 m) add up within int32. */
+#define ERR_CAP (1l << 28)
+
+/* The length of (dx, dy) (Q16 m) in 2^-8 m, at least the length and at most 3 units more
+ * (each component's floor plus one, the root's floor plus one); 0xFFFF when a component
+ * reaches 181 m (the squares' sum would pass 32 bits). */
+static uint16_t len8(int32_t dx, int32_t dy)
 {
-    int32_t dx = p->x - ap->x, dy = p->y - ap->y;
-    uint32_t jx = umag(dx), jy = umag(dy), jm = (uint32_t)cfg->jump_max;
-    if ((jx > jm || jy > jm - jx) && fx_hypot(dx, dy) > jm)
-        return OPTICAL_E_JUMP;
-    if (umag((int32_t)(p->heading - ap->heading)) > cfg->turn_max)
-        return OPTICAL_E_TURN;
-    return OPTICAL_OK;
+    uint32_t ax = umag(dx), ay = umag(dy);
+    if ((ax | ay) >= 0xB50000ul)
+        return 0xFFFFu;
+    uint16_t x8 = (uint16_t)(ax >> 8) + 1u, y8 = (uint16_t)(ay >> 8) + 1u;
+    return (uint16_t)(fx_sqrt32((uint32_t)x8 * x8 + (uint32_t)y8 * y8) + 1u);
 }
 
-/* O6's residuals: of the identified other than the triplet @p t3, the first CHECK_MAX, each
- * beacon's bearing from the fix @p p against its sighting (reference frame, u.sv.ang);
- * OPTICAL_E_DISAGREE at the first beyond @p tol (2^-16 turn), else OPTICAL_OK. */
-static int8_t resid_check(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol)
+/* Milliradians of the binary angle @p a (below 2^31) in 2^-8 mrad, rounded up: a16(a) 2 pi
+ * 1000 / 2^16 = a16(a) 24.54 (24.54 = 6283 / 256; at most 0xFFFF: 14.6 degrees). */
+static uint16_t mrad8_of(fx_angle_t a)
 {
-    uint16_t h16 = a16(p->heading);
-    uint8_t left = CHECK_MAX;
-    for (uint8_t i = 0; i < W.m && left; i++) {
-        if (i == t3[0] || i == t3[1] || i == t3[2])
-            continue;
-        left--;
-        const optical_xy_t *bk = &W.b[W.sm[W.pos[i]]];
-        uint16_t res =
-            (uint16_t)(optical_angle16(bk->x - p->x, bk->y - p->y) - h16 - a16(W.u.sv.ang[i]));
-        if (abs16(res) > tol)
-            return OPTICAL_E_DISAGREE;
-    }
-    return OPTICAL_OK;
+    return sat16((((uint32_t)a16(a) * 6283u) >> 8) + 1u);
+}
+
+/* The predicted position error bound of a fix of quality @p q (Q16 m per mrad) for bearing
+ * errors of @p mrad8 (2^-8 mrad): q mrad8 / 2^8 rounded, Q16 m, at most ERR_CAP. */
+static fx_q16_t err_of(uint32_t q, uint16_t mrad8)
+{
+    int32_t v;
+    return q < (uint32_t)ERR_CAP && fx_mul_shift((int32_t)q, mrad8, 8, &v) && v < ERR_CAP ? v
+                                                                                          : ERR_CAP;
+}
+
+/* The octagonal norm of (dx, dy) (Q16 m) in 2^-8 m, each component capped at 256 m: between
+ * the length and 1.118 times it. */
+static uint16_t oct8(int32_t dx, int32_t dy)
+{
+    uint32_t ax = umag(dx), ay = umag(dy);
+    uint16_t x8 = ax >= (1ul << 24) ? 0xFFFFu : (uint16_t)(ax >> 8);
+    uint16_t y8 = ay >= (1ul << 24) ? 0xFFFFu : (uint16_t)(ay >> 8);
+    return sat16(x8 > y8 ? x8 + (uint32_t)(y8 >> 1) : y8 + (uint32_t)(x8 >> 1));
 }
 
 /* ------------------------------------------------------------------ identification */
@@ -342,6 +378,12 @@ typedef struct {
     const optical_pose_t *latched;
     int8_t *ident;      /* the result's */
     optical_width_t wd; /* O5 */
+    optical_unc_t u;    /* the dead-reckoning uncertainty of ap (the gate's) */
+    uint16_t mrad8;     /* the bearing error bound (standing or moving), 2^-8 mrad */
+    uint16_t wtol;      /* the width check's tolerance, 2^-16 turn (below 2^12) */
+    uint16_t rtol;      /* the residuals' tolerance: the bearing error bound plus the
+                           roundings of res and optical_angle16's error, 2^-16 turn */
+    uint8_t moving;     /* a sighting's latched pose differs from ap */
 } ctx_t;
 
 /* Position part of beacon k's window for sorted sighting j, with the margin (as
@@ -418,13 +460,14 @@ static int8_t guess(ctx_t *x, uint8_t nc)
     if (best_n < 3)
         return 0;
     optical_eval(best_h, best_e);
-    return unique(&x->wd, x->s, NULL);
+    return unique(&x->wd, x->map->dk, x->s, NULL);
 }
 
-/* The half-width of the first pass's windows (optical_fix scans them). */
-static uint16_t half0(const optical_config_t *cfg)
+/* The half-width of the first pass's windows (optical_fix scans them): the heading
+ * uncertainty @p u, at most cfg->window. */
+static uint16_t half0(const optical_config_t *cfg, fx_angle_t u)
 {
-    uint16_t h = a16(cfg->window);
+    uint16_t h = a16(u < cfg->window ? u : cfg->window);
     return h > 0x7FFAu ? 0x7FFAu : h; /* half + window part below 2^16 */
 }
 
@@ -461,12 +504,12 @@ static int8_t identify(ctx_t *x, uint16_t h0, uint8_t *mode, uint8_t *widened)
          * the offsets every kept match allows. */
         if (cfg->reject_overlap)
             drop_overlapping((uint16_t)((d >> 1) + (d & 1u)));
-        found = unique(&x->wd, x->s, lohi);
+        found = unique(&x->wd, x->map->dk, x->s, lohi);
         int16_t nlo = lohi[0], nhi = lohi[1];
         if (nlo > nhi)
             return -1;
         uint32_t nd = (uint16_t)((uint16_t)nhi - (uint16_t)nlo);
-        if (pass < MAX_PASSES && found < 3 + CHECK_MAX && (nd << 2) < (uint32_t)d + 2ul * d) {
+        if (pass < MAX_PASSES && found < 3 + PASS_ENOUGH && (nd << 2) < (uint32_t)d + 2ul * d) {
             lo = nlo; /* tighter by a quarter or more: another pass, never fewer matches */
             hi = nhi;
             continue;
@@ -483,7 +526,7 @@ static int8_t identify(ctx_t *x, uint16_t h0, uint8_t *mode, uint8_t *widened)
             return found;
         }
     }
-    uint32_t step = step_of(a16(cfg->window), a16(cfg->widen_max), cfg->widen_steps);
+    uint32_t step = step_of(h0, a16(cfg->widen_max), cfg->widen_steps);
     int32_t wlo = lo, whi = hi;
     for (uint8_t w = 1; w <= cfg->widen_steps && step; w++) {
         wlo -= (int32_t)step;
@@ -494,7 +537,7 @@ static int8_t identify(ctx_t *x, uint16_t h0, uint8_t *mode, uint8_t *widened)
         uint16_t half = (uint16_t)((uint32_t)(whi - wlo + 1) >> 1);
         optical_expect_scan(mid, half);
         drop_overlapping(half);
-        found = unique(&x->wd, x->s, NULL);
+        found = unique(&x->wd, x->map->dk, x->s, NULL);
         *widened = w;
         if (found >= 3) {
             *mode = IDENT_WIDENED;
@@ -533,6 +576,8 @@ __attribute__((noinline)) static int8_t fail(optical_fix_t *out, const optical_p
     out->pose.y = ap->y;
     out->pose.heading = ap->heading;
     out->quality = UINT32_MAX;
+    out->err = INT32_MAX;
+    out->err_heading = 0xFFFFFFFFul;
     return finish(out, status);
 }
 
@@ -607,37 +652,94 @@ static int8_t solve_triplet(const ctx_t *x, const uint8_t t[3], uint8_t passes, 
 }
 
 /*
- * O7-O10: select three of the identified (the seed's rule) and triangulate. When that
- * triplet lies too close to its beacons' circle (refused as singular or inconsistent), the
- * triplets with one of its beacons replaced by another identified one are tried, and the
- * best taken.
+ * The centre bias bound of sorted sighting j (identified) in the fix @p p, 2^-8 mrad: a pulse
+ * wider than its beacon looks from its range (merged with a glint or a post behind) or
+ * narrower (a post partly screened; not a flat strip, which looks narrower when turned) has
+ * its centre off by up to half the difference. optical_width_excess() compares them, the
+ * range from where the sighting was taken (p plus its latched offset when moving) within
+ * -3.1 % and +0.7 %, the beacon's width dk / r8 (2 asin(D / 2r) = D / r within 0.04 % from
+ * r = 10 D); tolerated: x->wtol (two edges, each within the standing bound) plus 1/16 of the
+ * width (the range's approximation and rounding). The excess / (2 r8), rounded up, is the
+ * bias; 0 within (or beyond 128 m).
  */
-static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t *tri)
+static uint16_t bias_of(const ctx_t *x, uint8_t j, const optical_pose_t *p)
+{
+    uint8_t k = W.sm[j];
+    uint32_t dkf = x->map->dk[k];
+    optical_wx_t a;
+    a.dx = W.b[k].x - p->x;
+    a.dy = W.b[k].y - p->y;
+    if (x->latched != NULL) {
+        const optical_pose_t *l = &x->latched[W.ord[j]];
+        a.dx -= l->x - x->ap->x;
+        a.dy -= l->y - x->ap->y;
+    }
+    a.dk = dkf & ~OPTICAL_DK_FLAT;
+    a.w = x->s[W.ord[j]].width;
+    a.tol = (uint16_t)(x->wtol | (dkf & OPTICAL_DK_FLAT ? 0x8000u : 0u));
+    uint32_t ex = optical_width_excess(&a);
+    if (ex == 0)
+        return 0;
+    /* ex / (2 r8) units of 2^-16 turn, in 2^-8 mrad: times 2 pi 1000 2^8 / 2^16 (24.54) */
+    uint32_t u = ex / a.r8 + 1u;
+    return u > 5000u ? 0xFFFFu : (uint16_t)((u * 1571u >> 6) + 1u);
+}
+
+/* The predicted error bound of the triplet at positions @p t (its solution @p tri): the
+ * quality times the bearing error bound, plus the quality times each sighting's centre bias
+ * (bias_of: |g_i| <= quality for each column of the error's linearisation); each term at most
+ * ERR_CAP. */
+static fx_q16_t e_total(const ctx_t *x, const uint8_t t[3], const optical_tri_t *tri)
+{
+    fx_q16_t e = err_of(tri->quality, x->mrad8);
+    for (uint8_t i = 0; i < 3; i++) {
+        uint16_t b = bias_of(x, W.pos[t[i]], &tri->pose);
+        if (b)
+            e += err_of(tri->quality, b);
+    }
+    return e;
+}
+
+/*
+ * O7-O10: select three of the identified (the seed's rule) and triangulate. When that
+ * triplet lies too close to its beacons' circle (refused as singular or inconsistent), or its
+ * predicted error (e_total: its geometry and its pulses' widths) exceeds err_max, the triplets
+ * with one of its beacons replaced by another identified one are tried, and the one of the
+ * smallest predicted error taken when it is smaller. *err: the predicted error of *tri
+ * (INT32_MAX when it has none).
+ */
+static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t *tri,
+                    fx_q16_t *err)
 {
     optical_select(W.u.sv.ang, W.m, t);
     int8_t st = solve_triplet(x, t, passes, tri);
-    if ((st != OPTICAL_E_SINGULAR && st != OPTICAL_E_INCONSISTENT) || W.m <= 3)
+    *err = st == OPTICAL_OK ? e_total(x, t, tri) : INT32_MAX;
+    bool weak = st == OPTICAL_OK && *err > x->cfg->err_max;
+    if ((st != OPTICAL_E_SINGULAR && st != OPTICAL_E_INCONSISTENT && !weak) || W.m <= 3)
         return st;
-    uint32_t best = UINT32_MAX;
-    uint8_t br = 0, bq = 0; /* the best: t with t[br] = bq */
+    fx_q16_t best = weak ? *err : INT32_MAX;
+    uint8_t br = 0, bq = 0xFFu; /* the best: t with t[br] = bq */
     for (uint8_t r = 0; r < 3; r++) {
         for (uint8_t q = 0; q < W.m; q++) {
             uint8_t u[3] = {t[0], t[1], t[2]};
             if (q == u[0] || q == u[1] || q == u[2])
                 continue;
             u[r] = q;
-            if (solve_triplet(x, u, passes, &W.u.sv.tri) == OPTICAL_OK &&
-                W.u.sv.tri.quality < best) {
-                best = W.u.sv.tri.quality;
+            if (solve_triplet(x, u, passes, &W.u.sv.tri) != OPTICAL_OK)
+                continue;
+            fx_q16_t e = e_total(x, u, &W.u.sv.tri);
+            if (e < best) {
+                best = e;
                 br = r;
                 bq = q;
             }
         }
     }
-    if (best == UINT32_MAX)
-        return st;
+    if (bq == 0xFFu)
+        return st; /* (weak: *tri and *err are still the selected triplet's) */
     /* the best once more into *tri (the same inputs: the same solution, OPTICAL_OK) */
     t[br] = bq;
+    *err = best;
     return solve_triplet(x, t, passes, tri);
 }
 
@@ -652,7 +754,7 @@ static int8_t prepare(ctx_t *x)
     const optical_sighting_t *si = x->s; /* (pointers: no index multiplies on the MSP430) */
     uint16_t lever8 = 0;
     uint8_t n = W.n, kept;
-    uint32_t wmin = optical_wmin(x->wd.dk, (uint32_t)x->cfg->range >> 8);
+    uint32_t wmin = optical_wmin(x->map->dkmin, (uint32_t)x->cfg->range >> 8);
     if (lat == NULL) {
         kept = sort_standing(si, (uint16_t)wmin); /* and the buckets */
         if (wmin > 0xFFFFu)
@@ -665,6 +767,8 @@ static int8_t prepare(ctx_t *x)
             if (!coords_ok(lat->x, lat->y))
                 return -1;
             int32_t ex = lat->x - ap->x, ey = lat->y - ap->y;
+            if (ex | ey | (int32_t)(lat->heading - ap->heading))
+                x->moving = 1;
             if (ex | ey) {
                 /* c = cross(u(d), R(-heading) e) = cross(u(heading + d), e): the sighting's
                  * world direction is its angle plus the latched heading. */
@@ -715,40 +819,106 @@ static fx_q16_t threshold(const ctx_t *x, uint8_t kept)
         if (tstep == 0)
             return t;
         t += (fx_q16_t)tstep;
-        kept = optical_drop(x->s, optical_wmin(x->wd.dk, (uint32_t)t >> 8));
+        kept = optical_drop(x->s, optical_wmin(x->map->dkmin, (uint32_t)t >> 8));
     }
 }
 
-/* O6: implausible jumps and turns, then the other identified sightings must agree (when
- * moving, their angles in W.u.sv.ang corrected for the parallax first: the fix's last use). */
-static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3])
+/*
+ * O6's residuals: every identified sighting i other than the triplet @p t3 (its reference-frame
+ * angle u.sv.ang[i], corrected for the parallax seen from the fix when moving) against the
+ * direction of its beacon from the fix @p p: res = angle16(B - p) - heading - angle (2^-16
+ * turn). It agrees when |res| <= tol16 + err / r, r the beacon's range: the sighting's own
+ * error bound plus what the fix's predicted error @p err8 (2^-8 m) can turn the direction by.
+ * Without division: (|res| - tol16) r_lo <= err8 2^16 / (2 pi), r_lo = o / 1.118 <= r from the
+ * octagonal norm o (2^-8 m). *agree counts those that agree, *worst is their largest |res|;
+ * returns the outliers as a bit set over i.
+ */
+static uint16_t residuals(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3],
+                          uint16_t tol16, uint16_t err8, uint8_t *agree, uint16_t *worst)
 {
-    int8_t st = jump_check(p, x->ap, x->cfg);
-    if (st != OPTICAL_OK)
-        return st;
-    if (x->latched != NULL) {
-        uint8_t left = CHECK_MAX;
-        for (uint8_t i = 0; i < W.m && left; i++) {
-            if (i == t3[0] || i == t3[1] || i == t3[2])
+    uint16_t h16 = a16(p->heading), outl = 0, wst = 0;
+    uint32_t lat = (uint32_t)err8 * 10430u; /* err8 2^16 / (2 pi) */
+    uint8_t ag = 0;
+    for (uint8_t i = 0; i < W.m; i++) {
+        if (i == t3[0] || i == t3[1] || i == t3[2])
+            continue;
+        uint8_t j = W.pos[i];
+        const optical_xy_t *bk = &W.b[W.sm[j]];
+        int32_t dx = bk->x - p->x, dy = bk->y - p->y;
+        fx_angle_t ang = W.u.sv.ang[i];
+        if (x->latched != NULL && W.c[j])
+            ang = corrected(ang, j, fx_hypot(dx, dy));
+        uint16_t res = abs16((uint16_t)(optical_angle16(dx, dy) - h16 - a16(ang)));
+        if (res > tol16) {
+            uint32_t rlo = ((uint32_t)oct8(dx, dy) * 58623u) >> 16; /* / 1.118 */
+            if ((uint32_t)(res - tol16) * rlo > lat) {
+                outl |= (uint16_t)(1u << i);
                 continue;
-            left--;
-            uint8_t j = W.pos[i];
-            if (W.c[j]) {
-                const optical_xy_t *bk = &W.b[W.sm[j]];
-                W.u.sv.ang[i] = corrected(W.u.sv.ang[i], j, fx_hypot(bk->x - p->x, bk->y - p->y));
             }
         }
+        ag++;
+        wst = res > wst ? res : wst;
     }
-    return resid_check(p, t3, (uint16_t)(a16(x->cfg->resid_max) + 3u));
+    *agree = ag;
+    *worst = wst;
+    return outl;
+}
+
+/*
+ * O6, the acceptance of the fix @p p (solved from the triplet @p t3; out->err and
+ * out->err_heading its predicted error bounds): within the dead-reckoning gate (x->u plus its
+ * own predicted error, out->gate; compared in 2^-8 m, len8's distance up to 3 units long) of the
+ * approximate pose (OPTICAL_E_JUMP, OPTICAL_E_TURN); then every other identified
+ * sighting must agree (residuals()); outliers are dropped (their ident -1) when the others
+ * that agree are at least three and at least three times as many, otherwise the fix is
+ * refused (OPTICAL_E_DISAGREE). Writes out->gate, resid, n_agree, n_dropped.
+ */
+static int8_t check(const ctx_t *x, const optical_pose_t *p,
+                                               const uint8_t t3[3], optical_fix_t *out)
+{
+    out->gate = x->u.pos + out->err;
+    /* (in 2^-8 m: the distance up to 3 units long, the bound rounded up; no root when
+     * |dx| + |dy| is within the gate) */
+    int32_t dx = p->x - x->ap->x, dy = p->y - x->ap->y;
+    uint16_t g8 = m8((uint32_t)out->gate);
+    if (m8(umag(dx)) + (uint32_t)m8(umag(dy)) > g8 && len8(dx, dy) > g8)
+        return OPTICAL_E_JUMP;
+    /* (the uncertainty at most turn_max, a half turn; the bound at most 10 degrees) */
+    if (umag((int32_t)(p->heading - x->ap->heading)) > x->u.heading + out->err_heading)
+        return OPTICAL_E_TURN;
+    uint8_t agree;
+    uint16_t outl = residuals(x, p, t3, x->rtol, m8((uint32_t)out->err), &agree, &out->resid);
+    out->n_agree = (uint8_t)(3u + agree);
+    if (outl == 0)
+        return OPTICAL_OK;
+    uint8_t k = 0;
+    for (uint16_t b = outl; b; b &= (uint16_t)(b - 1u))
+        k++;
+    if (agree < 3 || agree < 3u * k)
+        return OPTICAL_E_DISAGREE;
+    for (uint8_t i = 0; i < W.m; i++)
+        if (outl & (1u << i))
+            x->ident[W.ord[W.pos[i]]] = -1;
+    out->n_dropped = k;
+    return OPTICAL_OK;
 }
 
 int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
-                   const optical_pose_t *approx, const optical_sighting_t *s, uint8_t n,
-                   const optical_pose_t *latched, optical_fix_t *out)
+                   const optical_pose_t *approx, const optical_unc_t *unc,
+                   const optical_sighting_t *s, uint8_t n, const optical_pose_t *latched,
+                   optical_fix_t *out)
 {
     fix_init(out);
     ctx_t x;
-    if (n > OPTICAL_MAX_SIGHTINGS || !setup(map, cfg, approx, &x.wd))
+    if (unc != NULL) {
+        x.u = *unc;
+    } else {
+        x.u.pos = cfg->jump_max;
+        x.u.heading = cfg->turn_max;
+    }
+    /* the windows cover the uncertainty, at most window_pos and window */
+    fx_q16_t wpos = x.u.pos < cfg->window_pos ? x.u.pos : cfg->window_pos;
+    if (n > OPTICAL_MAX_SIGHTINGS || x.u.pos < 0 || !setup(map, cfg, approx, wpos, &x.wd))
         return fail(out, approx, OPTICAL_E_ARG);
     x.map = map;
     x.cfg = cfg;
@@ -756,15 +926,21 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     x.s = s;
     x.latched = latched;
     x.ident = out->ident;
+    x.moving = 0;
     W.n = n;
 
     int8_t kept = prepare(&x);
     if (kept < 0)
         return fail(out, approx, OPTICAL_E_ARG);
+    fx_angle_t bearing = x.moving ? cfg->bearing_err_moving : cfg->bearing_err;
+    x.mrad8 = mrad8_of(bearing);
+    x.rtol = (uint16_t)(a16(bearing) + 3u);
+    /* two edges, each within the standing bound (at most 2^12 - 1) */
+    x.wtol = (uint16_t)(2u * (a16(cfg->bearing_err) > 2046u ? 2046u : a16(cfg->bearing_err)) + 2u);
     /* O4, then O2: expected angles of the beacons within T (+ the position uncertainty),
      * and the first identification pass (O3). */
-    W.gate8 = sat15(((uint32_t)threshold(&x, (uint8_t)kept) + (uint32_t)cfg->window_pos) >> 8);
-    uint16_t h0 = half0(cfg);
+    W.gate8 = sat15(((uint32_t)threshold(&x, (uint8_t)kept) + (uint32_t)wpos) >> 8);
+    uint16_t h0 = half0(cfg, x.u.heading);
     if (optical_scan(0, h0)) /* (O4 left every mark NONE or DROPPED) */
         return fail(out, approx, OPTICAL_E_ARG);
     if (n < 3)
@@ -786,11 +962,14 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
     uint8_t passes = cfg->motion_passes ? cfg->motion_passes : 1u;
     uint8_t t3[3];
     optical_tri_t tri;
-    int8_t st = solve(&x, passes, t3, &tri);
+    fx_q16_t err;
+    int8_t st = solve(&x, passes, t3, &tri, &err);
+    /* the fix's heading error bound: a sighting's */
+    out->err_heading = bearing;
     if (st == OPTICAL_OK && mode != IDENT_SAFE) {
         /* Beyond the bounds the identification is a hypothesis: identify again from the fix
-         * (5 cm, the residual tolerance) and use it only when at least five sightings agree. */
-        uint16_t rmax = a16(cfg->resid_max);
+         * (5 cm, and its heading error bound) and use it only when at least five sightings
+         * agree. */
         x.wd.eps8 = 13;
         W.eps8 = 15;
         W.amax8 = sat16(15ul + W.lever8);
@@ -799,25 +978,29 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         W.head = a16(tri.pose.heading);
         for (uint8_t j = 0; j < n; j++)
             W.wchk[j] = 0x7Fu;
-        optical_expect_scan(0, rmax);
+        optical_expect_scan(0, a16(out->err_heading));
         fix_init(out); /* (none identified: gather wrote ident) */
         out->widened = widened;
-        if (unique(&x.wd, x.s, NULL) < 5)
+        if (unique(&x.wd, map->dk, x.s, NULL) < 5)
             return fail(out, approx, OPTICAL_E_UNCONFIRMED);
         gather(&x);
-        st = solve(&x, passes, t3, &tri);
+        st = solve(&x, passes, t3, &tri, &err);
     }
     out->n_ident = W.m;
-    if (st != OPTICAL_OK && st != OPTICAL_E_SINGULAR)
+    /* (singular with a solution: its pose and quality are reported, not used) */
+    if (st != OPTICAL_OK && (st != OPTICAL_E_SINGULAR || tri.quality == UINT32_MAX))
         return fail(out, approx, st);
     out->pose.x = tri.pose.x; /* (field by field, unrolled: no memcpy, no counter) */
     out->pose.y = tri.pose.y;
     out->pose.heading = tri.pose.heading;
     out->quality = tri.quality;
+    out->err = err;
     out->used[0] = W.sm[W.pos[t3[0]]];
     out->used[1] = W.sm[W.pos[t3[1]]];
     out->used[2] = W.sm[W.pos[t3[2]]];
+    if (st == OPTICAL_OK && err > cfg->err_max)
+        st = OPTICAL_E_POOR;
     if (st == OPTICAL_OK)
-        st = check(&x, &tri.pose, t3);
+        st = check(&x, &tri.pose, t3, out);
     return finish(out, st);
 }

@@ -1,9 +1,10 @@
 /*
  * ident.c - the identification's primitives (SPEC O2-O5, optical/fastmath.h): the work area,
- * the cheap bearing optical_angle16 and the octant arithmetic it shares with the scan, the
- * window test of one (sighting, beacon) pair, the re-evaluation of the candidate pairs, O4's
- * width threshold and marks, O5's width check. The scan over the map itself, optical_scan,
- * is a kernel (scan_k.c, msp430/optical_scan.S: docs/kernels.md). The tables are generated at
+ * the octant arithmetic of the cheap bearing (the C twins of optical_angle16 and optical_scan
+ * use it), the window test of one (sighting, beacon) pair, the re-evaluation of the candidate
+ * pairs, O4's width threshold and marks, O5's width check. The scan over the map itself,
+ * optical_scan, and the bearing optical_angle16 are kernels (scan_k.c, msp430/optical_scan.S:
+ * docs/kernels.md). The tables are generated at
  * build time (tools/gen_optical_tables.py; formulas in fastmath.h).
  */
 #include <stdbool.h>
@@ -48,30 +49,6 @@ uint16_t optical_octant(uint16_t u, uint16_t v, uint8_t flags, optical_angle_par
     if (flags & 4u)
         a = (uint16_t)(0u - a);
     return a;
-}
-
-uint16_t optical_angle16(int32_t dx, int32_t dy)
-{
-    uint32_t ax = umag(dx), ay = umag(dy);
-    uint8_t flags = (uint8_t)((dx < 0 ? 2u : 0u) | (dy < 0 ? 4u : 0u));
-    if (ay > ax) {
-        uint32_t t = ax;
-        ax = ay;
-        ay = t;
-        flags |= 1u;
-    }
-    if (ax == 0)
-        return 0;
-    while (ax > 0xFFFFu) { /* both to [2^15, 2^16) by the shift that brings ax there */
-        ax >>= 1;
-        ay >>= 1;
-    }
-    while (ax < 0x8000u) {
-        ax <<= 1;
-        ay <<= 1;
-    }
-    optical_angle_parts_t p;
-    return optical_octant((uint16_t)ax, (uint16_t)ay, flags, &p);
 }
 
 uint16_t optical_win(uint16_t l, uint16_t g)
@@ -149,8 +126,14 @@ void optical_eval(int16_t mid, uint16_t half)
         optical_pair(W.u.id.cand[2u * c], W.u.id.cand[2u * c + 1u], mid, half);
 }
 
-bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16)
+uint32_t optical_dk(fx_q16_t d)
 {
+    return ((uint32_t)d * 10430u) >> 8; /* (d <= 2 m: below 2^31 before the shift) */
+}
+
+bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint32_t dkf, uint16_t w16)
+{
+    uint32_t dk = dkf & ~OPTICAL_DK_FLAT;
     uint32_t ax = umag(b->x - a->x), ay = umag(b->y - a->y);
     uint16_t x8 = ax >= (1ul << 24) ? 0xFFFFu : (uint16_t)(ax >> 8);
     uint16_t y8 = ay >= (1ul << 24) ? 0xFFFFu : (uint16_t)(ay >> 8);
@@ -161,10 +144,10 @@ bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t 
     uint16_t tol = sat16(a->tol8 + (((uint32_t)rhi * a->rel16) >> 16));
     uint32_t lo = rlo > tol ? (uint16_t)(rlo - tol) : 0u, hi = sat16((uint32_t)rhi + tol);
     if (w16 > 5215u) /* 0.5 rad: a post closer than 2 D, wide for any use here */
-        return lo * 5215u <= a->dk + (a->dk >> 4);
+        return lo * 5215u <= dk + (dk >> 4);
     /* 0.969 w lo > D: the post would look wider even at the far end of the interval */
     uint32_t p = lo * w16;
-    if (p - (p >> 5) > a->dk)
+    if (p - (p >> 5) > dk)
         return false;
-    return a->flat || hi * w16 >= a->dk;
+    return (dkf & OPTICAL_DK_FLAT) || hi * w16 >= dk;
 }

@@ -1,8 +1,10 @@
 /*
- * scan_k.c - the C twin of the kernel optical_scan (optical/fastmath.h; the assembly:
- * msp430/optical_scan.S): the expected angle and window of every map beacon and the candidate
- * pairs within the windows. The definition of every result: the build takes this file or the
- * assembly whole, and the check images run both on every call (docs/kernels.md).
+ * scan_k.c - the C twins of the kernels optical_scan, optical_angle16 and optical_width_excess
+ * (optical/fastmath.h; the assembly: msp430/optical_scan.S): the expected angle and window of
+ * every map beacon and the candidate pairs within the windows; the cheap bearing of a vector
+ * (the fix's residuals); a pulse's width against its beacon's (the fix's width check).
+ * The definition of every result: the build takes this file or the assembly whole, and the
+ * check images run both on every call (docs/kernels.md).
  */
 #include <stdbool.h>
 
@@ -17,6 +19,60 @@ static bool to8(int32_t v, int16_t *v8)
         return false;
     *v8 = (int16_t)(uint16_t)((uint32_t)v >> 8);
     return true;
+}
+
+/* |v| as unsigned */
+static uint32_t mag(int32_t v)
+{
+    return v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
+}
+
+uint16_t optical_angle16(int32_t dx, int32_t dy)
+{
+    uint32_t ax = mag(dx), ay = mag(dy);
+    uint8_t flags = (uint8_t)((dx < 0 ? 2u : 0u) | (dy < 0 ? 4u : 0u));
+    if (ay > ax) {
+        uint32_t t = ax;
+        ax = ay;
+        ay = t;
+        flags |= 1u;
+    }
+    if (ax == 0)
+        return 0;
+    while (ax > 0xFFFFu) { /* both to [2^15, 2^16) by the shift that brings ax there */
+        ax >>= 1;
+        ay >>= 1;
+    }
+    while (ax < 0x8000u) {
+        ax <<= 1;
+        ay <<= 1;
+    }
+    optical_angle_parts_t p;
+    return optical_octant((uint16_t)ax, (uint16_t)ay, flags, &p);
+}
+
+uint32_t optical_width_excess(optical_wx_t *a)
+{
+    uint32_t ax = mag(a->dx), ay = mag(a->dy);
+    a->r8 = 0;
+    if (ax >= 0x800000ul || ay >= 0x800000ul)
+        return 0;
+    uint16_t mx = (uint16_t)(ax >> 8), mn = (uint16_t)(ay >> 8);
+    if (mn > mx) {
+        uint16_t t = mx;
+        mx = mn;
+        mn = t;
+    }
+    uint16_t r8 = (uint16_t)(mx - (mx >> 3) + (mn >> 1));
+    r8 = r8 < mx ? mx : r8;
+    a->r8 = r8;
+    uint32_t wr = (uint32_t)a->w * r8;
+    uint32_t tr = (uint32_t)(a->tol & 0x7FFFu) * r8 + (wr >> 4);
+    if (wr > a->dk + tr)
+        return wr - a->dk - tr;
+    if (!(a->tol & 0x8000u) && a->dk > wr + tr)
+        return a->dk - (wr + tr);
+    return 0;
 }
 
 uint8_t optical_scan(int16_t mid, uint16_t half)

@@ -393,13 +393,42 @@ void compile_work(optical_work_t &w, const optical_xy_t *map, int n)
     w.b8 = b8;
 }
 
-// A compiled map of @p m (storage in @p b8).
+constexpr double kD = 0.08; // beacon diameter
+
+// Every beacon a post of kD (the maps of the tests that do not say otherwise).
+const std::array<optical_refl_t, OPTICAL_MAX_BEACONS> &posts()
+{
+    static std::array<optical_refl_t, OPTICAL_MAX_BEACONS> r;
+    for (optical_refl_t &x : r)
+        x = {fx_q16_from_double(kD), 0};
+    return r;
+}
+
+// A beacon on a wall of a field x field room, on the Q16 grid, clear of the posts of @p map
+// (two posts closer than their diameter would overlap: a map refuses them).
+V2 on_wall(std::mt19937 &rng, double field, const std::vector<V2> &map)
+{
+    std::uniform_real_distribution<double> u01(0, 1);
+    for (;;) {
+        double t = u01(rng) * field;
+        V2 cands[4] = {V2(t, 0), V2(field, t), V2(t, field), V2(0, t)};
+        V2 p = on_grid(cands[rng() % 4]);
+        if (std::none_of(map.begin(), map.end(),
+                         [&](const V2 &b) { return (b - p).norm() < kD; }))
+            return p;
+    }
+}
+
+// A compiled map of @p m (storage in @p b8), posts of kD unless @p refl gives the reflectors.
 optical_map_t compiled(const std::vector<optical_xy_t> &m, std::vector<optical_xy8_t> &b8,
-                       int n = -1)
+                       int n = -1, const optical_refl_t *refl = nullptr)
 {
     b8.resize(m.size());
+    static std::vector<std::vector<uint32_t>> dks; // (the maps' compiled reflectors live on)
+    dks.emplace_back(m.size());
     optical_map_t map;
-    bool ok = optical_map_compile(&map, m.data(), (uint8_t)m.size(), b8.data());
+    bool ok = optical_map_compile(&map, m.data(), refl ? refl : posts().data(), (uint8_t)m.size(),
+                                  b8.data(), dks.back().data(), nullptr) == OPTICAL_OK;
     EXPECT_TRUE(ok);
     if (n >= 0)
         map.n = (uint8_t)n;
@@ -830,8 +859,6 @@ TEST(ExpectScan, FirstScanAfterTheDropNeedsNoClearing)
 
 // ---------------------------------------------------------------- the pipeline (O2-O7)
 
-constexpr double kD = 0.08; // beacon diameter
-
 struct Scene {
     std::vector<V2> map;
     V2 p;
@@ -902,22 +929,8 @@ Scene random_scene(std::mt19937 &rng, double field = 20.0)
     std::uniform_real_distribution<double> u01(0, 1);
     Scene sc;
     int n = 6 + (int)(rng() % 7);
-    for (int i = 0; i < n; i++) {
-        double t = u01(rng) * field;
-        switch (rng() % 4) {
-        case 0:
-            sc.map.push_back(on_grid(V2(t, 0)));
-            break;
-        case 1:
-            sc.map.push_back(on_grid(V2(field, t)));
-            break;
-        case 2:
-            sc.map.push_back(on_grid(V2(t, field)));
-            break;
-        default:
-            sc.map.push_back(on_grid(V2(0, t)));
-        }
-    }
+    for (int i = 0; i < n; i++)
+        sc.map.push_back(on_wall(rng, field, sc.map));
     sc.p = V2(1 + u01(rng) * (field - 2), 1 + u01(rng) * (field - 2));
     sc.phi = u01(rng) * kTau;
     std::vector<int> vis(n);
@@ -970,7 +983,7 @@ FixOut run_fix(const Scene &sc, const optical_config_t &cfg,
     optical_pose_t ap = {fx_q16_from_double(sc.ap.x()), fx_q16_from_double(sc.ap.y()),
                          fx_angle_from_rad(sc.aphi)};
     FixOut o;
-    o.status = optical_fix(&map, &cfg, &ap, s, (uint8_t)n, latched, &o.raw);
+    o.status = optical_fix(&map, &cfg, &ap, nullptr, s, (uint8_t)n, latched, &o.raw);
     o.pose = {from_q16(o.raw.pose.x, o.raw.pose.y), fx_angle_to_rad(o.raw.pose.heading)};
     return o;
 }
@@ -1069,36 +1082,38 @@ TEST(Pipeline, BadInputIsRefusedNotTrusted)
         return a.angle < b.angle;
     });
     optical_fix_t f;
-    ASSERT_EQ(optical_fix(&map, &cfg, &ap, s, 4, nullptr, &f), OPTICAL_OK);
+    ASSERT_EQ(optical_fix(&map, &cfg, &ap, nullptr, s, 4, nullptr, &f), OPTICAL_OK);
     EXPECT_LT((from_q16(f.pose.x, f.pose.y) - V2(5, 5)).norm(), 1e-3);
     EXPECT_EQ(f.n_ident, 4);
     optical_map_t small = map;
     small.n = 2;
-    EXPECT_EQ(optical_fix(&small, &cfg, &ap, s, 4, nullptr, &f), OPTICAL_E_ARG);
-    EXPECT_EQ(optical_fix(&map, &cfg, &ap, s, 16, nullptr, &f), OPTICAL_E_ARG);
-    EXPECT_EQ(optical_fix(&map, &cfg, &ap, s, 2, nullptr, &f), OPTICAL_E_FEW);
+    EXPECT_EQ(optical_fix(&small, &cfg, &ap, nullptr, s, 4, nullptr, &f), OPTICAL_E_ARG);
+    EXPECT_EQ(optical_fix(&map, &cfg, &ap, nullptr, s, 16, nullptr, &f), OPTICAL_E_ARG);
+    EXPECT_EQ(optical_fix(&map, &cfg, &ap, nullptr, s, 2, nullptr, &f), OPTICAL_E_FEW);
     std::vector<optical_xy_t> far = m;
     far[3].x = OPTICAL_COORD_LIMIT; // beyond the coordinate range: no compiled map
     optical_map_t farmap;
     optical_xy8_t far8[4];
-    EXPECT_FALSE(optical_map_compile(&farmap, far.data(), 4, far8));
+    const optical_refl_t *pr = posts().data();
+    uint32_t dk4[4];
+    EXPECT_EQ(optical_map_compile(&farmap, far.data(), pr, 4, far8, dk4, nullptr), OPTICAL_E_ARG);
     far[3].x = q16(V2(300, 0)).x; // a site 300 m wide: beyond one origin's reach
-    EXPECT_FALSE(optical_map_compile(&farmap, far.data(), 4, far8));
-    EXPECT_FALSE(optical_map_compile(&farmap, m.data(), 2, far8));
+    EXPECT_EQ(optical_map_compile(&farmap, far.data(), pr, 4, far8, dk4, nullptr), OPTICAL_E_ARG);
+    EXPECT_EQ(optical_map_compile(&farmap, m.data(), pr, 2, far8, dk4, nullptr), OPTICAL_E_ARG);
     far[3].x = q16(V2(250, 0)).x; // 250 m: within; a pose 130 m beyond the centre is not
-    ASSERT_TRUE(optical_map_compile(&farmap, far.data(), 4, far8));
+    ASSERT_EQ(optical_map_compile(&farmap, far.data(), pr, 4, far8, dk4, nullptr), OPTICAL_OK);
     optical_pose_t away = ap;
     away.x = farmap.ox + q16(V2(130, 0)).x;
-    EXPECT_EQ(optical_fix(&farmap, &cfg, &away, s, 4, nullptr, &f), OPTICAL_E_ARG);
+    EXPECT_EQ(optical_fix(&farmap, &cfg, &away, nullptr, s, 4, nullptr, &f), OPTICAL_E_ARG);
     // A heading 20 degrees off the stated 5 degrees: refused (never a wrong fix), and
     // found again with the window widened to cover it.
     optical_pose_t off = ap;
     off.heading = fx_angle_from_deg(20);
-    int st = optical_fix(&map, &cfg, &off, s, 4, nullptr, &f);
+    int st = optical_fix(&map, &cfg, &off, nullptr, s, 4, nullptr, &f);
     EXPECT_NE(st, OPTICAL_OK);
     cfg.widen_max = fx_angle_from_deg(25);
     cfg.widen_steps = 4;
-    st = optical_fix(&map, &cfg, &off, s, 4, nullptr, &f);
+    st = optical_fix(&map, &cfg, &off, nullptr, s, 4, nullptr, &f);
     // four sightings cannot confirm a widened identification (five are needed)
     EXPECT_EQ(st, OPTICAL_E_UNCONFIRMED);
     EXPECT_GT(f.widened, 0);
@@ -1106,7 +1121,7 @@ TEST(Pipeline, BadInputIsRefusedNotTrusted)
     for (int i = 0; i < 4; i++)
         s[i].width = 1;
     optical_config_default(&cfg);
-    EXPECT_EQ(optical_fix(&map, &cfg, &ap, s, 4, nullptr, &f), OPTICAL_E_FEW);
+    EXPECT_EQ(optical_fix(&map, &cfg, &ap, nullptr, s, 4, nullptr, &f), OPTICAL_E_FEW);
 }
 
 // ---------------------------------------------------------------- O11 fixes while driving
@@ -1244,7 +1259,7 @@ FixOut fix_raw(const std::vector<V2> &mapv, const optical_rev_t &rev, const opti
     optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
     int n = optical_rev_sightings(&rev, kCounts, s);
     FixOut o;
-    o.status = optical_fix(&map, &cfg, &ap, s, (uint8_t)std::max(0, n), latched, &o.raw);
+    o.status = optical_fix(&map, &cfg, &ap, nullptr, s, (uint8_t)std::max(0, n), latched, &o.raw);
     o.pose = {from_q16(o.raw.pose.x, o.raw.pose.y), fx_angle_to_rad(o.raw.pose.heading)};
     return o;
 }
@@ -1259,11 +1274,8 @@ TEST(Motion, DrivingAtOneMetrePerSecondAgainstStandingStill)
         MovingStats still, moving, uncompensated;
         for (int t = 0; t < 400; t++) {
             std::vector<V2> map;
-            for (int i = 0; i < 10; i++) {
-                double w = u(rng) * 20;
-                V2 cands[4] = {V2(w, 0), V2(20, w), V2(w, 20), V2(0, w)};
-                map.push_back(on_grid(cands[rng() % 4]));
-            }
+            for (int i = 0; i < 10; i++)
+                map.push_back(on_wall(rng, 20, map));
             Motion m{kind, V2(6 + 8 * u(rng), 6 + 8 * u(rng)), u(rng) * kTau, 1.0, 1.0};
             Pose dr{V2(0.2 * u(rng) - 0.1, 0.2 * u(rng) - 0.1), (2 * u(rng) - 1) * M_PI / 180};
             MovingRev mr = capture_moving(map, m, dr);
@@ -1308,11 +1320,8 @@ TEST(Quality, QuantisedFixesAgainstTheCramerRaoBound)
     long fixes = 0;
     for (int g = 0; g < 60; g++) {
         std::vector<V2> map;
-        for (int i = 0; i < 8; i++) {
-            double w = u(rng) * 20;
-            V2 cands[4] = {V2(w, 0), V2(20, w), V2(w, 20), V2(0, w)};
-            map.push_back(on_grid(cands[rng() % 4]));
-        }
+        for (int i = 0; i < 8; i++)
+            map.push_back(on_wall(rng, 20, map));
         V2 p(3 + 14 * u(rng), 3 + 14 * u(rng));
         struct Run {
             FixOut f;

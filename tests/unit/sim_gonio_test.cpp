@@ -12,6 +12,7 @@ extern "C" {
 #include "sim/gonio.h"
 #include "sim/motion.h"
 #include "sim/rng.h"
+#include "sim/scenario_keys.h"
 #include "sim/world.h"
 }
 
@@ -39,7 +40,10 @@ void check_edges(const sim_world_t &w, const sim_segment_t &seg, const sim_gonio
         double beam = p.th + 2 * M_PI * cfg.rev_per_s * (ev[i].t - t_index);
         double centre = std::atan2(b.y - p.y, b.x - p.x);
         double diff = std::remainder(beam - centre, 2 * M_PI);
-        double half = std::asin(b.diameter / 2 / std::hypot(b.x - p.x, b.y - p.y));
+        // A post's edges graze it (asin); a flat strip facing the beam ends at its edges (atan).
+        double r = std::hypot(b.x - p.x, b.y - p.y);
+        double half = b.kind == SIM_BEACON_KIND_FLAT ? std::atan(b.diameter / 2 / r)
+                                                     : std::asin(b.diameter / 2 / r);
         EXPECT_NEAR(diff, ev[i].edge == SIM_GEV_RISE ? -half : half, 1e-9) << i;
         EXPECT_NEAR(ev[i].mirror,
                     std::fmod(2 * M_PI * cfg.rev_per_s * (ev[i].t - t_index), 2 * M_PI), 1e-9);
@@ -50,10 +54,10 @@ TEST(Gonio, EdgesGrazeThePostsStandingAndMoving)
 {
     sim_world_t w = {};
     w.n_beacons = 4;
-    w.beacon[0] = {5, 0, 0.08};
-    w.beacon[1] = {0, 7, 0.08};
-    w.beacon[2] = {-6, -6, 0.2};
-    w.beacon[3] = {3, -0.5, 0.08};
+    w.beacon[0] = {5, 0, 0.08, SIM_BEACON_KIND_CYLINDER};
+    w.beacon[1] = {0, 7, 0.08, SIM_BEACON_KIND_CYLINDER};
+    w.beacon[2] = {-6, -6, 0.2, SIM_BEACON_KIND_CYLINDER};
+    w.beacon[3] = {3, -0.5, 0.08, SIM_BEACON_KIND_CYLINDER};
     sim_gonio_cfg_t cfg = {2.0, 50000, 0.0, 60.0};
     sim_segment_t still = sim_segment(0.25, {0.2, 0.1, 0.3}, 0, 0, 0, 0.75);
     check_edges(w, still, cfg, 8);
@@ -63,6 +67,11 @@ TEST(Gonio, EdgesGrazeThePostsStandingAndMoving)
     w.n_occluders = 1;
     w.occluder[0] = {2.0, -1.0, 2.0, -0.2};
     check_edges(w, still, cfg, 6);
+    // A wide flat strip close by (1.5 m, 0.6 m wide: atan and asin differ by 0.26 degrees).
+    w.n_occluders = 0;
+    w.beacon[3] = {1.5, -0.2, 0.6, SIM_BEACON_KIND_FLAT};
+    check_edges(w, still, cfg, 8);
+    check_edges(w, moving, cfg, 8);
 }
 
 // Two posts almost in line: their pulses overlap and the photodetector gives one pulse from
@@ -71,9 +80,10 @@ TEST(Gonio, PhotodetectorIsTheUnionOfOverlappingPulses)
 {
     sim_world_t w = {};
     w.n_beacons = 3;
-    w.beacon[0] = {5, 0, 0.1};
-    w.beacon[1] = {10, 0.05, 0.1}; // 0.29 deg beside beacon 0, 0.57 deg wide: overlaps it
-    w.beacon[2] = {0, 6, 0.1};
+    w.beacon[0] = {5, 0, 0.1, SIM_BEACON_KIND_CYLINDER};
+    w.beacon[1] = {10, 0.05, 0.1, SIM_BEACON_KIND_CYLINDER}; // 0.29 deg beside beacon 0, 0.57
+                                                              // deg wide: overlaps it
+    w.beacon[2] = {0, 6, 0.1, SIM_BEACON_KIND_CYLINDER};
     sim_gonio_cfg_t cfg = {2.0, 50000, 0.0, 60.0};
     sim_segment_t still = sim_segment(0.0, {0.0, 0.0, 0.0}, 0, 0, 0, 0.75);
     sim_rng_t rng;

@@ -16,8 +16,8 @@ namespace
 
 const char *kScenario = R"({
  "name": "unit", "mode": "simplified",
- "beacons": [{"x":0,"y":0,"diameter_m":0.1},{"x":10,"y":0,"diameter_m":0.1},
-             {"x":10,"y":10,"diameter_m":0.1}],
+ "beacons": [{"x":0,"y":0,"diameter_m":0.1},{"x":10,"y":0,"diameter_m":0.15,"kind":"flat"},
+             {"x":10,"y":10,"diameter_m":0.05,"kind":"cylinder"}],
  "vehicle": {"wheelbase_m":0.762,"min_radius_m":0.5,"speed_mps":1.0},
  "start": {"x":1,"y":1,"heading_deg":90},
  "start_error": {"x":0.01,"heading_deg":-1},
@@ -46,7 +46,15 @@ TEST(Mission, DownloadHoldsTheScenarioInTheFirmwaresFormats)
     EXPECT_EQ(mc.path[1].speed, q16(0.5));
     EXPECT_EQ(mc.path[2].speed, q16(1.0)); // no speed: the vehicle's
     EXPECT_EQ(mc.board.wheelbase, q16(0.762));
-    EXPECT_EQ(mc.optical.beacon_diameter, q16(0.1));
+    // Every beacon its own reflector, compiled: floor(d 10430 / 2^8) for d in Q16 m (2^8 2^16 /
+    // 2 pi per metre), the flat strip flagged; the narrowest for O4.
+    ASSERT_EQ(mc.map.n, 3);
+    auto dk = [](double d) { return (uint32_t)((uint64_t)q16(d) * 10430u >> 8); };
+    EXPECT_EQ(mc.map.dk[0], dk(0.1));
+    EXPECT_EQ(mc.map.dk[1], dk(0.15) | OPTICAL_DK_FLAT);
+    EXPECT_EQ(mc.map.dk[2], dk(0.05));
+    EXPECT_EQ(mc.map.dkmin, dk(0.05));
+    EXPECT_EQ(dk(0.1), 267024u); // 0.1 m 2^24 / (2 pi) = 267,018; 0.1 m in Q16 is 6554 / 65536
     EXPECT_EQ(mc.counts_per_turn, 50000);
     EXPECT_EQ(mc.seq_cfg.mode, DRIVE_MODE_SIMPLIFIED);
     // The mission's fixed part (mission/mission.h, the seed's values).

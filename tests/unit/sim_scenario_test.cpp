@@ -37,6 +37,30 @@ TEST(Scenario, ParsesTheContractExample)
     EXPECT_EQ(sc.counts, 50000u);
     EXPECT_NEAR(sc.gyro_step, 0.25 * M_PI / 180, 1e-15);
     EXPECT_EQ(sc.seed, 7u);
+    EXPECT_EQ(sc.world.beacon[0].kind, SIM_BEACON_KIND_CYLINDER); // the default
+}
+
+TEST(Scenario, BeaconsCarryTheirOwnReflector)
+{
+    std::string text = kScenario;
+    std::string from = "{\"x\":10,\"y\":0,\"diameter_m\":0.08}";
+    text.replace(text.find(from), from.size(), "{\"x\":10,\"y\":0,\"diameter_m\":0.2,\"kind\":\"flat\"}");
+    sim_scenario_t sc;
+    char err[256];
+    ASSERT_EQ(sim_scenario_parse(text.c_str(), &sc, err, sizeof err), 0) << err;
+    EXPECT_EQ(sc.world.beacon[1].kind, SIM_BEACON_KIND_FLAT);
+    EXPECT_EQ(sc.world.beacon[1].diameter, 0.2);
+    EXPECT_EQ(sc.world.beacon[2].kind, SIM_BEACON_KIND_CYLINDER);
+    // Posts that touch (centres exactly the sum of the radii apart) are a possible world.
+    sc.world.beacon[1].x = 0.08;
+    sc.world.beacon[1].y = 0;
+    sc.world.beacon[1].diameter = 0.08;
+    size_t i, j;
+    EXPECT_FALSE(sim_world_coincident(&sc.world, &i, &j));
+    sc.world.beacon[1].x = 0.0799;
+    ASSERT_TRUE(sim_world_coincident(&sc.world, &i, &j));
+    EXPECT_EQ(i, 0u);
+    EXPECT_EQ(j, 1u);
 }
 
 struct BadCase {
@@ -54,6 +78,11 @@ TEST(Scenario, BadInputNamesTheKeyAndTheValue)
         {"\"speed_mps\":1.0}]", "\"speed_mps\":0}]", "path[0].speed_mps: 0 is out of range"},
         {"\"seed\": 7,", "", "missing \"seed\""},
         {"\"name\": \"unit\",", "\"name\": \"unit\",,", "line 2"},
+        {"\"x\":10,\"y\":10,\"diameter_m\":0.08", "\"x\":10,\"y\":10,\"diameter_m\":0.08,\"kind\":\"round\"",
+         "beacons[2].kind: \"round\""},
+        // Two posts 0.07 m apart overlap (radii 0.04 m each): both named.
+        {"{\"x\":10,\"y\":0,\"diameter_m\":0.08}", "{\"x\":0.07,\"y\":0,\"diameter_m\":0.08}",
+         "beacons[0] (0, 0) and beacons[1] (0.07, 0) coincide: 0.07 m apart"},
     };
     for (const BadCase &c : cases) {
         std::string text = kScenario;

@@ -50,9 +50,12 @@ static union {
 #define kmap (U.kmap)
 #define KW   (optical_work)
 
+/* The recorded revolutions' configuration: their edges exact to the count, their latched
+ * poses exact (no noise, no gyro steps: the bearing error bounds of such sensors). */
 static void config(uint8_t variant, optical_config_t *cfg)
 {
     optical_config_default(cfg);
+    cfg->bearing_err = cfg->bearing_err_moving = OPTICAL_BEARING_ERR(0ul);
     if (variant == 1) {           /* approximate pose within 5 degrees and 0.3 m */
         cfg->window = 63230463ul; /* 5.3 degrees */
         cfg->window_pos = 21627;  /* 0.33 m */
@@ -75,8 +78,12 @@ static const optical_rev_t *capture_case(uint8_t i)
     return optical_capture_take(&cap);
 }
 
-/* Compiled maps: the cases' (run_case) and the kernels' (kcompile), one at a time. */
+/* Compiled maps: the cases' (run_case) and the kernels' (kcompile), one at a time. The
+ * recorded cases' beacons are posts of 0.08 m (gen_optical_vectors.py); fix_variants() makes
+ * some of them flat or wider. */
 static optical_xy8_t kmap8[OPTICAL_MAX_BEACONS];
+static optical_refl_t krefl[OPTICAL_MAX_BEACONS];
+static uint32_t kdk[OPTICAL_MAX_BEACONS];
 
 /* The fix of case @p i; the sightings in sight[], their count returned (-1: bad revolution). */
 static int8_t run_case(uint8_t i, optical_config_t *cfg, optical_map_t *map, optical_pose_t *ap,
@@ -88,7 +95,12 @@ static int8_t run_case(uint8_t i, optical_config_t *cfg, optical_map_t *map, opt
     if (rev)
         optical_capture_release(&cap);
     config(c->cfg, cfg);
-    if (!optical_map_compile(map, &vec_beacons[vec_maps[c->map].first], vec_maps[c->map].n, kmap8))
+    for (uint8_t k = 0; k < OPTICAL_MAX_BEACONS; k++) {
+        krefl[k].d = 5243; /* 0.08 m */
+        krefl[k].flat = 0;
+    }
+    if (optical_map_compile(map, &vec_beacons[vec_maps[c->map].first], krefl,
+                            vec_maps[c->map].n, kmap8, kdk, NULL) != OPTICAL_OK)
         cy_check(false, "case map compiles");
     ap->x = c->approx.x;
     ap->y = c->approx.y;
@@ -127,7 +139,7 @@ static void fixes(void)
             cy_println();
             continue;
         }
-        int8_t st = optical_fix(&map, &cfg, &ap, sight, (uint8_t)n, latched, &fix);
+        int8_t st = optical_fix(&map, &cfg, &ap, NULL, sight, (uint8_t)n, latched, &fix);
         cy_print(" st ");
         cy_print_dec(st);
         pose_fields(&fix.pose);
@@ -460,7 +472,7 @@ static void kernels(void)
     for (uint16_t t = 0; t < 300; t++) {
         optical_width_t w;
         optical_xy_t b;
-        w.dk = 213000u + rnd32() % 1000000u;
+        uint32_t rf = optical_dk((fx_q16_t)(5228u + rnd32() % 24543u)); /* 0.08 .. 0.45 m */
         w.x = rnd_in(0x00800000u);
         w.y = rnd_in(0x00800000u);
         uint32_t r = (t & 1) ? 0x00100000u : 0x02000000u;
@@ -469,12 +481,13 @@ static void kernels(void)
         w.eps8 = (uint16_t)(rnd32() % 300u);
         w.tol8 = (uint16_t)(rnd32() % 300u);
         w.rel16 = (uint16_t)rnd32();
-        w.flat = (uint8_t)(rnd32() & 1u);
+        if (rnd32() & 1u)
+            rf |= OPTICAL_DK_FLAT;
         uint16_t w16 = (uint16_t)(rnd32() % ((t & 3) ? 400u : 9000u));
         cy_print("wok ");
         cy_print_dec(t);
         cy_print(" ");
-        cy_print_dec(optical_width_ok(&w, &b, w16));
+        cy_print_dec(optical_width_ok(&w, &b, rf, w16));
         cy_println();
     }
 }
@@ -501,6 +514,13 @@ static void fix_print(const char *what, uint16_t t, int8_t n, int8_t st)
     cy_print_dec(fix.n_ident);
     cy_print(" w ");
     cy_print_dec(fix.widened);
+    field("e", (uint32_t)fix.err);
+    field("g", (uint32_t)fix.gate);
+    field("r", fix.resid);
+    cy_print(" a ");
+    cy_print_dec(fix.n_agree);
+    cy_print(" d ");
+    cy_print_dec(fix.n_dropped);
     cy_print(" used");
     for (uint8_t k = 0; k < 3; k++) {
         cy_print(" ");
@@ -527,6 +547,8 @@ static void fix_variants(void)
         ap.x += rnd_in((t & 3u) ? 0x8000u : 0x2000u);
         ap.y += rnd_in((t & 3u) ? 0x8000u : 0x2000u);
         ap.heading += (uint32_t)rnd_in(0x04000000u);
+        const optical_unc_t *unc = NULL;
+        optical_unc_t u;
         switch (t % 8u) {
         case 1:
             cfg.reject_overlap = 1;
@@ -541,8 +563,9 @@ static void fix_variants(void)
             cfg.turn_max = 5965232ul; /* 0.5 degrees */
             break;
         case 4:
-            cfg.resid_max = 0; /* 3 units of 2^-16 turn: 0.016 degrees */
-            if (n > 0)         /* and one sighting 8 units off */
+            cfg.bearing_err = 0; /* 3 units of 2^-16 turn: 0.016 degrees */
+            cfg.bearing_err_moving = 0;
+            if (n > 0) /* and one sighting 8 units off */
                 sight[n / 2].angle += 0x00080000u;
             break;
         case 5:
@@ -553,15 +576,25 @@ static void fix_variants(void)
             cfg.widen_max = 238609294ul; /* 20 degrees */
             cfg.widen_steps = 4;
             break;
-        case 7:
-            cfg.beacon_flat = 1;
+        case 7: /* every other beacon a flat strip, every third a wider post */
+            for (uint8_t k = 0; k < map.n; k++)
+                kdk[k] = optical_dk(k % 3u ? 5243 : 7864) /* 0.08 or 0.12 m */
+                         | (k & 1u ? OPTICAL_DK_FLAT : 0u);
             cfg.motion_passes = 1;
             cfg.quality_max = 100;
             break;
-        default:
+        default: /* a dead-reckoning uncertainty grown over up to 4 m and 20 degrees */
+            u.pos = (fx_q16_t)(rnd32() % 0x2000u);
+            u.heading = rnd32() % 0x01000000u;
+            {
+                fx_q16_t travel = (fx_q16_t)(rnd32() % 0x40000u); /* (one draw at a time) */
+                optical_unc_grow(&cfg, &u, travel, rnd32() % 0x0E000000u);
+            }
+            unc = &u;
+            cfg.err_max = (fx_q16_t)(rnd32() % 0x1000u);
             break;
         }
-        fix_print("fixv ", t, n, optical_fix(&map, &cfg, &ap, sight, (uint8_t)n, latched, &fix));
+        fix_print("fixv ", t, n, optical_fix(&map, &cfg, &ap, unc, sight, (uint8_t)n, latched, &fix));
     }
     for (uint8_t t = 0; t < 8; t++) {
         int8_t n = run_case(VEC_BENCH_STILL, &cfg, &map, &ap, &latched);
@@ -582,7 +615,7 @@ static void fix_variants(void)
             else
                 ap.x = v;
         }
-        fix_print("fixa ", t, n, optical_fix(mp, &cfg, &ap, sight, (uint8_t)n, latched, &fix));
+        fix_print("fixa ", t, n, optical_fix(mp, &cfg, &ap, NULL, sight, (uint8_t)n, latched, &fix));
         map.n = nb;
     }
 }
@@ -627,7 +660,7 @@ static uint32_t time_fix(uint8_t i, optical_config_t *cfg, optical_map_t *map, o
     const optical_pose_t *latched;
     int8_t n = run_case(i, cfg, map, ap, &latched);
     uint16_t t0 = slow_now();
-    optical_fix(map, cfg, ap, sight, (uint8_t)n, latched, &fix);
+    optical_fix(map, cfg, ap, NULL, sight, (uint8_t)n, latched, &fix);
     uint16_t t1 = slow_now();
     return 8ul * (uint16_t)(t1 - t0);
 }
@@ -661,7 +694,7 @@ static void bench(void)
         vcase = VEC_BENCH_STILL;
         int8_t n = run_case(vcase, &cfg, &map, &ap, &latched);
         cy_check(n == 15, "benchmark revolution has 15 sightings");
-        optical_fix(&map, &cfg, &ap, sight, (uint8_t)n, latched, &fix);
+        optical_fix(&map, &cfg, &ap, NULL, sight, (uint8_t)n, latched, &fix);
         const optical_rev_t *rev = capture_case(vcase);
         CY_BENCH(&st_rev, optical_rev_sightings(rev, 50000u, sight));
         optical_capture_release(&cap);
@@ -680,7 +713,7 @@ static void bench(void)
     for (uint8_t v = 0; v < 2; v++) {
         int8_t n = run_case(v ? VEC_BENCH_MOVING : VEC_BENCH_STILL, &cfg, &map, &ap, &latched);
         uint16_t sp = stack_paint();
-        optical_fix(&map, &cfg, &ap, sight, (uint8_t)n, latched, &fix);
+        optical_fix(&map, &cfg, &ap, NULL, sight, (uint8_t)n, latched, &fix);
         uint16_t used = stack_used(sp);
         if (used > deepest)
             deepest = used;

@@ -1,9 +1,11 @@
 /*
- * optical_scan.S - optical_scan (optical/fastmath.h) on the MSP430: the expected angle and
- * window of every map beacon and the candidate pairs within the windows, the identification's
- * inner loop (O2-O3). scan_k.c is its C twin, the definition of every result; this performs
- * the very same integer steps (docs/kernels.md: the fix floor needs it; the check images run
- * both on every call).
+ * optical_scan.S - optical_scan, optical_angle16 and optical_width_excess (optical/fastmath.h)
+ * on the MSP430: the expected angle and window of every map beacon and the candidate pairs
+ * within the windows, the identification's inner loop (O2-O3); the cheap bearing of a vector,
+ * which the fix's residuals take for every identified beacon (O6); a pulse's width against its
+ * beacon's (the fix's width check, O6). scan_k.c holds their C twins, the definition of every
+ * result; this performs the very same integer steps (docs/kernels.md: the fix floor needs
+ * them; the check images run both sides on every call).
  *
  * Registers as clang emits calls (TI EABI): arguments in R12..R15 (32-bit ones in pairs, R12
  * the low word), results in R12; R11..R15 may be clobbered, R4..R10 are preserved. The
@@ -593,3 +595,219 @@ es_all2:
     jnz     35b
     jmp     es_next
     .size optical_scan, .-optical_scan
+
+/*
+ * uint16_t optical_angle16(int32_t dx, int32_t dy): R13:R12 = dx, R15:R14 = dy -> R12 = the
+ * direction in 2^-16 turn, as scan_k.c: the magnitudes with the octant's flags (R11 as
+ * es_octant's: 2 swapped, 4 dx < 0, 8 dy < 0), the larger shifted to [2^15, 2^16) and the
+ * smaller with it, then optical_octant's arithmetic (es_octant without the window's h).
+ * Clobbers R11..R15 only (no frame); the multiplier as optical_scan uses it.
+ */
+    .section .text.optical_angle16,"ax",@progbits
+    .global optical_angle16
+    .type optical_angle16,@function
+optical_angle16:
+    clr     r11
+    tst     r13                     ; |dx|, flag 4
+    jge     1f
+    inv     r12
+    inv     r13
+    inc     r12
+    adc     r13
+    bis     #4, r11
+1:  tst     r15                     ; |dy|, flag 8
+    jge     2f
+    inv     r14
+    inv     r15
+    inc     r14
+    adc     r15
+    bis     #8, r11
+2:  cmp     r13, r15                ; |dy| > |dx|: swapped, flag 2
+    jlo     4f
+    jne     3f
+    cmp     r12, r14
+    jlo     4f
+    jeq     4f
+3:  xor     r12, r14
+    xor     r14, r12
+    xor     r12, r14
+    xor     r13, r15
+    xor     r15, r13
+    xor     r13, r15
+    bis     #2, r11
+4:  tst     r13                     ; the larger below 2^16: no right shift
+    jz      6f
+5:  clrc                            ; both right until the larger fits 16 bits (the smaller
+    rrc     r13                     ; then does too)
+    rrc     r12
+    clrc
+    rrc     r15
+    rrc     r14
+    tst     r13
+    jnz     5b
+    jmp     7f
+6:  tst     r12                     ; (0, 0): 0
+    jz      9f
+7:  tst     r12                     ; both left until the larger reaches 2^15
+    jn      8f
+    rla     r12
+    rla     r14
+    jmp     7b
+8:  mov     r12, r13                ; r = RT[i] - ((u mod 2^9) (RT[i] - RT[i+1]) 2^7) >> 16
+    and     #0x01ff, r13
+    mov     r13, &MPY
+    mov     r12, r15                ; 2 (u >> 9): the tables - 128 based
+    swpb    r15
+    and     #0x00fe, r15
+    mov     optical_recip_d_tab-128(r15), &OP2
+    mov     optical_recip_tab-128(r15), r13
+    sub     &RESHI, r13
+    mov     r13, &MPY               ; q = (r v) >> 14, saturated
+    mov     r14, &OP2
+    mov     &RESHI, r12
+    cmp     #0x4000, r12
+    jhs     10f
+    mov     &RESLO, r15
+    swpb    r12                     ; 2i = 2 (q >> 10)
+    mov.b   r12, r14
+    rla     r14
+    and     #0xff00, r12            ; f = q << 6
+    swpb    r15
+    and     #0x00c0, r15
+    bis     r15, r12
+11: mov     r12, &MPY               ; a = AT[i] + ((AT[i+1] - AT[i]) f) >> 16, 2^-18 turn
+    mov     optical_atan_tab(r14), r12
+    mov     optical_atan_tab+2(r14), r15
+    sub     r12, r15
+    mov     r15, &OP2
+    add     &RESHI, r12             ; (the table holds + 2: a >> 2 rounds; a <= 32770, C = 0)
+    rrc     r12
+    rra     r12
+    xor     oct_m(r11), r12         ; unfold
+    add     oct_b(r11), r12
+9:  ret
+10: mov     #126, r14               ; q = 0xffff: i = 63, f = 0xffc0
+    mov     #0xffc0, r12
+    jmp     11b
+    .size optical_angle16, .-optical_angle16
+
+/*
+ * uint32_t optical_width_excess(optical_wx_t *a): R12 = a -> R13:R12 as scan_k.c, a->r8
+ * written. R8..R10 saved; the multiplier as optical_scan uses it.
+ */
+    .section .text.optical_width_excess,"ax",@progbits
+    .global optical_width_excess
+    .type optical_width_excess,@function
+optical_width_excess:
+    push    r10
+    push    r9
+    push    r8
+    clr     WX_R8(r12)
+    mov     WX_DX(r12), r14         ; M, m: |dx| >> 8 into R11, |dy| >> 8 into R14
+    mov     WX_DX+2(r12), r15
+    call    #wx_mag8
+    jc      wx_zero
+    mov     r14, r11
+    mov     WX_DY(r12), r14
+    mov     WX_DY+2(r12), r15
+    call    #wx_mag8
+    jc      wx_zero
+    cmp     r14, r11                ; the larger in R11
+    jhs     1f
+    xor     r11, r14
+    xor     r14, r11
+    xor     r11, r14
+1:  mov     r11, r13                ; r8 = M - M / 8 + m / 2, at least M (M < 2^15)
+    rra     r13
+    rra     r13
+    rra     r13
+    mov     r11, r15
+    sub     r13, r15
+    rra     r14
+    add     r14, r15
+    cmp     r11, r15
+    jhs     2f
+    mov     r11, r15
+2:  mov     r15, WX_R8(r12)
+    mov     WX_W(r12), &MPY         ; wr = w r8 into R9:R8
+    mov     r15, &OP2
+    mov     &RESLO, r8
+    mov     &RESHI, r9
+    mov     WX_TOL(r12), r13        ; tr = (tol mod 2^15) r8 + wr / 16 into R11:R10
+    and     #0x7fff, r13
+    mov     r13, &MPY
+    mov     r15, &OP2
+    mov     r8, r10
+    mov     r9, r11
+    clrc
+    rrc     r11
+    rrc     r10
+    clrc
+    rrc     r11
+    rrc     r10
+    clrc
+    rrc     r11
+    rrc     r10
+    clrc
+    rrc     r11
+    rrc     r10
+    add     &RESLO, r10
+    addc    &RESHI, r11
+    mov     WX_DK(r12), r14         ; dk + tr into R15:R14
+    mov     WX_DK+2(r12), r15
+    add     r10, r14
+    addc    r11, r15
+    cmp     r15, r9                 ; wr > dk + tr: wr - (dk + tr)
+    jlo     3f
+    jne     4f
+    cmp     r14, r8
+    jlo     3f
+    jeq     3f
+4:  sub     r14, r8
+    subc    r15, r9
+    mov     r8, r12
+    mov     r9, r13
+    jmp     wx_out
+3:  bit     #0x8000, WX_TOL(r12)    ; a flat strip: only too wide counts
+    jnz     wx_zero
+    add     r10, r8                 ; wr + tr into R9:R8
+    addc    r11, r9
+    mov     WX_DK(r12), r14         ; dk > wr + tr: dk - (wr + tr)
+    mov     WX_DK+2(r12), r15
+    cmp     r9, r15
+    jlo     wx_zero
+    jne     5f
+    cmp     r8, r14
+    jlo     wx_zero
+    jeq     wx_zero
+5:  sub     r8, r14
+    subc    r9, r15
+    mov     r14, r12
+    mov     r15, r13
+    jmp     wx_out
+wx_zero:
+    clr     r12
+    clr     r13
+wx_out:
+    pop     r8
+    pop     r9
+    pop     r10
+    ret
+
+/* R15:R14 = v -> R14 = floor(|v| / 2^8), carry clear; carry set when |v| >= 2^23. */
+wx_mag8:
+    tst     r15
+    jge     1f
+    inv     r14
+    inv     r15
+    inc     r14
+    adc     r15
+1:  cmp     #0x0080, r15
+    jhs     2f
+    swpb    r14
+    mov.b   r14, r14
+    swpb    r15
+    bis     r15, r14
+    clrc
+2:  ret
+    .size optical_width_excess, .-optical_width_excess

@@ -19,6 +19,8 @@ typedef struct {
     main_board_config_t main; /* kept by reference by the main board, with what it points to */
     nav_board_config_t nav;
     optical_xy_t beacons[OPTICAL_MAX_BEACONS];
+    optical_refl_t refl[OPTICAL_MAX_BEACONS];
+    uint32_t dk[OPTICAL_MAX_BEACONS];
     optical_xy8_t beacons8[OPTICAL_MAX_BEACONS];
     drive_path_point_t points[MAIN_BOARD_MAX_PATH];
     sim_path_t nominal;
@@ -27,7 +29,7 @@ typedef struct {
 /**
  * Build the download of @p sc into @p m (which must outlive the run). Returns 0, or -1 with a
  * message naming the offending key and value in @p err: more path points or beacons than the
- * main board holds, beacons it cannot map, a prescribed pose the solver cannot reach from the
+ * main board holds, beacons it cannot map (two of them coincide), a prescribed pose the solver cannot reach from the
  * previous one with the vehicle's minimum radius.
  */
 int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, size_t errlen);

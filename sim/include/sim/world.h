@@ -1,6 +1,7 @@
 /*
- * world.h - the simulated building: retroreflective beacons (cylindrical posts), mirror-like
- * spurious reflectors (narrow glints), and occluders (wall segments that block the beam).
+ * world.h - the simulated building: retroreflective beacons (cylindrical posts or flat strips
+ * facing the vehicle), mirror-like spurious reflectors (narrow glints), and occluders (wall
+ * segments that block the beam).
  */
 #ifndef SIM_WORLD_H
 #define SIM_WORLD_H
@@ -14,7 +15,8 @@
 
 typedef struct {
     double x, y;
-    double diameter; /* m */
+    double diameter; /* m: a post's diameter, a strip's width */
+    int kind;        /* SIM_BEACON_KIND_CYLINDER or SIM_BEACON_KIND_FLAT (sim/scenario_keys.h) */
 } sim_beacon_t;
 
 typedef struct {
@@ -34,6 +36,12 @@ typedef struct {
     sim_occluder_t occluder[SIM_MAX_OCCLUDERS];
     size_t n_occluders;
 } sim_world_t;
+
+/**
+ * The first pair of beacons that overlap (centres closer than the sum of their radii: an
+ * impossible world): true with their indices in *i < *j, false when none do.
+ */
+bool sim_world_coincident(const sim_world_t *w, size_t *i, size_t *j);
 
 /** True when the straight line from (ax, ay) to (bx, by) crosses no occluder. */
 bool sim_world_visible(const sim_world_t *w, double ax, double ay, double bx, double by);

@@ -1,7 +1,8 @@
 /*
  * optical/fastmath.h - the arithmetic the optical fix spends its time in: the work area, the
- * identification's primitives (ident.c) and the kernels (docs/kernels.md): optical_scan
- * (scan_k.c; msp430/optical_scan.S on the target) and optical_tri_core / optical_tri_quality
+ * identification's primitives (ident.c) and the kernels (docs/kernels.md): optical_scan,
+ * optical_angle16 and optical_width_excess (scan_k.c; msp430/optical_scan.S on the target)
+ * and optical_tri_core / optical_tri_quality
  * (tri_k.c; msp430/optical_tri.S). A kernel's C twin defines every result; its assembly
  * performs the very same integer steps (the check images compare both on every call).
  *
@@ -238,23 +239,48 @@ extern const uint16_t optical_sqrt_tab[25];
 int8_t optical_tri_take(const optical_xy_t *map, const uint8_t t[3], uint32_t quality_max,
                         optical_tri_t *out);
 
-/** Arguments of optical_width_ok(). */
+/** optical_width_excess()'s arguments and its range. */
 typedef struct {
-    uint32_t dk;    /**< D 2^8 2^16 / (2 pi), D the post diameter in m */
+    int32_t dx, dy; /**< the beacon from where its pulse was seen, Q16 m */
+    uint32_t dk;    /**< its reflector as optical_dk() gives it */
+    uint16_t w;     /**< the pulse's width, 2^-16 turn */
+    uint16_t tol;   /**< tolerated width error, 2^-16 turn, below 2^12; bit 15: a flat strip */
+    uint16_t r8;    /**< written: the range, 2^-8 m (0 when 0 is returned for the reach) */
+} optical_wx_t;
+
+/**
+ * How far a pulse's width is off the width of its beacon (the fix's width check, fix.c): the
+ * range r8 = max(M, M - floor(M / 8) + floor(m / 2)) of the magnitudes M >= m of the offset in
+ * 2^-8 m (floored; within -3.1 % and +0.7 % of the length), written to a->r8; with
+ * wr = w r8 and tr = (tol mod 2^15) r8 + floor(wr / 16), returns wr - dk - tr when wr > dk + tr
+ * (the pulse too wide: merged), else dk - wr - tr when dk > wr + tr and bit 15 of tol is clear
+ * (too narrow: a post partly screened), else 0; 0 (and r8 = 0) when a component reaches
+ * 2^23 (128 m). All within 32 bits for tol below 2^12. A kernel (scan_k.c;
+ * msp430/optical_scan.S).
+ */
+uint32_t optical_width_excess(optical_wx_t *a);
+
+/** Arguments of optical_width_ok() that do not depend on the beacon. */
+typedef struct {
     fx_q16_t x, y;  /**< the position the beacon is seen from */
     uint16_t eps8;  /**< position uncertainty, 2^-8 m */
     uint16_t tol8;  /**< absolute distance tolerance, 2^-8 m */
     uint16_t rel16; /**< relative distance tolerance, 2^-16 */
-    uint8_t flat;   /**< 1: flat strips (only the upper distance bound is checked) */
 } optical_width_t;
 
+/** A reflector's size as O4 and O5 use it: D 2^8 2^16 / (2 pi) for D = @p d (Q16 m), i.e.
+ * (d 10430) >> 8 (2^-8 m times 2^-16 turn). */
+uint32_t optical_dk(fx_q16_t d);
+
 /**
- * O5: is an apparent width of @p w16 (2^-16 turn) compatible with beacon @p b seen from (x,
- * y) +- eps8? The range lies within [o / 1.118 - eps8, o + eps8], o the octagonal norm of the
- * offset (2^-8 m, components capped at 256 m), widened by tol8 + rel16 times its upper end.
- * Posts look 2 asin(D / 2r) wide, and 0.969 w <= 2 sin(w/2) <= w below 0.5 rad.
+ * O5: is an apparent width of @p w16 (2^-16 turn) compatible with beacon @p b, of compiled
+ * reflector @p dk (optical_map_t.dk), seen from (x, y) +- eps8? The range lies within [o / 1.118 - eps8, o + eps8], o the
+ * octagonal norm of the offset (2^-8 m, components capped at 256 m), widened by tol8 + rel16
+ * times its upper end. Posts look 2 asin(D / 2r) wide, and 0.969 w <= 2 sin(w/2) <= w below
+ * 0.5 rad; a flat strip looks at most 2 atan(D / 2r) wide (only the range's upper bound is
+ * checked).
  */
-bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16);
+bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint32_t dk, uint16_t w16);
 
 #ifdef __cplusplus
 }
