@@ -868,7 +868,21 @@ struct Scene {
     optical_rev_t rev;
     std::vector<std::vector<int>> truth; // beacons in each raw sighting (none: a glint)
     int visible = 0;
+    std::vector<optical_refl_t> refl; // each beacon's reflector (empty: posts of kD)
+    // Half-widths (rad) a glint adds on each side of a beacon's pulse (merged with it):
+    // beacon index -> {before, after}.
+    std::vector<std::array<double, 2>> merged;
 };
+
+// The apparent width of beacon k of @p sc from range r: a post 2 asin(D / 2r), a flat strip
+// facing the vehicle 2 atan(D / 2r).
+double apparent(const Scene &sc, int k, double r)
+{
+    if (sc.refl.empty())
+        return 2 * std::asin(std::min(1.0, kD / (2 * r)));
+    double d = fx_q16_to_double(sc.refl[k].d);
+    return sc.refl[k].flat ? 2 * std::atan(d / (2 * r)) : 2 * std::asin(std::min(1.0, d / (2 * r)));
+}
 
 // One revolution seen from (p, phi) standing still: every visible beacon gives a pulse from
 // the edge angles of its post (2 asin(D / 2d) wide), captured as counts of the angle clock;
@@ -884,8 +898,13 @@ void capture_still(Scene &sc, const std::vector<int> &vis, const std::vector<dou
         V2 d = sc.map[k] - sc.p;
         double r = d.norm();
         double c = wrap_2pi(std::atan2(d.y(), d.x()) - sc.phi);
-        double w = 2 * std::asin(std::min(1.0, kD / (2 * r)));
-        ps.push_back({c - w / 2, c + w / 2, {k}});
+        double w = apparent(sc, k, r);
+        double before = 0, after = 0;
+        if ((size_t)k < sc.merged.size()) {
+            before = sc.merged[k][0];
+            after = sc.merged[k][1];
+        }
+        ps.push_back({c - w / 2 - before, c + w / 2 + after, {k}});
     }
     for (double g : glints)
         ps.push_back({g, g + (1 + (int)(g * 1000) % 3) * kCount, {}});
@@ -949,10 +968,19 @@ Scene random_scene(std::mt19937 &rng, double field = 20.0)
     return sc;
 }
 
-optical_config_t test_config()
+// The sensors of these scenes: edges exact to the count, latched poses exact (no noise, no gyro
+// steps): the bearing error bounds of such sensors.
+optical_config_t exact_sensors()
 {
     optical_config_t cfg;
     optical_config_default(&cfg);
+    cfg.bearing_err = cfg.bearing_err_moving = OPTICAL_BEARING_ERR(0ul);
+    return cfg;
+}
+
+optical_config_t test_config()
+{
+    optical_config_t cfg = exact_sensors();
     cfg.window = fx_angle_from_deg(5.3); // the approximate pose: within 5 degrees and 0.3 m
     cfg.window_pos = fx_q16_from_double(0.33);
     return cfg;
@@ -966,13 +994,13 @@ struct FixOut {
 
 FixOut run_fix(const Scene &sc, const optical_config_t &cfg,
                const optical_pose_t *latched = nullptr, const optical_sighting_t *given = nullptr,
-               int ngiven = 0)
+               int ngiven = 0, const optical_unc_t *unc = nullptr)
 {
     std::vector<optical_xy_t> m;
     for (const V2 &b : sc.map)
         m.push_back(q16(b));
     std::vector<optical_xy8_t> m8;
-    optical_map_t map = compiled(m, m8);
+    optical_map_t map = compiled(m, m8, -1, sc.refl.empty() ? nullptr : sc.refl.data());
     optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
     int n = ngiven;
     if (given)
@@ -983,7 +1011,7 @@ FixOut run_fix(const Scene &sc, const optical_config_t &cfg,
     optical_pose_t ap = {fx_q16_from_double(sc.ap.x()), fx_q16_from_double(sc.ap.y()),
                          fx_angle_from_rad(sc.aphi)};
     FixOut o;
-    o.status = optical_fix(&map, &cfg, &ap, nullptr, s, (uint8_t)n, latched, &o.raw);
+    o.status = optical_fix(&map, &cfg, &ap, unc, s, (uint8_t)n, latched, &o.raw);
     o.pose = {from_q16(o.raw.pose.x, o.raw.pose.y), fx_angle_to_rad(o.raw.pose.heading)};
     return o;
 }
@@ -1056,7 +1084,7 @@ TEST(Pipeline, TenThousandRandomRevolutions)
                 worst_h * 180 / M_PI, good, good_acc, 100.0 * good_acc / good, wrong_ident,
                 merged_ident);
     std::printf("status:");
-    for (int i = 0; i < 11; i++)
+    for (int i = 0; i < OPTICAL_STATUS_COUNT; i++)
         std::printf(" %d:%d", i, why[i]);
     std::printf("\n");
     EXPECT_EQ(wrong, 0);
@@ -1122,6 +1150,328 @@ TEST(Pipeline, BadInputIsRefusedNotTrusted)
         s[i].width = 1;
     optical_config_default(&cfg);
     EXPECT_EQ(optical_fix(&map, &cfg, &ap, nullptr, s, 4, nullptr, &f), OPTICAL_E_FEW);
+}
+
+// ---------------------------------------------------------------- O6 acceptance, reflectors
+
+// A standing revolution from (p, phi) with every beacon of @p map visible, the approximate
+// pose exact (the gate's tests move it).
+Scene still_scene(const std::vector<V2> &map, const V2 &p, double phi,
+                  const std::vector<optical_refl_t> &refl = {})
+{
+    Scene sc;
+    sc.map = map;
+    sc.refl = refl;
+    sc.p = p;
+    sc.phi = phi;
+    sc.ap = p;
+    sc.aphi = phi;
+    std::vector<int> vis(map.size());
+    for (size_t k = 0; k < map.size(); k++)
+        vis[k] = (int)k;
+    capture_still(sc, vis, {});
+    sc.visible = (int)vis.size();
+    return sc;
+}
+
+// Ten posts around a 20 m room.
+std::vector<V2> room_map()
+{
+    return {on_grid(V2(0, 2)),   on_grid(V2(0, 15)), on_grid(V2(6, 20)),  on_grid(V2(14, 20)),
+            on_grid(V2(20, 17)), on_grid(V2(20, 5)), on_grid(V2(15, 0)),  on_grid(V2(8, 0)),
+            on_grid(V2(3, 0)),   on_grid(V2(20, 11))};
+}
+
+// The sighting (sorted, as optical_fix takes them) of map beacon k in @p sc.
+int sighting_of(const Scene &sc, int k)
+{
+    optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
+    int n = optical_rev_sightings(&sc.rev, kCounts, s);
+    V2 d = sc.map[k] - sc.p;
+    double c = wrap_2pi(std::atan2(d.y(), d.x()) - sc.phi);
+    int best = -1;
+    for (int i = 0; i < n; i++)
+        if (best < 0 || std::abs(wrap_pi(fx_angle_to_rad(s[i].angle) - c)) <
+                            std::abs(wrap_pi(fx_angle_to_rad(s[best].angle) - c)))
+            best = i;
+    return best;
+}
+
+// A map of posts of 0.03 m to 0.25 m and flat strips of 0.15 m: every beacon identified as
+// itself and the fix within a millimetre; the same revolution against a map that gives every
+// beacon the first one's diameter (as the firmware did) has no fix at all.
+TEST(Reflectors, MixedMapFixesWhereOneDiameterDoesNot)
+{
+    std::vector<V2> map = room_map();
+    std::vector<optical_refl_t> refl;
+    const double d[10] = {0.03, 0.25, 0.15, 0.08, 0.15, 0.2, 0.15, 0.05, 0.12, 0.15};
+    for (int k = 0; k < 10; k++)
+        refl.push_back({fx_q16_from_double(d[k]), (uint8_t)(k % 2 == 0 && d[k] == 0.15 ? 1 : 0)});
+    refl[2].flat = refl[4].flat = refl[6].flat = 1;
+    Scene sc = still_scene(map, V2(9.3, 8.7), 0.4, refl);
+    optical_config_t cfg = exact_sensors();
+    FixOut f = run_fix(sc, cfg);
+    ASSERT_EQ(f.status, OPTICAL_OK);
+    EXPECT_LT((f.pose.p - sc.p).norm(), 1e-3);
+    optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
+    int n = optical_rev_sightings(&sc.rev, kCounts, s);
+    int identified = 0;
+    for (int i = 0; i < n; i++) {
+        if (f.raw.ident[i] < 0)
+            continue;
+        identified++;
+        EXPECT_EQ(sighting_of(sc, f.raw.ident[i]), i);
+    }
+    EXPECT_GE(identified, 8);
+    // One diameter for all (the first beacon's 0.03 m): the others look too wide for their
+    // distance (O5), nothing is left to fix with.
+    std::vector<optical_refl_t> one(10, refl[0]);
+    Scene same = sc;
+    same.refl = one;
+    FixOut g = run_fix(same, cfg, nullptr, s, n);
+    EXPECT_NE(g.status, OPTICAL_OK);
+}
+
+// Two posts that overlap (centres closer than the sum of their radii) are refused with the pair
+// named; posts that touch are a map; a reflector of no size or over 2 m is refused by index.
+TEST(Reflectors, CoincidentBeaconsRefusedAtCompile)
+{
+    std::vector<optical_xy_t> b = {q16(V2(0, 0)), q16(V2(10, 0)), q16(V2(0, 10)), q16(V2(5, 5))};
+    std::vector<optical_refl_t> r(4, optical_refl_t{fx_q16_from_double(0.1), 0});
+    optical_xy8_t b8[4];
+    uint32_t dk[4];
+    optical_map_t map;
+    uint8_t bad[2] = {9, 9};
+    b[3] = q16(V2(10.05, 0.05)); // 0.0707 m from beacon 1, radii 0.05 + 0.05
+    EXPECT_EQ(optical_map_compile(&map, b.data(), r.data(), 4, b8, dk, bad), OPTICAL_E_DEGENERATE);
+    EXPECT_EQ(bad[0], 1);
+    EXPECT_EQ(bad[1], 3);
+    b[3] = q16(V2(10.1, 0)); // touching: 0.1 m apart
+    EXPECT_EQ(optical_map_compile(&map, b.data(), r.data(), 4, b8, dk, bad), OPTICAL_OK);
+    r[3].d = fx_q16_from_double(0.25); // now the posts overlap (0.1 < 0.05 + 0.125)
+    EXPECT_EQ(optical_map_compile(&map, b.data(), r.data(), 4, b8, dk, bad), OPTICAL_E_DEGENERATE);
+    r[3].d = 0;
+    EXPECT_EQ(optical_map_compile(&map, b.data(), r.data(), 4, b8, dk, bad), OPTICAL_E_ARG);
+    EXPECT_EQ(bad[0], 3);
+    r[3].d = fx_q16_from_double(2.01);
+    EXPECT_EQ(optical_map_compile(&map, b.data(), r.data(), 4, b8, dk, bad), OPTICAL_E_ARG);
+    // The compiled reflector: d 2^8 2^16 / (2 pi) per metre, the flat flag on top.
+    r[3] = {fx_q16_from_double(0.2), 1};
+    b[3] = q16(V2(5, 5));
+    ASSERT_EQ(optical_map_compile(&map, b.data(), r.data(), 4, b8, dk, bad), OPTICAL_OK);
+    EXPECT_NEAR((double)(dk[3] & ~OPTICAL_DK_FLAT), 0.2 * 16777216 / kTau, 2.0);
+    EXPECT_TRUE(dk[3] & OPTICAL_DK_FLAT);
+    EXPECT_NEAR((double)map.dkmin, 0.1 * 16777216 / kTau, 2.0);
+}
+
+// The dead-reckoning uncertainty (docs/optical.md "O6"): heading + unc_turn turn +
+// unc_head_per_m travel, then position + unc_per_m travel + heading (rad) travel, each capped;
+// the fixed point rounds up, by less than a few units. After a fix: its bounds, at least the
+// floor, plus half a gyro step on the heading.
+TEST(Acceptance, UncertaintyGrowsAsDocumented)
+{
+    optical_config_t cfg;
+    optical_config_default(&cfg);
+    std::mt19937 rng(16);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double turn_max = fx_angle_to_deg(cfg.turn_max), jump_max = fx_q16_to_double(cfg.jump_max);
+    for (int t = 0; t < 20000; t++) {
+        double pos = u(rng) * 0.2, head = u(rng) * 2, s = u(rng) * (t % 10 ? 1.5 : 40),
+               turn = u(rng) * (t % 7 ? 20 : 170);
+        optical_unc_t un = {fx_q16_from_double(pos), fx_angle_from_deg(head)};
+        double p0 = fx_q16_to_double(un.pos), h0 = fx_angle_to_deg(un.heading);
+        fx_q16_t st = fx_q16_from_double(s);
+        fx_angle_t tt = fx_angle_from_deg(turn);
+        optical_unc_grow(&cfg, &un, st, tt);
+        double hx = h0 + fx_q16_to_double(cfg.unc_turn) * fx_angle_to_deg(tt) +
+                    fx_angle_to_deg(cfg.unc_head_per_m) * fx_q16_to_double(st);
+        double px = p0 + fx_q16_to_double(cfg.unc_per_m) * fx_q16_to_double(st) +
+                    std::min(hx, turn_max) * M_PI / 180 * fx_q16_to_double(st);
+        double hg = fx_angle_to_deg(un.heading), pg = fx_q16_to_double(un.pos);
+        if (hx >= turn_max) {
+            EXPECT_EQ(un.heading, cfg.turn_max);
+        } else {
+            ASSERT_GE(hg, hx - 1e-9) << t;
+            ASSERT_LE(hg, hx + 4 * 360.0 / 65536) << t; // the roundings up, 2^-16 turn
+        }
+        if (px >= jump_max) {
+            EXPECT_EQ(un.pos, cfg.jump_max);
+        } else {
+            ASSERT_GE(pg, px - 1e-9) << t;
+            // 2^-8 m roundings, and the heading rounded up over the travel
+            ASSERT_LE(pg, px + 5.0 / 256 + 4 * kTau / 65536 * fx_q16_to_double(st)) << t;
+        }
+    }
+    optical_fix_t f;
+    f.err = fx_q16_from_double(0.004);
+    f.err_heading = fx_angle_from_deg(0.1);
+    optical_unc_t un;
+    optical_unc_after_fix(&cfg, &f, &un);
+    EXPECT_EQ(un.pos, cfg.unc_pos_min); // 4 mm: the floor, 1 cm
+    EXPECT_EQ(un.heading, f.err_heading + cfg.unc_head_min);
+    f.err = fx_q16_from_double(0.03);
+    optical_unc_after_fix(&cfg, &f, &un);
+    EXPECT_EQ(un.pos, f.err);
+}
+
+// The gate: a fix within its bound of the dead-reckoning pose is accepted, one beyond it
+// refused (the distance compared in 2^-8 m, up to 3 units long: 12 mm of slack on that side).
+TEST(Acceptance, GateAgainstDeadReckoning)
+{
+    std::vector<V2> map;
+    for (int k = 0; k < 12; k++) { // a 40 m hall: every beacon 10 m away or more
+        double a = k * kTau / 12;
+        map.push_back(on_grid(V2(20 + 18 * std::cos(a), 20 + 18 * std::sin(a))));
+    }
+    Scene sc = still_scene(map, V2(19.4, 20.7), 1.0);
+    optical_config_t cfg = exact_sensors();
+    FixOut f0 = run_fix(sc, cfg);
+    ASSERT_EQ(f0.status, OPTICAL_OK);
+    const double err = fx_q16_to_double(f0.raw.err), U = 0.05;
+    EXPECT_LT(err, 0.002);
+    optical_unc_t unc = {fx_q16_from_double(U), fx_angle_from_deg(1)};
+    for (double dir : {0.3, 2.0, 4.4}) {
+        V2 e(std::cos(dir), std::sin(dir));
+        for (double d : {U + err - 0.014, U + err + 0.004, U + err + 0.03}) {
+            Scene moved = sc;
+            moved.ap = sc.p + d * e;
+            FixOut f = run_fix(moved, cfg, nullptr, nullptr, 0, &unc);
+            double gate = fx_q16_to_double(f.raw.gate);
+            if (d < U + err - 0.013) {
+                EXPECT_EQ(f.status, OPTICAL_OK) << d;
+                EXPECT_NEAR(gate, U + err, 2e-5);
+                EXPECT_LT((f.pose.p - sc.p).norm(), 1e-3);
+            } else {
+                EXPECT_EQ(f.status, OPTICAL_E_JUMP) << d << " gate " << gate;
+            }
+        }
+    }
+    // The heading: its uncertainty plus the fix's own bound (a sighting's).
+    double hb = 1 + fx_angle_to_deg(cfg.bearing_err);
+    for (double dh : {hb - 0.01, hb + 0.01}) {
+        Scene turned = sc;
+        turned.aphi = sc.phi + dh * M_PI / 180;
+        FixOut f = run_fix(turned, cfg, nullptr, nullptr, 0, &unc);
+        EXPECT_EQ(f.status, dh < hb ? OPTICAL_OK : OPTICAL_E_TURN) << dh;
+    }
+}
+
+// Every identified beacon is checked: a sighting 0.3 degrees off its beacon (the residual
+// tolerance standing is 0.027 degrees plus the fix's bound over the range) is dropped as an
+// outlier while the others that agree are at least three and three times as many; two of them
+// among seven others refuse the fix.
+TEST(Acceptance, OutliersDroppedOrTheFixRefused)
+{
+    Scene sc = still_scene(room_map(), V2(9.3, 8.7), 0.4);
+    optical_config_t cfg = exact_sensors();
+    FixOut f0 = run_fix(sc, cfg);
+    ASSERT_EQ(f0.status, OPTICAL_OK);
+    ASSERT_EQ(f0.raw.n_ident, 10);
+    EXPECT_EQ(f0.raw.n_agree, 10);
+    EXPECT_EQ(f0.raw.n_dropped, 0);
+    EXPECT_LT(f0.raw.resid, 6); // exact geometry: the roundings only (2^-16 turn)
+    optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
+    int n = optical_rev_sightings(&sc.rev, kCounts, s);
+    std::vector<int> others;
+    for (int i = 0; i < n; i++)
+        if (f0.raw.ident[i] != f0.raw.used[0] && f0.raw.ident[i] != f0.raw.used[1] &&
+            f0.raw.ident[i] != f0.raw.used[2])
+            others.push_back(i);
+    ASSERT_EQ(others.size(), 7u);
+    optical_sighting_t one[OPTICAL_MAX_SIGHTINGS];
+    std::copy(s, s + n, one);
+    one[others[2]].angle += fx_angle_from_deg(0.3);
+    FixOut f1 = run_fix(sc, cfg, nullptr, one, n);
+    ASSERT_EQ(f1.status, OPTICAL_OK);
+    EXPECT_EQ(f1.raw.n_dropped, 1);
+    EXPECT_EQ(f1.raw.n_agree, 9);
+    EXPECT_EQ(f1.raw.ident[others[2]], -1);
+    EXPECT_EQ(f1.raw.pose.x, f0.raw.pose.x); // the same triplet, the same fix
+    EXPECT_EQ(f1.raw.pose.y, f0.raw.pose.y);
+    one[others[5]].angle -= fx_angle_from_deg(0.3);
+    FixOut f2 = run_fix(sc, cfg, nullptr, one, n);
+    EXPECT_EQ(f2.status, OPTICAL_E_DISAGREE); // 5 agree, fewer than 3 times 2
+}
+
+// Geometry first: when the seed's selection leans on three beacons 35 m away (the near ones
+// beside them in angle), their predicted error exceeds err_max and the triplet with one of them
+// replaced that is best conditioned (the smallest Cramer-Rao bound, computed here with Eigen)
+// makes the fix; with err_max below every candidate's, the fix is refused as poor.
+TEST(Acceptance, BetterConditionedTripletPreferred)
+{
+    const V2 p(40, 40);
+    std::vector<V2> map;
+    for (int k = 0; k < 3; k++) {
+        double a = 0.3 + k * kTau / 3;
+        map.push_back(on_grid(p + 35 * V2(std::cos(a), std::sin(a))));
+    }
+    map.push_back(on_grid(p + 3 * V2(std::cos(0.45), std::sin(0.45))));
+    map.push_back(on_grid(p + 4 * V2(std::cos(0.3 + kTau / 3 + 0.2), std::sin(0.3 + kTau / 3 + 0.2))));
+    Scene sc = still_scene(map, p, 0.2);
+    optical_config_t cfg = exact_sensors();
+    cfg.err_max = fx_q16_from_double(1e-3);
+    FixOut f = run_fix(sc, cfg);
+    // the seed's triplet (the far three) and its single replacements, by their CRB
+    std::array<int, 3> far = {0, 1, 2};
+    double crb_far = crb_rms({map[0], map[1], map[2]}, p), best = 1e30;
+    std::set<int> best_set;
+    for (int r = 0; r < 3; r++)
+        for (int q : {3, 4}) {
+            std::array<int, 3> t = far;
+            t[r] = q;
+            double c = crb_rms({map[t[0]], map[t[1]], map[t[2]]}, p);
+            if (c < best) {
+                best = c;
+                best_set = {t[0], t[1], t[2]};
+            }
+        }
+    ASSERT_LT(best, crb_far / 2);
+    double err_best = best * fx_angle_to_rad(cfg.bearing_err) * 1000 / 1000; // m per rad * rad
+    std::printf("triplets: the far three CRB %.4f m/rad, the best replacement %.4f m/rad; status %d,"
+                " err %.2f mm\n",
+                crb_far, best, f.status, fx_q16_to_double(f.raw.err) * 1e3);
+    ASSERT_NE(f.raw.quality, UINT32_MAX);
+    std::set<int> used = {f.raw.used[0], f.raw.used[1], f.raw.used[2]};
+    EXPECT_EQ(used, best_set);
+    EXPECT_NEAR(f.raw.quality / 65536.0 / 1000, best, best * 0.01); // Q16 m/mrad vs m/rad
+    if (err_best > 1e-3) {
+        EXPECT_EQ(f.status, OPTICAL_E_POOR);
+    }
+    cfg.err_max = fx_q16_from_double(0.05);
+    FixOut g = run_fix(sc, cfg);
+    EXPECT_EQ(g.status, OPTICAL_OK);
+    EXPECT_LT((g.pose.p - p).norm(), 2e-3);
+}
+
+// A triplet pulse merged with a glint beside it (0.3 degrees more on one side): its centre is
+// off by half of that, the fix by up to the quality times it; the bound counts it (and holds),
+// where the width-blind bound would not.
+TEST(Acceptance, MergedPulseCountedInTheBound)
+{
+    Scene sc = still_scene(room_map(), V2(9.3, 8.7), 0.4);
+    optical_config_t cfg = exact_sensors();
+    FixOut f0 = run_fix(sc, cfg);
+    ASSERT_EQ(f0.status, OPTICAL_OK);
+    Scene m = sc;
+    m.merged.assign(10, {0.0, 0.0});
+    m.merged[f0.raw.used[1]] = {0.0, 0.3 * M_PI / 180};
+    capture_still(m, [] {
+        std::vector<int> v(10);
+        for (int k = 0; k < 10; k++)
+            v[k] = k;
+        return v;
+    }(), {});
+    FixOut f1 = run_fix(m, cfg);
+    ASSERT_EQ(f1.status, OPTICAL_OK) << f1.status;
+    double e0 = fx_q16_to_double(f0.raw.err), e1 = fx_q16_to_double(f1.raw.err);
+    double actual = (f1.pose.p - sc.p).norm();
+    std::printf("merged pulse: fix %.2f mm off, bound %.2f mm (%.2f mm without the width check)\n",
+                actual * 1e3, e1 * 1e3, e0 * 1e3);
+    if (f1.raw.used[0] == f0.raw.used[0] && f1.raw.used[1] == f0.raw.used[1] &&
+        f1.raw.used[2] == f0.raw.used[2]) {
+        EXPECT_GT(actual, e0); // the width-blind bound is exceeded
+        EXPECT_GE(e1, actual); // the bound with the width check holds
+    }
 }
 
 // ---------------------------------------------------------------- O11 fixes while driving
@@ -1268,8 +1618,7 @@ TEST(Motion, DrivingAtOneMetrePerSecondAgainstStandingStill)
 {
     std::mt19937 rng(99);
     std::uniform_real_distribution<double> u(0, 1);
-    optical_config_t cfg;
-    optical_config_default(&cfg);
+    optical_config_t cfg = exact_sensors();
     for (int kind : {1, 2}) {
         MovingStats still, moving, uncompensated;
         for (int t = 0; t < 400; t++) {
