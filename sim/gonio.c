@@ -41,7 +41,7 @@ static double target_half(const crossing_t *c, double px, double py)
         return -c->half;
     double d = hypot(c->tx - px, c->ty - py);
     double r = c->half; /* diameter / 2 */
-    if (c->flat) /* a strip of width 2r facing the vehicle */
+    if (c->flat)        /* a strip of width 2r facing the vehicle */
         return d > 0.0 ? atan(r / d) : 0.5 * M_PI;
     return d > r ? asin(r / d) : 0.5 * M_PI;
 }

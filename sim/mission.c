@@ -85,8 +85,10 @@ int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, siz
     int8_t st = optical_map_compile(&mc->map, m->beacons, m->refl, (uint8_t)sc->world.n_beacons,
                                     m->beacons8, m->dk, bad);
     if (st == OPTICAL_E_DEGENERATE) {
-        snprintf(err, errlen, "beacons[%u] and beacons[%u] coincide: the main board's map refuses "
-                 "them", bad[0], bad[1]);
+        snprintf(err, errlen,
+                 "beacons[%u] and beacons[%u] coincide: the main board's map refuses "
+                 "them",
+                 bad[0], bad[1]);
         return -1;
     }
     if (st != OPTICAL_OK) {

@@ -20,8 +20,8 @@ static drive_path_point_t path[MISSION_N_PATH] = MISSION_PATH;
 
 /* The download, a constant in flash (the board keeps it by reference). */
 static const main_board_config_t cfg = {
-    .map = {beacons, MISSION_N_BEACONS, beacons8, MISSION_ORIGIN_X, MISSION_ORIGIN_Y,
-            reflectors_dk, MISSION_DKMIN},
+    .map = {beacons, MISSION_N_BEACONS, beacons8, MISSION_ORIGIN_X, MISSION_ORIGIN_Y, reflectors_dk,
+            MISSION_DKMIN},
     .path = path,
     .n_path = MISSION_N_PATH,
     .start = MISSION_START,

@@ -288,10 +288,10 @@ static uint8_t sort_standing(const optical_sighting_t *s, uint16_t wmin)
 
 /*
  * The both-ways uniqueness: every sorted sighting j whose match k = sm[j] is a beacon is kept
- * when bm[k] = j and its width fits beacon k's compiled reflector @p dk[k] (O5, asked once per (j, k): wchk[j] caches k, bit 7 set
- * for a misfit); otherwise sm[j] becomes NONE. With @p lohi non-NULL, every kept match
- * narrows the heading-offset interval [lohi[0], lohi[1]] (2^-16 turn) to its offset +- its
- * position part. Returns the kept.
+ * when bm[k] = j and its width fits beacon k's compiled reflector @p dk[k] (O5, asked once per (j,
+ * k): wchk[j] caches k, bit 7 set for a misfit); otherwise sm[j] becomes NONE. With @p lohi
+ * non-NULL, every kept match narrows the heading-offset interval [lohi[0], lohi[1]] (2^-16 turn) to
+ * its offset +- its position part. Returns the kept.
  */
 static int8_t unique(const optical_width_t *wd, const uint32_t *dk, const optical_sighting_t *s,
                      int16_t *lohi)
@@ -342,11 +342,13 @@ static uint16_t len8(int32_t dx, int32_t dy)
     return (uint16_t)(fx_sqrt32((uint32_t)x8 * x8 + (uint32_t)y8 * y8) + 1u);
 }
 
-/* Milliradians of the binary angle @p a (below 2^31) in 2^-8 mrad, rounded up: a16(a) 2 pi
- * 1000 / 2^16 = a16(a) 24.54 (24.54 = 6283 / 256; at most 0xFFFF: 14.6 degrees). */
+/* Milliradians of the binary angle @p a in 2^-8 mrad, rounded up (a bound stays a bound):
+ * a 2 pi 1000 2^8 / 2^32 = (a / 2^8) 6283.19 / 2^16, with a / 2^8 rounded up and the floor
+ * plus one; 0xFFFF from 14.6 degrees on. */
 static uint16_t mrad8_of(fx_angle_t a)
 {
-    return sat16((((uint32_t)a16(a) * 6283u) >> 8) + 1u);
+    uint32_t a24 = (a >> 8) + 1u;
+    return a24 >= 0xFFFFFFFFul / 6284u ? 0xFFFFu : sat16(((a24 * 6284u) >> 16) + 1u);
 }
 
 /* The predicted position error bound of a fix of quality @p q (Q16 m per mrad) for bearing
@@ -708,8 +710,7 @@ static fx_q16_t e_total(const ctx_t *x, const uint8_t t[3], const optical_tri_t 
  * smallest predicted error taken when it is smaller. *err: the predicted error of *tri
  * (INT32_MAX when it has none).
  */
-static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t *tri,
-                    fx_q16_t *err)
+static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t *tri, fx_q16_t *err)
 {
     optical_select(W.u.sv.ang, W.m, t);
     int8_t st = solve_triplet(x, t, passes, tri);
@@ -873,8 +874,8 @@ static uint16_t residuals(const ctx_t *x, const optical_pose_t *p, const uint8_t
  * that agree are at least three and at least three times as many, otherwise the fix is
  * refused (OPTICAL_E_DISAGREE). Writes out->gate, resid, n_agree, n_dropped.
  */
-static int8_t check(const ctx_t *x, const optical_pose_t *p,
-                                               const uint8_t t3[3], optical_fix_t *out)
+static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3],
+                    optical_fix_t *out)
 {
     out->gate = x->u.pos + out->err;
     /* (in 2^-8 m: the distance up to 3 units long, the bound rounded up; no root when

@@ -7,7 +7,7 @@
 const char *optical_status_name(int st)
 {
     static const char *const names[OPTICAL_STATUS_COUNT] = {
-        "ok",       "arg",          "rev",         "few",         "degenerate", "singular",
-        "jump",     "turn",         "disagree",    "inconsistent", "unconfirmed", "poor"};
+        "ok",   "arg",  "rev",      "few",          "degenerate",  "singular",
+        "jump", "turn", "disagree", "inconsistent", "unconfirmed", "poor"};
     return st >= 0 && st < OPTICAL_STATUS_COUNT ? names[st] : "?";
 }

@@ -82,7 +82,7 @@ TEST(Gonio, PhotodetectorIsTheUnionOfOverlappingPulses)
     w.n_beacons = 3;
     w.beacon[0] = {5, 0, 0.1, SIM_BEACON_KIND_CYLINDER};
     w.beacon[1] = {10, 0.05, 0.1, SIM_BEACON_KIND_CYLINDER}; // 0.29 deg beside beacon 0, 0.57
-                                                              // deg wide: overlaps it
+                                                             // deg wide: overlaps it
     w.beacon[2] = {0, 6, 0.1, SIM_BEACON_KIND_CYLINDER};
     sim_gonio_cfg_t cfg = {2.0, 50000, 0.0, 60.0};
     sim_segment_t still = sim_segment(0.0, {0.0, 0.0, 0.0}, 0, 0, 0, 0.75);

@@ -44,7 +44,8 @@ TEST(Scenario, BeaconsCarryTheirOwnReflector)
 {
     std::string text = kScenario;
     std::string from = "{\"x\":10,\"y\":0,\"diameter_m\":0.08}";
-    text.replace(text.find(from), from.size(), "{\"x\":10,\"y\":0,\"diameter_m\":0.2,\"kind\":\"flat\"}");
+    text.replace(text.find(from), from.size(),
+                 "{\"x\":10,\"y\":0,\"diameter_m\":0.2,\"kind\":\"flat\"}");
     sim_scenario_t sc;
     char err[256];
     ASSERT_EQ(sim_scenario_parse(text.c_str(), &sc, err, sizeof err), 0) << err;
@@ -78,8 +79,8 @@ TEST(Scenario, BadInputNamesTheKeyAndTheValue)
         {"\"speed_mps\":1.0}]", "\"speed_mps\":0}]", "path[0].speed_mps: 0 is out of range"},
         {"\"seed\": 7,", "", "missing \"seed\""},
         {"\"name\": \"unit\",", "\"name\": \"unit\",,", "line 2"},
-        {"\"x\":10,\"y\":10,\"diameter_m\":0.08", "\"x\":10,\"y\":10,\"diameter_m\":0.08,\"kind\":\"round\"",
-         "beacons[2].kind: \"round\""},
+        {"\"x\":10,\"y\":10,\"diameter_m\":0.08",
+         "\"x\":10,\"y\":10,\"diameter_m\":0.08,\"kind\":\"round\"", "beacons[2].kind: \"round\""},
         // Two posts 0.07 m apart overlap (radii 0.04 m each): both named.
         {"{\"x\":10,\"y\":0,\"diameter_m\":0.08}", "{\"x\":0.07,\"y\":0,\"diameter_m\":0.08}",
          "beacons[0] (0, 0) and beacons[1] (0.07, 0) coincide: 0.07 m apart"},

@@ -99,8 +99,8 @@ static int8_t run_case(uint8_t i, optical_config_t *cfg, optical_map_t *map, opt
         krefl[k].d = 5243; /* 0.08 m */
         krefl[k].flat = 0;
     }
-    if (optical_map_compile(map, &vec_beacons[vec_maps[c->map].first], krefl,
-                            vec_maps[c->map].n, kmap8, kdk, NULL) != OPTICAL_OK)
+    if (optical_map_compile(map, &vec_beacons[vec_maps[c->map].first], krefl, vec_maps[c->map].n,
+                            kmap8, kdk, NULL) != OPTICAL_OK)
         cy_check(false, "case map compiles");
     ap->x = c->approx.x;
     ap->y = c->approx.y;
@@ -594,7 +594,8 @@ static void fix_variants(void)
             cfg.err_max = (fx_q16_t)(rnd32() % 0x1000u);
             break;
         }
-        fix_print("fixv ", t, n, optical_fix(&map, &cfg, &ap, unc, sight, (uint8_t)n, latched, &fix));
+        fix_print("fixv ", t, n,
+                  optical_fix(&map, &cfg, &ap, unc, sight, (uint8_t)n, latched, &fix));
     }
     for (uint8_t t = 0; t < 8; t++) {
         int8_t n = run_case(VEC_BENCH_STILL, &cfg, &map, &ap, &latched);
@@ -615,7 +616,8 @@ static void fix_variants(void)
             else
                 ap.x = v;
         }
-        fix_print("fixa ", t, n, optical_fix(mp, &cfg, &ap, NULL, sight, (uint8_t)n, latched, &fix));
+        fix_print("fixa ", t, n,
+                  optical_fix(mp, &cfg, &ap, NULL, sight, (uint8_t)n, latched, &fix));
         map.n = nb;
     }
 }

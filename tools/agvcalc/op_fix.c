@@ -181,8 +181,8 @@ static int read_beacon(json_t *e, size_t i, const refl_default_t *rd, optical_xy
     if (json_is_array(e) && (json_array_size(e) == 2 || json_array_size(e) == 3)) {
         for (size_t k = 0; k < json_array_size(e); k++) {
             snprintf(what, sizeof what, "map[%zu][%zu]", i, k);
-            if (ac_number_value(json_array_get(e, k), what, k < 2 ? -LIM : 0.005,
-                                k < 2 ? LIM : 2.0, &v[k], err, errlen))
+            if (ac_number_value(json_array_get(e, k), what, k < 2 ? -LIM : 0.005, k < 2 ? LIM : 2.0,
+                                &v[k], err, errlen))
                 return -1;
         }
     } else if (json_is_object(e)) {
@@ -205,12 +205,13 @@ static int read_beacon(json_t *e, size_t i, const refl_default_t *rd, optical_xy
             else if (json_is_string(kind) && !strcmp(json_string_value(kind), "cylinder"))
                 flat = false;
             else
-                return ac_fail(err, errlen,
-                               "map[%zu].kind: expected \"cylinder\" or \"flat\"", i);
+                return ac_fail(err, errlen, "map[%zu].kind: expected \"cylinder\" or \"flat\"", i);
         }
     } else {
-        return ac_fail(err, errlen, "map[%zu]: expected [x, y], [x, y, diameter_m] or "
-                       "{\"x\",\"y\",\"diameter_m\",\"kind\"}", i);
+        return ac_fail(err, errlen,
+                       "map[%zu]: expected [x, y], [x, y, diameter_m] or "
+                       "{\"x\",\"y\",\"diameter_m\",\"kind\"}",
+                       i);
     }
     b->x = fx_q16_from_double(v[0]);
     b->y = fx_q16_from_double(v[1]);
@@ -275,8 +276,7 @@ int agvcalc_op_fix(json_t *req, json_t *resp, char *err, size_t errlen)
     json_t *jm = json_object_get(req, "map");
     if (!jm)
         return ac_fail(err, errlen, "missing \"map\"");
-    if (!json_is_array(jm) || json_array_size(jm) < 3 ||
-        json_array_size(jm) > OPTICAL_MAX_BEACONS)
+    if (!json_is_array(jm) || json_array_size(jm) < 3 || json_array_size(jm) > OPTICAL_MAX_BEACONS)
         return ac_fail(err, errlen, "map: expected an array of 3 to %d beacons",
                        OPTICAL_MAX_BEACONS);
     size_t nb = json_array_size(jm);

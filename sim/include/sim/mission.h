@@ -29,8 +29,8 @@ typedef struct {
 /**
  * Build the download of @p sc into @p m (which must outlive the run). Returns 0, or -1 with a
  * message naming the offending key and value in @p err: more path points or beacons than the
- * main board holds, beacons it cannot map (two of them coincide), a prescribed pose the solver cannot reach from the
- * previous one with the vehicle's minimum radius.
+ * main board holds, beacons it cannot map (two of them coincide), a prescribed pose the solver
+ * cannot reach from the previous one with the vehicle's minimum radius.
  */
 int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, size_t errlen);
 

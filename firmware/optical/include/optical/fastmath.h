@@ -274,10 +274,10 @@ uint32_t optical_dk(fx_q16_t d);
 
 /**
  * O5: is an apparent width of @p w16 (2^-16 turn) compatible with beacon @p b, of compiled
- * reflector @p dk (optical_map_t.dk), seen from (x, y) +- eps8? The range lies within [o / 1.118 - eps8, o + eps8], o the
- * octagonal norm of the offset (2^-8 m, components capped at 256 m), widened by tol8 + rel16
- * times its upper end. Posts look 2 asin(D / 2r) wide, and 0.969 w <= 2 sin(w/2) <= w below
- * 0.5 rad; a flat strip looks at most 2 atan(D / 2r) wide (only the range's upper bound is
+ * reflector @p dk (optical_map_t.dk), seen from (x, y) +- eps8? The range lies within [o / 1.118 -
+ * eps8, o + eps8], o the octagonal norm of the offset (2^-8 m, components capped at 256 m), widened
+ * by tol8 + rel16 times its upper end. Posts look 2 asin(D / 2r) wide, and 0.969 w <= 2 sin(w/2) <=
+ * w below 0.5 rad; a flat strip looks at most 2 atan(D / 2r) wide (only the range's upper bound is
  * checked).
  */
 bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint32_t dk, uint16_t w16);

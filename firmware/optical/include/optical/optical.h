@@ -141,22 +141,22 @@ typedef enum {
  * map's (optical_map_t.refl).
  */
 typedef struct {
-    fx_angle_t window;         /**< largest heading uncertainty the windows cover (O3 +-dpsi) */
-    fx_q16_t window_pos;       /**< largest position uncertainty the windows cover (m) */
-    fx_angle_t widen_max;      /**< heading window after the last widening */
-    uint8_t widen_steps;       /**< widenings allowed; step = (widen_max - window) / steps */
-    uint8_t reject_overlap;    /**< 0: only when widened, 1: always (the seed's rule) */
-    fx_q16_t range;            /**< T: sightings narrower than a post at T are dropped (O4) */
-    fx_q16_t range_max;        /**< T after the last widening of T */
-    uint8_t range_steps;       /**< widenings of T; step = (range_max - range) / steps */
-    fx_q16_t dist_tol;         /**< O5: |D_map - d_width| > dist_tol + dist_rel * D_map rejects */
-    fx_q16_t dist_rel;         /**< relative part of that tolerance, Q16 fraction */
-    fx_q16_t jump_max;         /**< O6: largest dead-reckoning position uncertainty (m): the
-                                    gate's cap, and the uncertainty when none is known */
-    fx_angle_t turn_max;       /**< O6: the same for the heading */
-    fx_angle_t bearing_err;    /**< bound of one sighting's bearing error, standing */
+    fx_angle_t window;      /**< largest heading uncertainty the windows cover (O3 +-dpsi) */
+    fx_q16_t window_pos;    /**< largest position uncertainty the windows cover (m) */
+    fx_angle_t widen_max;   /**< heading window after the last widening */
+    uint8_t widen_steps;    /**< widenings allowed; step = (widen_max - window) / steps */
+    uint8_t reject_overlap; /**< 0: only when widened, 1: always (the seed's rule) */
+    fx_q16_t range;         /**< T: sightings narrower than a post at T are dropped (O4) */
+    fx_q16_t range_max;     /**< T after the last widening of T */
+    uint8_t range_steps;    /**< widenings of T; step = (range_max - range) / steps */
+    fx_q16_t dist_tol;      /**< O5: |D_map - d_width| > dist_tol + dist_rel * D_map rejects */
+    fx_q16_t dist_rel;      /**< relative part of that tolerance, Q16 fraction */
+    fx_q16_t jump_max;      /**< O6: largest dead-reckoning position uncertainty (m): the
+                                 gate's cap, and the uncertainty when none is known */
+    fx_angle_t turn_max;    /**< O6: the same for the heading */
+    fx_angle_t bearing_err; /**< bound of one sighting's bearing error, standing */
     fx_angle_t bearing_err_moving; /**< the same while moving (the latched headings' steps) */
-    fx_q16_t err_max;          /**< largest predicted position error accepted (m) */
+    fx_q16_t err_max;              /**< largest predicted position error accepted (m) */
     fx_q16_t unc_pos_min;      /**< dead reckoning: position uncertainty after a fix, at least */
     fx_angle_t unc_head_min;   /**< dead reckoning: heading uncertainty added to a fix's own */
     fx_q16_t unc_per_m;        /**< dead reckoning: position uncertainty per metre travelled,
@@ -333,8 +333,7 @@ void optical_unc_grow(const optical_config_t *cfg, optical_unc_t *u, fx_q16_t tr
  * pose): its position error bound, at least unc_pos_min; its heading error bound plus
  * unc_head_min (the nav board reads its gyro to whole steps).
  */
-void optical_unc_after_fix(const optical_config_t *cfg, const optical_fix_t *fix,
-                           optical_unc_t *u);
+void optical_unc_after_fix(const optical_config_t *cfg, const optical_fix_t *fix, optical_unc_t *u);
 
 /**
  * One revolution's fix (O2-O11) and its acceptance (O6).
