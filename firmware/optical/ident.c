@@ -151,3 +151,27 @@ bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint32_t 
         return false;
     return (dkf & OPTICAL_DK_FLAT) || hi * w16 >= dk;
 }
+
+uint32_t optical_width_excess(optical_wx_t *a)
+{
+    uint32_t ax = umag(a->dx), ay = umag(a->dy);
+    a->r8 = 0;
+    if (ax >= 0x800000ul || ay >= 0x800000ul)
+        return 0;
+    uint16_t mx = (uint16_t)(ax >> 8), mn = (uint16_t)(ay >> 8);
+    if (mn > mx) {
+        uint16_t t = mx;
+        mx = mn;
+        mn = t;
+    }
+    uint16_t r8 = (uint16_t)(mx - (mx >> 3) + (mn >> 1));
+    r8 = r8 < mx ? mx : r8;
+    a->r8 = r8;
+    uint32_t wr = (uint32_t)a->w * r8;
+    uint32_t tr = (uint32_t)(a->tol & 0x7FFFu) * r8 + (wr >> 4);
+    if (wr > a->dk + tr)
+        return wr - a->dk - tr;
+    if (!(a->tol & 0x8000u) && a->dk > wr + tr)
+        return a->dk - (wr + tr);
+    return 0;
+}

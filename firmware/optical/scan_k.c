@@ -1,8 +1,7 @@
 /*
- * scan_k.c - the C twins of the kernels optical_scan, optical_angle16 and optical_width_excess
- * (optical/fastmath.h; the assembly: msp430/optical_scan.S): the expected angle and window of
- * every map beacon and the candidate pairs within the windows; the cheap bearing of a vector
- * (the fix's residuals); a pulse's width against its beacon's (the fix's width check).
+ * scan_k.c - the C twins of the kernels optical_scan and optical_angle16 (optical/fastmath.h;
+ * the assembly: msp430/optical_scan.S): the expected angle and window of every map beacon and
+ * the candidate pairs within the windows; the cheap bearing of a vector (the fix's residuals).
  * The definition of every result: the build takes this file or the assembly whole, and the
  * check images run both on every call (docs/kernels.md).
  */
@@ -49,30 +48,6 @@ uint16_t optical_angle16(int32_t dx, int32_t dy)
     }
     optical_angle_parts_t p;
     return optical_octant((uint16_t)ax, (uint16_t)ay, flags, &p);
-}
-
-uint32_t optical_width_excess(optical_wx_t *a)
-{
-    uint32_t ax = mag(a->dx), ay = mag(a->dy);
-    a->r8 = 0;
-    if (ax >= 0x800000ul || ay >= 0x800000ul)
-        return 0;
-    uint16_t mx = (uint16_t)(ax >> 8), mn = (uint16_t)(ay >> 8);
-    if (mn > mx) {
-        uint16_t t = mx;
-        mx = mn;
-        mn = t;
-    }
-    uint16_t r8 = (uint16_t)(mx - (mx >> 3) + (mn >> 1));
-    r8 = r8 < mx ? mx : r8;
-    a->r8 = r8;
-    uint32_t wr = (uint32_t)a->w * r8;
-    uint32_t tr = (uint32_t)(a->tol & 0x7FFFu) * r8 + (wr >> 4);
-    if (wr > a->dk + tr)
-        return wr - a->dk - tr;
-    if (!(a->tol & 0x8000u) && a->dk > wr + tr)
-        return a->dk - (wr + tr);
-    return 0;
 }
 
 uint8_t optical_scan(int16_t mid, uint16_t half)

@@ -53,13 +53,6 @@ void optical_offsets(void)
     CY_OFFSET(MATCH_DROPPED, OPTICAL_DROPPED);
     CY_OFFSET(MARGIN, OPTICAL_MARGIN);
     CY_OFFSET(MAX_CAND, OPTICAL_MAX_CAND);
-    /* optical_wx_t: optical_width_excess's arguments and range */
-    CY_OFFSET(WX_DX, offsetof(optical_wx_t, dx));
-    CY_OFFSET(WX_DY, offsetof(optical_wx_t, dy));
-    CY_OFFSET(WX_DK, offsetof(optical_wx_t, dk));
-    CY_OFFSET(WX_W, offsetof(optical_wx_t, w));
-    CY_OFFSET(WX_TOL, offsetof(optical_wx_t, tol));
-    CY_OFFSET(WX_R8, offsetof(optical_wx_t, r8));
     /* optical_tsol_t: what optical_tri_core writes and optical_tri_quality reads */
     CY_OFFSET(TSOL_OFF, offsetof(optical_tsol_t, off));
     CY_OFFSET(TSOL_W, offsetof(optical_tsol_t, w));

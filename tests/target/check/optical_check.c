@@ -1,7 +1,7 @@
 /*
  * optical_check.c - the check-mode wrappers of the optical kernels (kernel_check.h,
- * docs/kernels.md): optical_scan, optical_angle16, optical_width_excess, optical_tri_core and
- * optical_tri_quality, each run as its assembly and as its C twin (scan_k.c, tri_k.c) on every
+ * docs/kernels.md): optical_scan, optical_angle16, optical_tri_core and optical_tri_quality,
+ * each run as its assembly and as its C twin (scan_k.c, tri_k.c) on every
  * call, every output compared.
  */
 #include <stdbool.h>
@@ -16,9 +16,6 @@ uint8_t optical_scan_c(int16_t mid, uint16_t half);
 uint16_t __real_optical_angle16(int32_t dx, int32_t dy);
 uint16_t __wrap_optical_angle16(int32_t dx, int32_t dy);
 uint16_t optical_angle16_c(int32_t dx, int32_t dy);
-uint32_t __real_optical_width_excess(optical_wx_t *a);
-uint32_t __wrap_optical_width_excess(optical_wx_t *a);
-uint32_t optical_width_excess_c(optical_wx_t *a);
 int8_t __real_optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out);
 int8_t __wrap_optical_tri_core(int32_t v[4], const int32_t sc[4], optical_tsol_t *out);
 int8_t optical_tri_core_c(int32_t v[4], const int32_t sc[4], optical_tsol_t *out);
@@ -101,20 +98,6 @@ uint16_t __wrap_optical_angle16(int32_t dx, int32_t dy)
     KCHECK_RUN(&st, r_asm = __real_optical_angle16(dx, dy), r_c = optical_angle16_c(dx, dy));
     const uint32_t oa[] = {r_asm}, oc[] = {r_c};
     kcheck_words("optical_angle16", "dx,dy", in, 2, oa, oc, 1);
-    return r_asm;
-}
-
-/* The arguments are read, the range written: the C twin runs on a copy. */
-uint32_t __wrap_optical_width_excess(optical_wx_t *a)
-{
-    static kcheck_stat_t st = KCHECK_STAT("optical_width_excess");
-    const uint32_t in[] = {(uint32_t)a->dx, (uint32_t)a->dy, a->dk,
-                           ((uint32_t)a->w << 16) | a->tol};
-    optical_wx_t c = *a;
-    uint32_t r_asm, r_c;
-    KCHECK_RUN(&st, r_asm = __real_optical_width_excess(a), r_c = optical_width_excess_c(&c));
-    const uint32_t oa[] = {r_asm, a->r8}, oc[] = {r_c, c.r8};
-    kcheck_words("optical_width_excess", "dx,dy,dk,w:tol", in, 4, oa, oc, 2);
     return r_asm;
 }
 

@@ -1,10 +1,9 @@
 /*
  * optical/fastmath.h - the arithmetic the optical fix spends its time in: the work area, the
- * identification's primitives (ident.c) and the kernels (docs/kernels.md): optical_scan,
- * optical_angle16 and optical_width_excess (scan_k.c; msp430/optical_scan.S on the target)
- * and optical_tri_core / optical_tri_quality
- * (tri_k.c; msp430/optical_tri.S). A kernel's C twin defines every result; its assembly
- * performs the very same integer steps (the check images compare both on every call).
+ * identification's primitives (ident.c) and the kernels (docs/kernels.md): optical_scan and
+ * optical_angle16 (scan_k.c; msp430/optical_scan.S on the target) and optical_tri_core /
+ * optical_tri_quality (tri_k.c; msp430/optical_tri.S). A kernel's C twin defines every result; its
+ * assembly performs the very same integer steps (the check images compare both on every call).
  *
  * These are the internals of optical_fix() and optical_triangulate(), public only so that the
  * tests can check them one by one; the work arrays they fill are described in fix.c and
@@ -255,8 +254,7 @@ typedef struct {
  * wr = w r8 and tr = (tol mod 2^15) r8 + floor(wr / 16), returns wr - dk - tr when wr > dk + tr
  * (the pulse too wide: merged), else dk - wr - tr when dk > wr + tr and bit 15 of tol is clear
  * (too narrow: a post partly screened), else 0; 0 (and r8 = 0) when a component reaches
- * 2^23 (128 m). All within 32 bits for tol below 2^12. A kernel (scan_k.c;
- * msp430/optical_scan.S).
+ * 2^23 (128 m). All within 32 bits for tol below 2^12. C on both worlds (ident.c).
  */
 uint32_t optical_width_excess(optical_wx_t *a);
 
