@@ -3,8 +3,8 @@
  * implementations so that interrupt priorities are the same on the MSP430 and in the harness.
  *
  * MSP430F2618 pins: P1.0 TACLK (goniometer angle clock), P1.1 CCI0A (index pulse), P1.2 CCI1A
- * (photodetector), P1.4..P1.7 nav-board pulse inputs, P2.0 delta-S, P2.7 test line, the
- * RST/NMI pin (NMI mode) the nav board's coordinate request.
+ * (photodetector), P1.4..P1.7 nav-board pulse inputs, P2.0 delta-S, P2.2 the MCP2515's /INT,
+ * P2.7 test line, the RST/NMI pin (NMI mode) the nav board's coordinate request.
  * Vectors use TI's numbering of the F261x table (datasheet SLAS541, interrupt vector
  * addresses): vector N is the word at 0xFFC0 + 2N and has priority N (31 = reset, highest).
  */
@@ -31,14 +31,15 @@
 
 /** Port (1 or 2) of each edge line; 0 for the NMI pin. */
 #define HAL_EDGE_PORT_OF(line)                                                                     \
-    ((line) == HAL_EDGE_COORD_REQUEST                        ? 0                                   \
-     : (line) == HAL_EDGE_DELTA_S || (line) == HAL_EDGE_TEST ? 2                                   \
-                                                             : 1)
+    ((line) == HAL_EDGE_COORD_REQUEST ? 0                                                          \
+     : (line) == HAL_EDGE_DELTA_S || (line) == HAL_EDGE_CAN_INT || (line) == HAL_EDGE_TEST      \
+         ? 2                                                                                       \
+         : 1)
 
 /** Pin (0..7) of each edge line on its port (bit 0 of the NMI vector for the NMI pin). */
 static inline unsigned hal_edge_pin(hal_edge_line_t line)
 {
-    static const unsigned char pins[HAL_EDGE_COUNT] = {4, 5, 6, 7, 0, 7, 0};
+    static const unsigned char pins[HAL_EDGE_COUNT] = {4, 5, 6, 7, 0, 2, 7, 0};
     return pins[line];
 }
 
