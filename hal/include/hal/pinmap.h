@@ -3,8 +3,8 @@
  * implementations so that interrupt priorities are the same on the MSP430 and in the harness.
  *
  * MSP430F2618 pins: P1.0 TACLK (goniometer angle clock), P1.1 CCI0A (index pulse), P1.2 CCI1A
- * (photodetector), P1.4..P1.7 nav-board pulse inputs, P2.0 delta-S, P2.2 the MCP2515's /INT,
- * P2.7 test line, the RST/NMI pin (NMI mode) the nav board's coordinate request.
+ * (photodetector), P1.4..P1.7 nav-board pulse inputs, P2.0 delta-S, P2.2 the MCP2515's /INT
+ * (CAN), P2.7 test line, the RST/NMI pin (NMI mode) the nav board's coordinate request.
  * Vectors use TI's numbering of the F261x table (datasheet SLAS541, interrupt vector
  * addresses): vector N is the word at 0xFFC0 + 2N and has priority N (31 = reset, highest).
  */
@@ -28,6 +28,11 @@
 #define HAL_VEC_RESET   31 /* 0xFFFE */
 /** Number of vectors (0..HAL_VEC_COUNT-1). */
 #define HAL_VEC_COUNT   32
+
+/** CAN instance 0 (hal/can.h): the MCP2515's /INT on P2.2, falling edge, PORT2 vector. */
+#define HAL_CAN0_INT_PORT 2
+#define HAL_CAN0_INT_PIN  2
+#define HAL_CAN0_VECTOR   HAL_VEC_PORT2
 
 /** Port (1 or 2) of each edge line; 0 for the NMI pin. */
 #define HAL_EDGE_PORT_OF(line)                                                                     \
