@@ -70,6 +70,17 @@ static uint8_t popcount3(uint8_t v)
     return (uint8_t)((v & 1u) + ((v >> 1) & 1u) + ((v >> 2) & 1u));
 }
 
+static void add16(uint16_t *c, uint16_t n)
+{
+    *c = (uint16_t)(*c > 0xFFFFu - n ? 0xFFFFu : *c + n);
+}
+
+static void add32(uint32_t *c)
+{
+    if (*c != 0xFFFFFFFFul)
+        (*c)++;
+}
+
 /* Request operating mode @p op (REQOP bits) and wait until CANSTAT shows it. */
 static int request_mode(const mcp2515_t *d, uint8_t op)
 {
@@ -127,7 +138,9 @@ static int filters_valid(const mcp2515_filters_t *f)
 }
 
 /* Error state from EFLG. Entering bus-off aborts the pending frames (CANCTRL.ABAT, kept set
- * while bus-off so nothing is loaded meanwhile); leaving it clears ABAT. */
+ * while bus-off so nothing is loaded meanwhile) and, with manual recovery, parks the
+ * controller in configuration mode (it does not count its way back there); leaving bus-off
+ * clears ABAT. */
 static int update_state(mcp2515_t *d, uint8_t eflg)
 {
     mcp2515_state_t s = (eflg & MCP_TXBO)                 ? MCP2515_BUS_OFF
@@ -135,13 +148,25 @@ static int update_state(mcp2515_t *d, uint8_t eflg)
                                                           : MCP2515_ERROR_ACTIVE;
     int rc = MCP2515_OK;
     if (s == MCP2515_BUS_OFF && d->state != MCP2515_BUS_OFF) {
-        d->stats.bus_offs++;
+        add16(&d->stats.bus_offs, 1u);
         rc = bit_modify(d, MCP_CANCTRL, MCP_ABAT, MCP_ABAT);
-        d->stats.tx_aborted = (uint16_t)(d->stats.tx_aborted + popcount3(d->pending));
+        add16(&d->stats.tx_aborted, popcount3(d->pending));
         d->pending = 0u;
+        if (d->manual_recovery) {
+            d->held = 1u;
+            d->recovering = 0u;
+            if (rc == MCP2515_OK)
+                rc = bit_modify(d, MCP_CANCTRL, MCP_REQOP_MASK, MCP_REQOP_CONFIG);
+        } else {
+            d->recovering = 1u;
+        }
     } else if (s != MCP2515_BUS_OFF && d->state == MCP2515_BUS_OFF) {
+        add16(&d->stats.recoveries, 1u);
+        d->recovering = 0u;
         rc = bit_modify(d, MCP_CANCTRL, MCP_ABAT, 0u);
     }
+    if (s == MCP2515_ERROR_PASSIVE && d->state == MCP2515_ERROR_ACTIVE)
+        add16(&d->stats.error_passive, 1u);
     d->eflg = eflg;
     d->state = s;
     return rc;
@@ -168,7 +193,7 @@ int mcp2515_init(mcp2515_t *d, const mcp2515_config_t *cfg)
         return MCP2515_ERR_ARG;
     d->ready = 0u;
     if (cfg->rx_cb == NULL || (unsigned)cfg->mode >= MCP2515_MODE_COUNT ||
-        !filters_valid(&cfg->filters) ||
+        cfg->tx_fifo > 1u || cfg->manual_recovery > 1u || !filters_valid(&cfg->filters) ||
         mcp2515_bit_timing(cfg->osc_hz, cfg->bitrate_bps, &cnf) != MCP2515_OK)
         return MCP2515_ERR_ARG;
     d->bus = cfg->bus;
@@ -177,6 +202,10 @@ int mcp2515_init(mcp2515_t *d, const mcp2515_config_t *cfg)
     d->rx_cb = cfg->rx_cb;
     d->tx_cb = cfg->tx_cb;
     d->arg = cfg->arg;
+    d->tx_fifo = cfg->tx_fifo ? 1u : 0u;
+    d->manual_recovery = cfg->manual_recovery ? 1u : 0u;
+    d->held = 0u;
+    d->recovering = 0u;
     d->pending = 0u;
     d->seq = 0u;
     d->eflg = 0u;
@@ -276,7 +305,7 @@ int mcp2515_send(mcp2515_t *d, const mcp2515_frame_t *f)
         return rc;
     }
     uint8_t n = (free_bufs & 1u) ? 0u : (free_bufs & 2u) ? 1u : 2u;
-    uint32_t key = arb_key(f);
+    uint32_t key = d->tx_fifo ? 0u : arb_key(f); /* FIFO: equal keys, the age decides */
     uint8_t seq = (uint8_t)(d->seq + 1u);
     /* Transmit priorities: rank among the pending frames and the new one, 3 = first. */
     uint8_t rank = 0u;
@@ -368,9 +397,26 @@ static int read_rx(mcp2515_t *d, uint8_t n)
         f.len = MCP2515_MAX_DATA; /* DLC 9..15 carries 8 bytes */
     if (xfer(d, NULL, f.data, f.rtr ? 0u : f.len, 0u) != MCP2515_OK)
         return MCP2515_ERR_SPI;
-    d->stats.rx_frames++;
+    add32(&d->stats.rx_frames);
     d->rx_cb(d->arg, &f);
     return MCP2515_OK;
+}
+
+/* A message error (MERRF): a transmit error if TEC rose (8 a time), receive errors as REC rose;
+ * neither (an acknowledge error while error-passive) a transmit error when frames were
+ * pending, else a receive error. */
+static void count_errors(mcp2515_t *d, uint8_t tec, uint8_t rec, uint8_t was_pending)
+{
+    uint16_t tx = tec > d->tec ? (uint16_t)((tec - d->tec + 7u) / 8u) : 0u;
+    uint16_t rx = rec > d->rec ? (uint16_t)(rec - d->rec) : 0u;
+    if (tx == 0u && rx == 0u) {
+        if (was_pending)
+            tx = 1u;
+        else
+            rx = 1u;
+    }
+    add16(&d->stats.tx_errors, tx);
+    add16(&d->stats.rx_errors, rx);
 }
 
 int mcp2515_isr(mcp2515_t *d)
@@ -395,24 +441,26 @@ int mcp2515_isr(mcp2515_t *d)
         if (rc == 1 && (intf & MCP_RX1IF) && read_rx(d, 1u) != MCP2515_OK)
             rc = MCP2515_ERR_SPI;
         uint8_t done = (uint8_t)((intf & MCP_TXIF) >> 2);
-        d->stats.tx_frames = (uint16_t)(d->stats.tx_frames + popcount3(done & d->pending));
+        uint8_t sent = (uint8_t)(done & d->pending);
+        for (; sent; sent &= (uint8_t)(sent - 1u))
+            add32(&d->stats.tx_frames);
+        uint8_t was_pending = d->pending;
         d->pending &= (uint8_t)~done;
-        if (intf & MCP_MERRF)
-            d->stats.bus_errors++;
-        if (rc == 1 && (intf & MCP_ERRIF)) {
-            if (r[1] & (MCP_RX0OVR | MCP_RX1OVR)) {
-                d->stats.rx_overflows = (uint16_t)(d->stats.rx_overflows +
-                                                   ((r[1] & MCP_RX0OVR) ? 1u : 0u) +
-                                                   ((r[1] & MCP_RX1OVR) ? 1u : 0u));
-                if (bit_modify(d, MCP_EFLG, MCP_RX0OVR | MCP_RX1OVR, 0u) != MCP2515_OK)
-                    rc = MCP2515_ERR_SPI;
-            }
+        if (rc == 1 && (r[1] & (MCP_RX0OVR | MCP_RX1OVR))) {
+            add16(&d->stats.rx_overflows, (uint16_t)(((r[1] & MCP_RX0OVR) ? 1u : 0u) +
+                                                     ((r[1] & MCP_RX1OVR) ? 1u : 0u)));
+            if (bit_modify(d, MCP_EFLG, MCP_RX0OVR | MCP_RX1OVR, 0u) != MCP2515_OK)
+                rc = MCP2515_ERR_SPI;
+        }
+        if (rc == 1 && (intf & (MCP_ERRIF | MCP_MERRF))) {
             uint8_t c[2];
-            if (rc == 1 && read_regs(d, MCP_TEC, c, 2u) == MCP2515_OK) {
+            if (read_regs(d, MCP_TEC, c, 2u) != MCP2515_OK) {
+                rc = MCP2515_ERR_SPI;
+            } else {
+                if (intf & MCP_MERRF)
+                    count_errors(d, c[0], c[1], was_pending);
                 d->tec = c[0];
                 d->rec = c[1];
-            } else {
-                rc = MCP2515_ERR_SPI;
             }
         }
         if (rc == 1 && update_state(d, r[1]) != MCP2515_OK)
@@ -435,6 +483,30 @@ int mcp2515_poll(mcp2515_t *d)
     int rc = refresh(d);
     hal_irq_restore(s);
     return rc;
+}
+
+int mcp2515_recover(mcp2515_t *d)
+{
+    if (d == NULL || !d->ready)
+        return MCP2515_ERR_DEVICE;
+    hal_irq_state_t s = hal_irq_disable();
+    int rc = refresh(d);
+    if (rc == MCP2515_OK && d->state != MCP2515_BUS_OFF)
+        rc = MCP2515_ERR_STATE;
+    if (rc == MCP2515_OK && d->held) {
+        rc = request_mode(d, reqop[d->mode]);
+        if (rc == MCP2515_OK) {
+            d->held = 0u;
+            d->recovering = 1u;
+        }
+    }
+    hal_irq_restore(s);
+    return rc;
+}
+
+uint8_t mcp2515_recovering(const mcp2515_t *d)
+{
+    return d != NULL && d->ready && d->state == MCP2515_BUS_OFF ? d->recovering : 0u;
 }
 
 mcp2515_state_t mcp2515_state(const mcp2515_t *d)

@@ -8,8 +8,12 @@
  *
  * Each entry is exact (Fosc / (2 (BRP + 1) N) = the bit rate) with 16 or 20 TQ a bit where
  * the prescaler allows, SJW = 1 TQ and the sample point as late as the rules allow up to
- * 87.5 % (CiA 301's recommendation); at 8 MHz and 500 kbit/s a bit has only 8 TQ, which puts
- * it at 75 %. tests/unit/mcp2515_test.cpp checks every entry with the data sheet's formulas.
+ * 87.5 % (CiA 301's recommendation), never before 75 %: a bit of 8 TQ (1 Mbit/s from 16 MHz,
+ * 500 kbit/s from 8 MHz) puts it at 75 %, one of 10 TQ at 80 %. The rates are CiA 301's
+ * (10, 20, 50, 125, 250, 500, 800 kbit/s, 1 Mbit/s) where an exact timing exists: from 8 MHz
+ * neither 800 kbit/s nor 1 Mbit/s (5 and 4 TQ a bit), from 20 MHz not 800 kbit/s (12.5 TQ).
+ * tests/unit/mcp2515_test.cpp checks every entry with the data sheet's formulas and that no
+ * missing pair has a timing within these rules.
  */
 #include <stddef.h>
 
@@ -25,16 +29,28 @@ typedef struct {
 } timing_t;
 
 static const timing_t table[] = {
-    /* Fosc kbit/s  BRP Prop PS1 PS2     N   sample point */
-    {8, 125, 1, 5, 8, 2},  /* 16 TQ, 87.5 % */
-    {8, 250, 0, 5, 8, 2},  /* 16 TQ, 87.5 % */
-    {8, 500, 0, 2, 3, 2},  /*  8 TQ, 75 %   */
-    {16, 125, 3, 5, 8, 2}, /* 16 TQ, 87.5 % */
-    {16, 250, 1, 5, 8, 2}, /* 16 TQ, 87.5 % */
-    {16, 500, 0, 5, 8, 2}, /* 16 TQ, 87.5 % */
-    {20, 125, 4, 5, 8, 2}, /* 16 TQ, 87.5 % */
-    {20, 250, 1, 8, 8, 3}, /* 20 TQ, 85 %   */
-    {20, 500, 0, 8, 8, 3}, /* 20 TQ, 85 %   */
+    /* Fosc kbit/s BRP Prop PS1 PS2      N   sample point */
+    {8, 10, 24, 5, 8, 2},    /* 16 TQ, 87.5 % */
+    {8, 20, 9, 8, 8, 3},     /* 20 TQ, 85 %   */
+    {8, 50, 4, 5, 8, 2},     /* 16 TQ, 87.5 % */
+    {8, 125, 1, 5, 8, 2},    /* 16 TQ, 87.5 % */
+    {8, 250, 0, 5, 8, 2},    /* 16 TQ, 87.5 % */
+    {8, 500, 0, 2, 3, 2},    /*  8 TQ, 75 %   */
+    {16, 10, 49, 5, 8, 2},   /* 16 TQ, 87.5 % */
+    {16, 20, 24, 5, 8, 2},   /* 16 TQ, 87.5 % */
+    {16, 50, 9, 5, 8, 2},    /* 16 TQ, 87.5 % */
+    {16, 125, 3, 5, 8, 2},   /* 16 TQ, 87.5 % */
+    {16, 250, 1, 5, 8, 2},   /* 16 TQ, 87.5 % */
+    {16, 500, 0, 5, 8, 2},   /* 16 TQ, 87.5 % */
+    {16, 800, 0, 3, 4, 2},   /* 10 TQ, 80 %   */
+    {16, 1000, 0, 2, 3, 2},  /*  8 TQ, 75 %   */
+    {20, 10, 49, 8, 8, 3},   /* 20 TQ, 85 %   */
+    {20, 20, 24, 8, 8, 3},   /* 20 TQ, 85 %   */
+    {20, 50, 9, 8, 8, 3},    /* 20 TQ, 85 %   */
+    {20, 125, 4, 5, 8, 2},   /* 16 TQ, 87.5 % */
+    {20, 250, 1, 8, 8, 3},   /* 20 TQ, 85 %   */
+    {20, 500, 0, 8, 8, 3},   /* 20 TQ, 85 %   */
+    {20, 1000, 0, 3, 4, 2},  /* 10 TQ, 80 %   */
 };
 
 #define CNF2_BTLMODE 0x80u

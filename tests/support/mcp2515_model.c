@@ -521,7 +521,8 @@ void mcp2515_model_rx_error(mcp2515_model_t *m)
 
 void mcp2515_model_idle(mcp2515_model_t *m, uint16_t n)
 {
-    if (!m->bus_off)
+    uint8_t op = opmode(m);
+    if (!m->bus_off || op == OP_CONFIG || op == OP_SLEEP)
         return;
     uint16_t total = (uint16_t)(m->idle_sequences + n);
     if (total < 128u) {

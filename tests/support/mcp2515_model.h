@@ -46,7 +46,9 @@
  *    error, -1 per frame received, set to 127 from above 127 (the standard allows 119-127);
  *    EFLG's EWARN/RXWAR/TXWAR (>= 96), RXEP/TXEP (>= 128) and TXBO (TEC over 255; TEC then
  *    reads 255); bus-off recovery after 128 occurrences of 11 recessive bits (Figure 6-1),
- *    counters then 0.
+ *    counters then 0; the occurrences are counted only in normal, listen-only and loopback
+ *    mode (an assumption: the data sheet does not say what configuration or sleep mode does
+ *    to a bus-off controller; the model keeps it bus-off there without counting).
  * Not modelled: bit timing (CNF values are stored only), one-shot mode (OSM stored only), the
  * RXnBF and TXnRTS pins, CLKOUT, the oscillator start-up time, REC +8 for a dominant bit
  * after an error flag, error frames of other nodes, the message assembly buffer's timing.
@@ -142,7 +144,8 @@ int mcp2515_model_receive(mcp2515_model_t *m, const mcp2515_model_frame_t *f);
 /** A receive error on the bus (REC + 1, MERRF) in normal mode; ignored otherwise. */
 void mcp2515_model_rx_error(mcp2515_model_t *m);
 
-/** @p n occurrences of 11 consecutive recessive bits (an idle bus): bus-off recovery. */
+/** @p n occurrences of 11 consecutive recessive bits (an idle bus): bus-off recovery (not
+ * counted in configuration or sleep mode). */
 void mcp2515_model_idle(mcp2515_model_t *m, uint16_t n);
 
 #ifdef __cplusplus

@@ -131,13 +131,19 @@ static void print_state(const char *tag)
     cy_print(" rec ");
     cy_print_dec(rec);
     cy_print(" rx ");
-    cy_print_dec(s->rx_frames);
+    cy_print_dec((int32_t)s->rx_frames);
     cy_print(" tx ");
-    cy_print_dec(s->tx_frames);
+    cy_print_dec((int32_t)s->tx_frames);
     cy_print(" ovr ");
     cy_print_dec(s->rx_overflows);
-    cy_print(" err ");
-    cy_print_dec(s->bus_errors);
+    cy_print(" txerr ");
+    cy_print_dec(s->tx_errors);
+    cy_print(" rxerr ");
+    cy_print_dec(s->rx_errors);
+    cy_print(" passive ");
+    cy_print_dec(s->error_passive);
+    cy_print(" back ");
+    cy_print_dec(s->recoveries);
     cy_print(" abort ");
     cy_print_dec(s->tx_aborted);
     cy_print(" busoff ");
@@ -267,6 +273,8 @@ int main(void)
                             500000ul,
                             MCP2515_MODE_NORMAL,
                             {{0x7FF, 0x700}, {0x100, 0x101, 0x200, 0x200, 0x200, 0x200}, 0},
+                            0,
+                            0,
                             on_rx,
                             0,
                             0};

@@ -3,14 +3,16 @@
  * DS20001801) over hal/spi.h: portable C, the same on the target (USCI_B0) and in host tests
  * (the register model of tests/support behind hal/spi.h). docs/can.md describes it.
  *
- * The driver owns one controller: its three transmit buffers (a frame goes into a free one,
- * with transmit priorities that follow the identifiers, so the controller never sends a
- * less urgent pending frame before a more urgent one) and its two receive buffers (RXB0 rolls
- * over into RXB1). mcp2515_isr() is the handler of the controller's INT line (active low,
- * level): it reads received frames with READ RX BUFFER, hands them to the receive callback,
- * frees transmit buffers, clears the flags and follows the error state (EFLG, TEC, REC).
- * Bus-off: pending frames are aborted and sending is refused until the controller has
- * recovered by itself (128 occurrences of 11 recessive bits, DS20001801 Figure 6-1).
+ * The driver owns one controller: its three transmit buffers (a frame goes into a free one;
+ * the transmit priorities TXP of the pending buffers are ranked so that the controller sends
+ * them by identifier, lowest first - it never sends a less urgent pending frame before a more
+ * urgent one - or, with tx_fifo, in the order they were sent) and its two receive buffers (RXB0
+ * rolls over into RXB1). mcp2515_isr() is the handler of the controller's INT line (active
+ * low, level): it reads received frames with READ RX BUFFER, hands them to the receive
+ * callback, frees transmit buffers, clears the flags and follows the error state (EFLG, TEC,
+ * REC). Bus-off: pending frames are aborted and sending is refused until the controller is
+ * back: by itself after 128 occurrences of 11 recessive bits (DS20001801 Figure 6-1), or,
+ * with manual_recovery, held in configuration mode until mcp2515_recover() lets it count.
  *
  * Concurrency: every function runs its SPI frames with interrupts held off
  * (hal_irq_disable), so the main loop and the INT handler may both use the driver.
@@ -44,6 +46,7 @@ enum {
     MCP2515_ERR_FULL = -4,    /**< all three transmit buffers hold pending frames */
     MCP2515_ERR_BUS_OFF = -5, /**< the controller is bus-off: nothing is sent */
     MCP2515_ERR_MODE = -6,    /**< not possible in this mode (sending in listen-only) */
+    MCP2515_ERR_STATE = -7,   /**< mcp2515_recover(): the controller is not bus-off */
 };
 
 /** A CAN frame. */
@@ -93,22 +96,32 @@ typedef struct {
     hal_spi_bus_t bus;          /**< SPI bus the controller is on */
     hal_spi_cs_t cs;            /**< its chip select */
     uint32_t osc_hz;            /**< the controller's oscillator: 8, 16 or 20 MHz */
-    uint32_t bitrate_bps;       /**< 125000, 250000 or 500000 bit/s */
+    uint32_t bitrate_bps;       /**< bit/s: a rate mcp2515_bit_timing() knows for osc_hz */
     mcp2515_mode_t mode;        /**< mode after init */
     mcp2515_filters_t filters;  /**< acceptance filters */
+    uint8_t tx_fifo;            /**< 1: frames leave in the order sent; 0: by identifier */
+    uint8_t manual_recovery;    /**< 1: after bus-off wait for mcp2515_recover() */
     mcp2515_rx_cb_t rx_cb;      /**< receive callback, required */
     mcp2515_tx_cb_t tx_cb;      /**< transmit-buffer-free callback, may be NULL */
     void *arg;                  /**< passed to both callbacks */
 } mcp2515_config_t;
 
-/** Counters since init (wrap at 65535). */
+/**
+ * Counters since init (saturating). The MCP2515 flags a message error (MERRF) without saying
+ * whether it was sending: an error that raised TEC counts as a transmit error, one that
+ * raised REC as a receive error, one that raised neither (an acknowledge error while
+ * error-passive) as a transmit error when a frame was pending.
+ */
 typedef struct {
-    uint16_t rx_frames;    /**< frames handed to the receive callback */
-    uint16_t tx_frames;    /**< frames the controller reported sent (TXnIF) */
-    uint16_t rx_overflows; /**< frames lost because both receive buffers were full (RXnOVR) */
-    uint16_t bus_errors;   /**< message errors seen on the bus (MERRF) */
-    uint16_t tx_aborted;   /**< pending frames aborted on bus-off */
-    uint16_t bus_offs;     /**< times the controller went bus-off */
+    uint32_t rx_frames;     /**< frames handed to the receive callback */
+    uint32_t tx_frames;     /**< frames the controller reported sent (TXnIF) */
+    uint16_t tx_errors;     /**< errors while sending (each one a retransmission) */
+    uint16_t rx_errors;     /**< errors while receiving */
+    uint16_t rx_overflows;  /**< frames lost because both receive buffers were full (RXnOVR) */
+    uint16_t tx_aborted;    /**< pending frames aborted on bus-off */
+    uint16_t error_passive; /**< times it became error-passive */
+    uint16_t bus_offs;      /**< times it went bus-off */
+    uint16_t recoveries;    /**< times it came back from bus-off */
 } mcp2515_stats_t;
 
 /** Driver state of one controller (treat as opaque; one per controller). */
@@ -120,6 +133,10 @@ typedef struct {
     mcp2515_tx_cb_t tx_cb;
     void *arg;
     uint8_t ready;                       /**< 1 after a successful init */
+    uint8_t tx_fifo;                     /**< config: send order */
+    uint8_t manual_recovery;             /**< config: hold bus-off until mcp2515_recover() */
+    uint8_t held;                        /**< bus-off, held in configuration mode */
+    uint8_t recovering;                  /**< bus-off and counting its way back */
     uint8_t pending;                     /**< bit n: TXBn holds a frame not reported done */
     uint8_t seq;                         /**< age stamp of the last frame loaded */
     uint8_t tx_seq[MCP2515_TX_BUFS];     /**< age stamp of each pending frame */
@@ -137,9 +154,10 @@ typedef struct {
 } mcp2515_cnf_t;
 
 /**
- * The bit timing for @p osc_hz (8, 16 or 20 MHz) and @p bitrate_bps (125, 250 or 500 kbit/s):
- * exact bit rate, SJW 1 TQ, sample point 75-87.5 % (docs/can.md has the table). Returns
- * MCP2515_OK, or MCP2515_ERR_ARG for another pair (@p out untouched).
+ * The bit timing for @p osc_hz (8, 16 or 20 MHz) and @p bitrate_bps (CiA 301's 10, 20, 50,
+ * 125, 250, 500, 800 kbit/s and 1 Mbit/s, where an exact timing exists: not 800k and 1M from
+ * 8 MHz, not 800k from 20 MHz): exact bit rate, SJW 1 TQ, sample point 75-87.5 % (docs/can.md
+ * has the table). Returns MCP2515_OK, or MCP2515_ERR_ARG for another pair (@p out untouched).
  */
 int mcp2515_bit_timing(uint32_t osc_hz, uint32_t bitrate_bps, mcp2515_cnf_t *out);
 
@@ -189,6 +207,17 @@ int mcp2515_isr(mcp2515_t *d);
  * MCP2515_ERR_DEVICE.
  */
 int mcp2515_poll(mcp2515_t *d);
+
+/**
+ * Let a bus-off controller come back: with manual_recovery it leaves configuration mode for
+ * its mode and counts 128 x 11 recessive bits from now; without, it is counting already and
+ * nothing changes. Returns MCP2515_OK, MCP2515_ERR_STATE (not bus-off), MCP2515_ERR_SPI,
+ * MCP2515_ERR_DEVICE (not initialised, or the mode was not taken).
+ */
+int mcp2515_recover(mcp2515_t *d);
+
+/** Non-zero while bus-off and counting its way back (see mcp2515_recover()). */
+uint8_t mcp2515_recovering(const mcp2515_t *d);
 
 /** Error state as last read (from the INT handler, mcp2515_poll() or mcp2515_send());
  * MCP2515_BUS_OFF for a driver that is not initialised (or NULL). */
