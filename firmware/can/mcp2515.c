@@ -32,7 +32,7 @@ static const uint8_t reqop[MCP2515_MODE_COUNT] = {MCP_REQOP_NORMAL, MCP_REQOP_LO
 static int xfer(const mcp2515_t *d, const uint8_t *tx, uint8_t *rx, uint16_t n, uint8_t flags)
 {
     return hal_spi_transfer(d->bus, d->cs, tx, rx, n, flags) == HAL_SPI_OK ? MCP2515_OK
-                                                                            : MCP2515_ERR_SPI;
+                                                                           : MCP2515_ERR_SPI;
 }
 
 static int read_regs(const mcp2515_t *d, uint8_t addr, uint8_t *buf, uint16_t n)
@@ -143,9 +143,9 @@ static int filters_valid(const mcp2515_filters_t *f)
  * clears ABAT. */
 static int update_state(mcp2515_t *d, uint8_t eflg)
 {
-    mcp2515_state_t s = (eflg & MCP_TXBO)                 ? MCP2515_BUS_OFF
+    mcp2515_state_t s = (eflg & MCP_TXBO)                ? MCP2515_BUS_OFF
                         : (eflg & (MCP_TXEP | MCP_RXEP)) ? MCP2515_ERROR_PASSIVE
-                                                          : MCP2515_ERROR_ACTIVE;
+                                                         : MCP2515_ERROR_ACTIVE;
     int rc = MCP2515_OK;
     if (s == MCP2515_BUS_OFF && d->state != MCP2515_BUS_OFF) {
         add16(&d->stats.bus_offs, 1u);
@@ -192,8 +192,8 @@ int mcp2515_init(mcp2515_t *d, const mcp2515_config_t *cfg)
     if (d == NULL || cfg == NULL)
         return MCP2515_ERR_ARG;
     d->ready = 0u;
-    if (cfg->rx_cb == NULL || (unsigned)cfg->mode >= MCP2515_MODE_COUNT ||
-        cfg->tx_fifo > 1u || cfg->manual_recovery > 1u || !filters_valid(&cfg->filters) ||
+    if (cfg->rx_cb == NULL || (unsigned)cfg->mode >= MCP2515_MODE_COUNT || cfg->tx_fifo > 1u ||
+        cfg->manual_recovery > 1u || !filters_valid(&cfg->filters) ||
         mcp2515_bit_timing(cfg->osc_hz, cfg->bitrate_bps, &cnf) != MCP2515_OK)
         return MCP2515_ERR_ARG;
     d->bus = cfg->bus;
@@ -267,19 +267,27 @@ int mcp2515_set_mode(mcp2515_t *d, mcp2515_mode_t mode)
 
 /* Arbitration rank of a frame: the bits of its arbitration field in bus order (base
  * identifier, RTR or SRR, IDE, identifier extension, RTR), so that a lower key wins
- * arbitration on the bus. */
+ * arbitration on the bus. Built from 16-bit halves (the MSP430 has no barrel shifter). */
 static uint32_t arb_key(const mcp2515_frame_t *f)
 {
-    if (!f->ext)
-        return (f->id << 21) | ((uint32_t)f->rtr << 20);
-    return ((f->id >> 18) << 21) | (1ul << 20) | (1ul << 19) | ((f->id & 0x3FFFFul) << 1) |
-           f->rtr;
+    uint16_t hi, lo;
+    if (!f->ext) {
+        hi = (uint16_t)((uint16_t)((uint16_t)f->id << 5) | (uint16_t)(f->rtr << 4));
+        lo = 0u;
+    } else {
+        uint16_t ih = (uint16_t)(f->id >> 16), il = (uint16_t)f->id; /* id bits 28-16, 15-0 */
+        hi = (uint16_t)(((ih >> 2) << 5) | 0x18u | ((ih & 3u) << 1) | (il >> 15));
+        lo = (uint16_t)((uint16_t)(il << 1) | f->rtr);
+    }
+    return ((uint32_t)hi << 16) | lo;
 }
 
-/* Non-zero when pending frame @p a goes before @p b: lower key, or the same key sent earlier. */
-static int precedes(uint32_t ka, uint8_t sa, uint32_t kb, uint8_t sb)
+/* Non-zero when the frame in transmit buffer @p a goes before the one in @p b: a lower key,
+ * or the same key loaded earlier (ages compared modulo 256). */
+static int precedes(const mcp2515_t *d, uint8_t a, uint8_t b)
 {
-    return ka < kb || (ka == kb && (int8_t)(uint8_t)(sa - sb) < 0);
+    uint32_t ka = d->tx_key[a], kb = d->tx_key[b];
+    return ka < kb || (ka == kb && (int8_t)(uint8_t)(d->tx_seq[a] - d->tx_seq[b]) < 0);
 }
 
 int mcp2515_send(mcp2515_t *d, const mcp2515_frame_t *f)
@@ -305,45 +313,40 @@ int mcp2515_send(mcp2515_t *d, const mcp2515_frame_t *f)
         return rc;
     }
     uint8_t n = (free_bufs & 1u) ? 0u : (free_bufs & 2u) ? 1u : 2u;
-    uint32_t key = d->tx_fifo ? 0u : arb_key(f); /* FIFO: equal keys, the age decides */
     uint8_t seq = (uint8_t)(d->seq + 1u);
-    /* Transmit priorities: rank among the pending frames and the new one, 3 = first. */
-    uint8_t rank = 0u;
-    for (uint8_t i = 0; i < MCP2515_TX_BUFS; i++) {
-        if (!(d->pending & (1u << i)))
-            continue;
-        if (precedes(d->tx_key[i], d->tx_seq[i], key, seq))
-            rank++;
-    }
+    d->tx_key[n] = d->tx_fifo ? 0u : arb_key(f); /* FIFO: equal keys, the age decides */
+    d->tx_seq[n] = seq;
+    /* Transmit priorities: each frame's rank among the pending ones and the new one, TXP 3
+     * for the first; pending buffers whose rank moves get their new TXP first. */
+    uint8_t set = (uint8_t)(d->pending | (1u << n));
+    uint8_t prio = 3u;
     for (uint8_t i = 0; rc == MCP2515_OK && i < MCP2515_TX_BUFS; i++) {
-        if (!(d->pending & (1u << i)))
+        if (!(set & (1u << i)))
             continue;
-        uint8_t r = 0u;
+        uint8_t p = 3u;
         for (uint8_t j = 0; j < MCP2515_TX_BUFS; j++)
-            if (j != i && (d->pending & (1u << j)) &&
-                precedes(d->tx_key[j], d->tx_seq[j], d->tx_key[i], d->tx_seq[i]))
-                r++;
-        if (precedes(key, seq, d->tx_key[i], d->tx_seq[i]))
-            r++;
-        uint8_t prio = (uint8_t)(3u - r);
-        if (prio != d->tx_prio[i]) {
-            rc = bit_modify(d, MCP_TXBCTRL(i), MCP_TXP, prio);
-            d->tx_prio[i] = prio;
+            if (j != i && (set & (1u << j)) && precedes(d, j, i))
+                p--;
+        if (i == n) {
+            prio = p;
+        } else if (p != d->tx_prio[i]) {
+            rc = bit_modify(d, MCP_TXBCTRL(i), MCP_TXP, p);
+            d->tx_prio[i] = p;
         }
     }
     /* TXBnCTRL (priority, no request yet), identifier, DLC and data in one WRITE. */
     uint8_t b[6 + MCP2515_MAX_DATA];
-    uint8_t prio = (uint8_t)(3u - rank);
     b[0] = prio;
     if (f->ext) {
-        b[1] = (uint8_t)(f->id >> 21);
-        b[2] = (uint8_t)((uint8_t)(((f->id >> 18) & 7u) << 5) | MCP_SIDL_EXIDE |
-                         (uint8_t)((f->id >> 16) & 3u));
-        b[3] = (uint8_t)(f->id >> 8);
-        b[4] = (uint8_t)f->id;
+        uint16_t ih = (uint16_t)(f->id >> 16), il = (uint16_t)f->id; /* id bits 28-16, 15-0 */
+        b[1] = (uint8_t)(ih >> 5);
+        b[2] = (uint8_t)((uint8_t)(((ih >> 2) & 7u) << 5) | MCP_SIDL_EXIDE | (ih & 3u));
+        b[3] = (uint8_t)(il >> 8);
+        b[4] = (uint8_t)il;
     } else {
-        b[1] = (uint8_t)(f->id >> 3);
-        b[2] = (uint8_t)((f->id & 7u) << 5);
+        uint16_t id = (uint16_t)f->id;
+        b[1] = (uint8_t)(id >> 3);
+        b[2] = (uint8_t)((id & 7u) << 5);
         b[3] = 0u;
         b[4] = 0u;
     }
@@ -358,8 +361,6 @@ int mcp2515_send(mcp2515_t *d, const mcp2515_frame_t *f)
         rc = xfer(d, &rts, NULL, 1u, 0u);
     if (rc == MCP2515_OK) {
         d->pending |= (uint8_t)(1u << n);
-        d->tx_key[n] = key;
-        d->tx_seq[n] = seq;
         d->tx_prio[n] = prio;
         d->seq = seq;
     }
@@ -385,8 +386,9 @@ static int read_rx(mcp2515_t *d, uint8_t n)
         return MCP2515_ERR_SPI;
     f.ext = (h[2] & MCP_SIDL_EXIDE) ? 1u : 0u;
     if (f.ext) {
-        f.id = ((uint32_t)h[1] << 21) | ((uint32_t)(h[2] >> 5) << 18) |
-               ((uint32_t)(h[2] & 3u) << 16) | ((uint32_t)h[3] << 8) | h[4];
+        uint16_t ih =
+            (uint16_t)((uint16_t)(h[1] << 5) | (uint16_t)((h[2] >> 5) << 2) | (h[2] & 3u));
+        f.id = ((uint32_t)ih << 16) | (uint16_t)((uint16_t)(h[3] << 8) | h[4]);
         f.rtr = (h[5] & MCP_DLC_RTR) ? 1u : 0u;
     } else {
         f.id = (uint16_t)((uint16_t)(h[1] << 3) | (uint16_t)(h[2] >> 5));
@@ -447,8 +449,8 @@ int mcp2515_isr(mcp2515_t *d)
         uint8_t was_pending = d->pending;
         d->pending &= (uint8_t)~done;
         if (rc == 1 && (r[1] & (MCP_RX0OVR | MCP_RX1OVR))) {
-            add16(&d->stats.rx_overflows, (uint16_t)(((r[1] & MCP_RX0OVR) ? 1u : 0u) +
-                                                     ((r[1] & MCP_RX1OVR) ? 1u : 0u)));
+            add16(&d->stats.rx_overflows,
+                  (uint16_t)(((r[1] & MCP_RX0OVR) ? 1u : 0u) + ((r[1] & MCP_RX1OVR) ? 1u : 0u)));
             if (bit_modify(d, MCP_EFLG, MCP_RX0OVR | MCP_RX1OVR, 0u) != MCP2515_OK)
                 rc = MCP2515_ERR_SPI;
         }

@@ -11,25 +11,25 @@
 #define MCP_READ        0x03u
 #define MCP_READ_RXB(n) (0x90u | ((uint8_t)(n) << 2)) /* n = 0, 1: at RXBnSIDH */
 #define MCP_WRITE       0x02u
-#define MCP_RTS(n)      (0x80u | (1u << (n)))         /* request to send TXBn */
+#define MCP_RTS(n)      (0x80u | (1u << (n))) /* request to send TXBn */
 #define MCP_READ_STATUS 0xA0u
 #define MCP_BIT_MODIFY  0x05u
 
 /* Registers */
-#define MCP_RXF0SIDH  0x00u /* RXF0..RXF2 at 0x00/0x04/0x08, RXF3..RXF5 at 0x10/0x14/0x18 */
-#define MCP_RXF3SIDH  0x10u
-#define MCP_CANSTAT   0x0Eu
-#define MCP_CANCTRL   0x0Fu
-#define MCP_TEC       0x1Cu
-#define MCP_REC       0x1Du
-#define MCP_RXM0SIDH  0x20u /* RXM0 at 0x20, RXM1 at 0x24 */
-#define MCP_CNF3      0x28u /* CNF3, CNF2, CNF1, CANINTE, CANINTF, EFLG follow at 0x29..0x2D */
-#define MCP_CANINTE   0x2Bu
-#define MCP_CANINTF   0x2Cu
-#define MCP_EFLG      0x2Du
+#define MCP_RXF0SIDH   0x00u /* RXF0..RXF2 at 0x00/0x04/0x08, RXF3..RXF5 at 0x10/0x14/0x18 */
+#define MCP_RXF3SIDH   0x10u
+#define MCP_CANSTAT    0x0Eu
+#define MCP_CANCTRL    0x0Fu
+#define MCP_TEC        0x1Cu
+#define MCP_REC        0x1Du
+#define MCP_RXM0SIDH   0x20u /* RXM0 at 0x20, RXM1 at 0x24 */
+#define MCP_CNF3       0x28u /* CNF3, CNF2, CNF1, CANINTE, CANINTF, EFLG follow at 0x29..0x2D */
+#define MCP_CANINTE    0x2Bu
+#define MCP_CANINTF    0x2Cu
+#define MCP_EFLG       0x2Du
 #define MCP_TXBCTRL(n) (0x30u + 0x10u * (uint8_t)(n))
-#define MCP_RXB0CTRL  0x60u
-#define MCP_RXB1CTRL  0x70u
+#define MCP_RXB0CTRL   0x60u
+#define MCP_RXB1CTRL   0x70u
 
 /* CANCTRL / CANSTAT */
 #define MCP_REQOP_NORMAL   0x00u

@@ -19,14 +19,14 @@
 #define UCB0TXBUF CY_REG8(0x006F)
 
 /* UCB0CTL0 in SPI mode */
-#define UCCKPH 0x80u /* clock phase: data captured on the first UCLK edge */
-#define UCCKPL 0x40u /* clock polarity: inactive state high */
-#define UCMSB  0x20u /* MSB first */
-#define UCMST  0x08u /* master */
-#define UCSYNC 0x01u /* synchronous mode (UCMODEx = 00: 3-pin SPI) */
+#define UCCKPH    0x80u /* clock phase: data captured on the first UCLK edge */
+#define UCCKPL    0x40u /* clock polarity: inactive state high */
+#define UCMSB     0x20u /* MSB first */
+#define UCMST     0x08u /* master */
+#define UCSYNC    0x01u /* synchronous mode (UCMODEx = 00: 3-pin SPI) */
 /* UCB0CTL1: UCSSEL_2 (BRCLK = SMCLK) and UCSWRST as in f2618.h */
 /* UCB0STAT */
-#define UCB0BUSY 0x01u /* UCBUSY: a byte is being shifted */
+#define UCB0BUSY  0x01u /* UCBUSY: a byte is being shifted */
 /* IFG2 / IE2 */
 #define UCB0RXIFG 0x04u
 #define UCB0TXIFG 0x08u

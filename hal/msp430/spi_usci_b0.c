@@ -25,9 +25,9 @@ static const uint8_t mode_bits[HAL_SPI_MODE_COUNT] = {UCCKPH, 0u, UCCKPH | UCCKP
 /* The slowest divider: keeps a byte's poll bound (2 x 8 x div / 6 + 16) within 16 bits. */
 #define DIV_MAX 16383u
 
-static uint32_t rate;        /* Hz, 0 while not initialised */
-static uint16_t poll_limit;  /* UCB0RXIFG polls per byte before HAL_SPI_ERR_TIMEOUT */
-static int8_t held = -1;     /* chip select of a held frame, -1 none */
+static uint32_t rate;       /* Hz, 0 while not initialised */
+static uint16_t poll_limit; /* UCB0RXIFG polls per byte before HAL_SPI_ERR_TIMEOUT */
+static int8_t held = -1;    /* chip select of a held frame, -1 none */
 
 /* SMCLK, the bit clock's source. */
 static uint32_t smclk_hz(void)
@@ -37,8 +37,7 @@ static uint32_t smclk_hz(void)
 
 int hal_spi_init(hal_spi_bus_t bus, uint32_t rate_hz, hal_spi_mode_t mode)
 {
-    if ((unsigned)bus >= HAL_SPI_BUS_COUNT || (unsigned)mode >= HAL_SPI_MODE_COUNT ||
-        rate_hz == 0u)
+    if ((unsigned)bus >= HAL_SPI_BUS_COUNT || (unsigned)mode >= HAL_SPI_MODE_COUNT || rate_hz == 0u)
         return HAL_SPI_ERR_ARG;
     uint32_t clk = smclk_hz();
     uint32_t div = (clk + rate_hz - 1u) / rate_hz; /* the fastest rate not above the request */
@@ -67,8 +66,8 @@ uint32_t hal_spi_rate(hal_spi_bus_t bus)
     return (unsigned)bus < HAL_SPI_BUS_COUNT ? rate : 0u;
 }
 
-int hal_spi_transfer(hal_spi_bus_t bus, hal_spi_cs_t cs, const uint8_t *tx, uint8_t *rx,
-                     uint16_t n, uint8_t flags)
+int hal_spi_transfer(hal_spi_bus_t bus, hal_spi_cs_t cs, const uint8_t *tx, uint8_t *rx, uint16_t n,
+                     uint8_t flags)
 {
     if ((unsigned)bus >= HAL_SPI_BUS_COUNT || (unsigned)cs >= HAL_SPI_CS_COUNT ||
         (flags & (uint8_t)~HAL_SPI_HOLD) != 0u)

@@ -38,26 +38,26 @@ enum {
 };
 
 /* CANINTE / CANINTF (Registers 7-1, 7-2) */
-#define F_RX0 0x01u
-#define F_RX1 0x02u
-#define F_TX0 0x04u
-#define F_ERR 0x20u
-#define F_WAK 0x40u
-#define F_MERR 0x80u
+#define F_RX0     0x01u
+#define F_RX1     0x02u
+#define F_TX0     0x04u
+#define F_ERR     0x20u
+#define F_WAK     0x40u
+#define F_MERR    0x80u
 /* EFLG (Register 6-3) */
-#define E_RX1OVR 0x80u
-#define E_RX0OVR 0x40u
-#define E_TXBO   0x20u
-#define E_TXEP   0x10u
-#define E_RXEP   0x08u
-#define E_TXWAR  0x04u
-#define E_RXWAR  0x02u
-#define E_EWARN  0x01u
+#define E_RX1OVR  0x80u
+#define E_RX0OVR  0x40u
+#define E_TXBO    0x20u
+#define E_TXEP    0x10u
+#define E_RXEP    0x08u
+#define E_TXWAR   0x04u
+#define E_RXWAR   0x02u
+#define E_EWARN   0x01u
 /* TXBnCTRL (Register 3-1) */
-#define T_ABTF  0x40u
-#define T_MLOA  0x20u
-#define T_TXERR 0x10u
-#define T_TXREQ 0x08u
+#define T_ABTF    0x40u
+#define T_MLOA    0x20u
+#define T_TXERR   0x10u
+#define T_TXREQ   0x08u
 /* CANCTRL (Register 10-1), CANSTAT (Register 10-2) */
 #define C_ABAT    0x10u
 #define OP_NORMAL 0u
@@ -66,12 +66,12 @@ enum {
 #define OP_LISTEN 3u
 #define OP_CONFIG 4u
 /* RXBnCTRL (Registers 4-1, 4-2), RXBnSIDL (4-5), RXBnDLC (4-8) */
-#define X_RXRTR 0x08u
-#define X_BUKT  0x04u
-#define X_BUKT1 0x02u
-#define S_SRR   0x10u
-#define S_IDE   0x08u
-#define D_RTR   0x40u
+#define X_RXRTR   0x08u
+#define X_BUKT    0x04u
+#define X_BUKT1   0x02u
+#define S_SRR     0x10u
+#define S_IDE     0x08u
+#define D_RTR     0x40u
 
 static uint8_t opmode(const mcp2515_model_t *m)
 {
@@ -112,7 +112,7 @@ static uint8_t writable(uint8_t a)
     if (a == R_BFPCTRL)
         return 0x3Fu;
     if (a == R_TXRTSCTRL)
-        return 0x07u; /* B2RTSM..B0RTSM; the pin states are read-only */
+        return 0x07u;             /* B2RTSM..B0RTSM; the pin states are read-only */
     if (a >= 0x20u && a <= 0x27u) /* RXMnSIDL: SID2-0, EID17-16 */
         return (a & 3u) == 1u ? 0xE3u : 0xFFu;
     if (a == R_CNF3)
@@ -144,9 +144,8 @@ static uint8_t writable(uint8_t a)
 static int bit_modifiable(uint8_t a)
 {
     return a == R_BFPCTRL || a == R_TXRTSCTRL || a == R_CANCTRL || a == R_CNF3 || a == R_CNF2 ||
-           a == R_CNF1 || a == R_CANINTE || a == R_CANINTF || a == R_EFLG ||
-           a == R_TXB0CTRL || a == R_TXB0CTRL + 0x10u || a == R_TXB0CTRL + 0x20u ||
-           a == R_RXB0CTRL || a == R_RXB1CTRL;
+           a == R_CNF1 || a == R_CANINTE || a == R_CANINTF || a == R_EFLG || a == R_TXB0CTRL ||
+           a == R_TXB0CTRL + 0x10u || a == R_TXB0CTRL + 0x20u || a == R_RXB0CTRL || a == R_RXB1CTRL;
 }
 
 /* EFLG's error state bits from the counters; ERRIF when any of them changes. */
@@ -234,7 +233,7 @@ static void write_reg(mcp2515_model_t *m, uint8_t a, uint8_t v)
     }
     if (txb >= 0 && (a & 0x0Fu) == 0u) {
         if ((nv & T_TXREQ) && !(old & T_TXREQ))
-            nv &= (uint8_t)~(T_ABTF | T_MLOA | T_TXERR);
+            nv &= (uint8_t) ~(T_ABTF | T_MLOA | T_TXERR);
         else if (!(nv & T_TXREQ) && (old & T_TXREQ))
             nv |= T_ABTF; /* the MCU aborted the pending frame */
     }

@@ -64,10 +64,10 @@ extern "C" {
 
 /** A CAN frame on the model's bus. */
 typedef struct {
-    uint32_t id;  /**< 11-bit standard or 29-bit extended identifier */
-    uint8_t ext;  /**< 1: extended frame */
-    uint8_t rtr;  /**< 1: remote frame */
-    uint8_t dlc;  /**< data length code as on the wire, 0..15 (9..15 carry 8 bytes) */
+    uint32_t id; /**< 11-bit standard or 29-bit extended identifier */
+    uint8_t ext; /**< 1: extended frame */
+    uint8_t rtr; /**< 1: remote frame */
+    uint8_t dlc; /**< data length code as on the wire, 0..15 (9..15 carry 8 bytes) */
     uint8_t data[8];
 } mcp2515_model_frame_t;
 

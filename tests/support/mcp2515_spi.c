@@ -27,8 +27,7 @@ const mcp2515_spi_stats_t *mcp2515_spi_stats(void)
 
 int hal_spi_init(hal_spi_bus_t bus, uint32_t rate_hz, hal_spi_mode_t mode)
 {
-    if ((unsigned)bus >= HAL_SPI_BUS_COUNT || (unsigned)mode >= HAL_SPI_MODE_COUNT ||
-        rate_hz == 0u)
+    if ((unsigned)bus >= HAL_SPI_BUS_COUNT || (unsigned)mode >= HAL_SPI_MODE_COUNT || rate_hz == 0u)
         return HAL_SPI_ERR_ARG;
     stats.mode = mode;
     stats.rate_hz = rate_hz;
@@ -42,8 +41,8 @@ uint32_t hal_spi_rate(hal_spi_bus_t bus)
     return (unsigned)bus < HAL_SPI_BUS_COUNT && ready ? stats.rate_hz : 0u;
 }
 
-int hal_spi_transfer(hal_spi_bus_t bus, hal_spi_cs_t cs, const uint8_t *tx, uint8_t *rx,
-                     uint16_t n, uint8_t flags)
+int hal_spi_transfer(hal_spi_bus_t bus, hal_spi_cs_t cs, const uint8_t *tx, uint8_t *rx, uint16_t n,
+                     uint8_t flags)
 {
     if ((unsigned)bus >= HAL_SPI_BUS_COUNT || (unsigned)cs >= HAL_SPI_CS_COUNT ||
         (flags & (uint8_t)~HAL_SPI_HOLD) != 0u)

@@ -48,8 +48,7 @@ int main(void)
 
     cy_check(hal_spi_rate(HAL_SPI_BUS_B0) == 0u, "rate 0 before init");
     uint8_t tx[22], rx[22];
-    cy_check(hal_spi_transfer(HAL_SPI_BUS_B0, HAL_SPI_CS_CAN, tx, rx, 1u, 0u) ==
-                 HAL_SPI_ERR_STATE,
+    cy_check(hal_spi_transfer(HAL_SPI_BUS_B0, HAL_SPI_CS_CAN, tx, rx, 1u, 0u) == HAL_SPI_ERR_STATE,
              "transfer before init");
 
     /* MCP2515: 10 MHz at most -> SMCLK 16 MHz / 2 = 8 MHz, mode 0,0. */
@@ -76,8 +75,7 @@ int main(void)
     cy_check(hal_spi_init(HAL_SPI_BUS_B0, 976ul, HAL_SPI_MODE_0) == HAL_SPI_ERR_RATE,
              "below SMCLK / 16383 (976.6 Hz)");
     cy_check(hal_spi_init(HAL_SPI_BUS_B0, 0ul, HAL_SPI_MODE_0) == HAL_SPI_ERR_ARG, "rate 0");
-    cy_check(hal_spi_init(HAL_SPI_BUS_COUNT, 1000000ul, HAL_SPI_MODE_0) == HAL_SPI_ERR_ARG,
-             "bus");
+    cy_check(hal_spi_init(HAL_SPI_BUS_COUNT, 1000000ul, HAL_SPI_MODE_0) == HAL_SPI_ERR_ARG, "bus");
     cy_check(hal_spi_init(HAL_SPI_BUS_B0, 1000000ul, HAL_SPI_MODE_COUNT) == HAL_SPI_ERR_ARG,
              "mode");
     cy_check(hal_spi_rate(HAL_SPI_BUS_B0) == 296296ul, "a refused init changes nothing");
@@ -86,14 +84,11 @@ int main(void)
     check_reg(UCB0BR0, 16377u & 0xFFu, "UCB0BR0 for 977 Hz");
     cy_check(hal_spi_init(HAL_SPI_BUS_B0, 10000000ul, HAL_SPI_MODE_0) == HAL_SPI_OK, "again");
 
-    cy_check(hal_spi_transfer(HAL_SPI_BUS_COUNT, HAL_SPI_CS_CAN, tx, rx, 1u, 0u) ==
-                 HAL_SPI_ERR_ARG,
+    cy_check(hal_spi_transfer(HAL_SPI_BUS_COUNT, HAL_SPI_CS_CAN, tx, rx, 1u, 0u) == HAL_SPI_ERR_ARG,
              "transfer: bus");
-    cy_check(hal_spi_transfer(HAL_SPI_BUS_B0, HAL_SPI_CS_COUNT, tx, rx, 1u, 0u) ==
-                 HAL_SPI_ERR_ARG,
+    cy_check(hal_spi_transfer(HAL_SPI_BUS_B0, HAL_SPI_CS_COUNT, tx, rx, 1u, 0u) == HAL_SPI_ERR_ARG,
              "transfer: chip select");
-    cy_check(hal_spi_transfer(HAL_SPI_BUS_B0, HAL_SPI_CS_CAN, tx, rx, 1u, 0x80u) ==
-                 HAL_SPI_ERR_ARG,
+    cy_check(hal_spi_transfer(HAL_SPI_BUS_B0, HAL_SPI_CS_CAN, tx, rx, 1u, 0x80u) == HAL_SPI_ERR_ARG,
              "transfer: flags");
 
     /* The USCI never completes a byte (the simulator's USCI is memory): a timeout, /CS

@@ -11,7 +11,8 @@ extern "C" {
 #include "mcp2515_model.h"
 }
 
-namespace {
+namespace
+{
 
 // DS20001801 Table 11-1
 constexpr uint8_t RXF0SIDH = 0x00, RXF1SIDH = 0x04, RXF2SIDH = 0x08, BFPCTRL = 0x0C,
@@ -20,14 +21,14 @@ constexpr uint8_t RXF0SIDH = 0x00, RXF1SIDH = 0x04, RXF2SIDH = 0x08, BFPCTRL = 0
                   CANINTE = 0x2B, CANINTF = 0x2C, EFLG = 0x2D, TXB0CTRL = 0x30, TXB1CTRL = 0x40,
                   TXB2CTRL = 0x50, RXB0CTRL = 0x60, RXB1CTRL = 0x70;
 
-struct Fixture : ::testing::Test {
+struct Mcp2515Model : ::testing::Test {
     mcp2515_model_t m;
     std::vector<mcp2515_model_frame_t> sent;
     mcp2515_model_tx_t answer = MCP2515_MODEL_TX_ACK;
 
     static mcp2515_model_tx_t on_bus(void *arg, const mcp2515_model_frame_t *f)
     {
-        auto *self = static_cast<Fixture *>(arg);
+        auto *self = static_cast<Mcp2515Model *>(arg);
         self->sent.push_back(*f);
         return self->answer;
     }
@@ -88,7 +89,7 @@ struct Fixture : ::testing::Test {
     }
 };
 
-TEST_F(Fixture, PowerOnRegisterValues)
+TEST_F(Mcp2515Model, PowerOnRegisterValues)
 {
     // Register 10-1: CANCTRL POR 1000 0111 (configuration, CLKEN, CLKPRE = 11); 10-2: CANSTAT
     // 100x 000x with OPMOD = configuration, no interrupt.
@@ -105,7 +106,7 @@ TEST_F(Fixture, PowerOnRegisterValues)
     EXPECT_EQ(mcp2515_model_int(&m), 1) << "INT idles high";
 }
 
-TEST_F(Fixture, ReadAndWriteAutoIncrementAndUnimplementedBits)
+TEST_F(Mcp2515Model, ReadAndWriteAutoIncrementAndUnimplementedBits)
 {
     // Figure 12-2/12-4: the address pointer moves on after each data byte.
     write(CNF3, {0xFF, 0xA5, 0x3C});
@@ -133,7 +134,7 @@ TEST_F(Fixture, ReadAndWriteAutoIncrementAndUnimplementedBits)
     EXPECT_EQ(m.violations, 0);
 }
 
-TEST_F(Fixture, ConfigurationRegistersOnlyInConfigurationMode)
+TEST_F(Mcp2515Model, ConfigurationRegistersOnlyInConfigurationMode)
 {
     // Sections 4.5.5 and 5.5: masks, filters and CNF1-3 only in configuration mode.
     mode(0x00);
@@ -153,7 +154,7 @@ TEST_F(Fixture, ConfigurationRegistersOnlyInConfigurationMode)
     EXPECT_EQ(m.violations, 4);
 }
 
-TEST_F(Fixture, BitModifyAsFigure12_1)
+TEST_F(Mcp2515Model, BitModifyAsFigure12_1)
 {
     // Figure 12-1: mask 0011 0101, data xx10 x0x1, previous 0101 0001 -> 0110 0001.
     write(CANINTE, {0x51});
@@ -170,7 +171,7 @@ TEST_F(Fixture, BitModifyAsFigure12_1)
     EXPECT_EQ(read(BFPCTRL), 0x05);
 }
 
-TEST_F(Fixture, ReadStatusAndRxStatusLayouts)
+TEST_F(Mcp2515Model, ReadStatusAndRxStatusLayouts)
 {
     // Figure 12-8: bit 0 RX0IF, 1 RX1IF, 2 TXB0 TXREQ, 3 TX0IF, 4 TXB1 TXREQ, 5 TX1IF,
     // 6 TXB2 TXREQ, 7 TX2IF; the byte repeats while clocked.
@@ -193,7 +194,7 @@ TEST_F(Fixture, ReadStatusAndRxStatusLayouts)
     EXPECT_EQ(spi({0xB0, 0, 0})[2], 0x40 | 0x10 | 0x08) << "repeats while clocked";
 }
 
-TEST_F(Fixture, ResetInstructionRestoresPowerOnState)
+TEST_F(Mcp2515Model, ResetInstructionRestoresPowerOnState)
 {
     write(CNF1, {0x03});
     write(CANINTE, {0xFF});
@@ -208,7 +209,7 @@ TEST_F(Fixture, ResetInstructionRestoresPowerOnState)
     EXPECT_EQ(read(CANSTAT), 0x80);
 }
 
-TEST_F(Fixture, LoadTxBufferStartAddresses)
+TEST_F(Mcp2515Model, LoadTxBufferStartAddresses)
 {
     // Table 12-1 / Figure 12-5: 0100 0abc starts at TXB0SIDH, TXB0D0, TXB1SIDH, TXB1D0,
     // TXB2SIDH, TXB2D0.
@@ -226,7 +227,7 @@ TEST_F(Fixture, LoadTxBufferStartAddresses)
     EXPECT_EQ(read(0x57), 0x25);
 }
 
-TEST_F(Fixture, ReadRxBufferStartAddressesAndFlagClear)
+TEST_F(Mcp2515Model, ReadRxBufferStartAddressesAndFlagClear)
 {
     // RXB0 with filters off and rollover, normal mode: the first frame into RXB0, the second
     // rolls over into RXB1 (section 4.2).
@@ -257,7 +258,7 @@ TEST_F(Fixture, ReadRxBufferStartAddressesAndFlagClear)
     EXPECT_EQ(read(RXB1CTRL) & 0x07, 0x00);
 }
 
-TEST_F(Fixture, OverflowWithoutRollover)
+TEST_F(Mcp2515Model, OverflowWithoutRollover)
 {
     // Figure 4-2: a frame for RXB0 while RX0IF is set and BUKT clear is lost (RX0OVR), even if
     // RXB1's filters would take it; ERRIF follows (section 7.6.1).
@@ -283,7 +284,7 @@ TEST_F(Fixture, OverflowWithoutRollover)
     EXPECT_EQ(read(EFLG), 0x00);
 }
 
-TEST_F(Fixture, MasksAndFiltersAsTable4_2)
+TEST_F(Mcp2515Model, MasksAndFiltersAsTable4_2)
 {
     // RXB0: mask 0x7F0, RXF0 = 0x120, RXF1 = 0x3A5 (exact through the same mask: 0x3A0-0x3AF);
     // RXB1: every mask bit set, RXF2 = 0x555 standard, RXF3 extended 0x1ABCDEF0 (EXIDE set),
@@ -325,7 +326,7 @@ TEST_F(Fixture, MasksAndFiltersAsTable4_2)
     }
 }
 
-TEST_F(Fixture, StandardFrameDataBytesAgainstExtendedFilterBits)
+TEST_F(Mcp2515Model, StandardFrameDataBytesAgainstExtendedFilterBits)
 {
     // Register 4-1, RXM = 00: RXFnEID8:RXFnEID0 apply to the first two data bytes of
     // standard frames.
@@ -341,7 +342,7 @@ TEST_F(Fixture, StandardFrameDataBytesAgainstExtendedFilterBits)
     EXPECT_EQ(mcp2515_model_receive(&m, &miss), MCP2515_MODEL_RX_REJECTED);
 }
 
-TEST_F(Fixture, ReceivedIdentifierLayout)
+TEST_F(Mcp2515Model, ReceivedIdentifierLayout)
 {
     // Registers 4-4 to 4-8: standard remote frames show SRR in SIDL and RXRTR; extended frames
     // IDE, the split identifier and RTR in DLC.
@@ -367,7 +368,7 @@ TEST_F(Fixture, ReceivedIdentifierLayout)
     EXPECT_EQ(in[13], 8);
 }
 
-TEST_F(Fixture, TransmitPriorityAndBufferOrder)
+TEST_F(Mcp2515Model, TransmitPriorityAndBufferOrder)
 {
     // Section 3.2: the highest TXP first; equal TXP: the higher buffer number first.
     mode(0x00);
@@ -393,7 +394,7 @@ TEST_F(Fixture, TransmitPriorityAndBufferOrder)
     EXPECT_EQ(read(TXB0CTRL) & 0x08, 0x00);
 }
 
-TEST_F(Fixture, AbortFlagsAndWritesToPendingBuffers)
+TEST_F(Mcp2515Model, AbortFlagsAndWritesToPendingBuffers)
 {
     mode(0x00);
     write(0x31, std_regs(0x42));
@@ -424,7 +425,7 @@ TEST_F(Fixture, AbortFlagsAndWritesToPendingBuffers)
     EXPECT_EQ(mcp2515_model_bus_tick(&m), 2);
 }
 
-TEST_F(Fixture, InterruptPinAndIcodPriority)
+TEST_F(Mcp2515Model, InterruptPinAndIcodPriority)
 {
     // Section 7: INT low while an enabled flag is set; ICOD: error 001, wake-up 010, TXB0
     // 011, TXB1 100, TXB2 101, RXB0 110, RXB1 111.
@@ -442,7 +443,7 @@ TEST_F(Fixture, InterruptPinAndIcodPriority)
     EXPECT_EQ((read(CANSTAT) >> 1) & 7, 1);
 }
 
-TEST_F(Fixture, ErrorCountersStatesBusOffAndRecovery)
+TEST_F(Mcp2515Model, ErrorCountersStatesBusOffAndRecovery)
 {
     // Section 6: TEC +8 per transmit error; EFLG (Register 6-3): TXWAR and EWARN at 96,
     // TXEP at 128, TXBO past 255 (Figure 6-1), recovery after 128 x 11 recessive bits.
@@ -491,7 +492,7 @@ TEST_F(Fixture, ErrorCountersStatesBusOffAndRecovery)
     EXPECT_EQ(mcp2515_model_bus_tick(&m), 0) << "the pending frame goes after recovery";
 }
 
-TEST_F(Fixture, ReceiveErrorCounter)
+TEST_F(Mcp2515Model, ReceiveErrorCounter)
 {
     mode(0x00);
     for (int i = 0; i < 96; i++)
@@ -512,7 +513,7 @@ TEST_F(Fixture, ReceiveErrorCounter)
     EXPECT_EQ(read(REC), 126);
 }
 
-TEST_F(Fixture, LoopbackListenOnlyConfigurationAndSleep)
+TEST_F(Mcp2515Model, LoopbackListenOnlyConfigurationAndSleep)
 {
     write(RXB0CTRL, {0x60});
     write(0x31, std_regs(0x321));

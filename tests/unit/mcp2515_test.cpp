@@ -16,14 +16,15 @@ extern "C" {
 #include "mcp2515_spi.h"
 }
 
-namespace {
+namespace
+{
 
 // DS20001801 Table 11-1
 constexpr uint8_t RXF0SIDH = 0x00, CANSTAT = 0x0E, CANCTRL = 0x0F, TEC = 0x1C, RXM0SIDH = 0x20,
                   CNF3 = 0x28, CNF2 = 0x29, CNF1 = 0x2A, CANINTE = 0x2B, CANINTF = 0x2C,
                   EFLG = 0x2D, TXB0CTRL = 0x30, RXB0CTRL = 0x60, RXB1CTRL = 0x70;
 
-struct Driver : ::testing::Test {
+struct Mcp2515Driver : ::testing::Test {
     mcp2515_model_t model;
     mcp2515_t drv;
     mcp2515_config_t cfg;
@@ -36,7 +37,7 @@ struct Driver : ::testing::Test {
 
     static void on_rx(void *arg, const mcp2515_frame_t *f)
     {
-        auto *self = static_cast<Driver *>(arg);
+        auto *self = static_cast<Mcp2515Driver *>(arg);
         self->received.push_back(*f);
         if (self->flood_left) {
             self->flood_left--;
@@ -45,11 +46,11 @@ struct Driver : ::testing::Test {
     }
     static void on_tx(void *arg)
     {
-        static_cast<Driver *>(arg)->tx_free_calls++;
+        static_cast<Mcp2515Driver *>(arg)->tx_free_calls++;
     }
     static mcp2515_model_tx_t on_bus(void *arg, const mcp2515_model_frame_t *f)
     {
-        auto *self = static_cast<Driver *>(arg);
+        auto *self = static_cast<Mcp2515Driver *>(arg);
         self->on_wire.push_back(*f);
         if (self->answers.empty())
             return MCP2515_MODEL_TX_ACK;
@@ -118,9 +119,8 @@ struct Segments {
 
 static bool rules_hold(const Segments &g)
 {
-    return g.brp <= 63 && g.prop >= 1 && g.prop <= 8 && g.ps1 >= 1 && g.ps1 <= 8 &&
-           g.ps2 >= 2 && g.ps2 <= 8 && g.prop + g.ps1 >= g.ps2 && g.ps2 > g.sjw &&
-           g.sjw >= 1 && g.sjw <= 4;
+    return g.brp <= 63 && g.prop >= 1 && g.prop <= 8 && g.ps1 >= 1 && g.ps1 <= 8 && g.ps2 >= 2 &&
+           g.ps2 <= 8 && g.prop + g.ps1 >= g.ps2 && g.ps2 > g.sjw && g.sjw >= 1 && g.sjw <= 4;
 }
 
 // Does any timing within the rules give @p rate exactly from @p osc with the sample point
@@ -190,7 +190,7 @@ TEST(Mcp2515Timing, EveryEntryFollowsTheDataSheetFormulas)
     EXPECT_EQ(c.cnf3, 3) << "untouched on an error";
 }
 
-TEST_F(Driver, InitLeavesTheDataSheetRegisterValues)
+TEST_F(Mcp2515Driver, InitLeavesTheDataSheetRegisterValues)
 {
     cfg.filters.accept_all = 0;
     cfg.filters.mask[0] = 0x7FF;
@@ -228,7 +228,7 @@ TEST_F(Driver, InitLeavesTheDataSheetRegisterValues)
     EXPECT_EQ(mcp2515_tx_free(&drv), 3);
 }
 
-TEST_F(Driver, InitRefusesBadConfigurationsAndMissingParts)
+TEST_F(Mcp2515Driver, InitRefusesBadConfigurationsAndMissingParts)
 {
     mcp2515_config_t bad = cfg;
     bad.rx_cb = nullptr;
@@ -274,7 +274,7 @@ TEST_F(Driver, InitRefusesBadConfigurationsAndMissingParts)
     EXPECT_EQ(mcp2515_init(&drv, &bad), MCP2515_ERR_SPI);
 }
 
-TEST_F(Driver, SendsStandardExtendedAndRemoteFrames)
+TEST_F(Mcp2515Driver, SendsStandardExtendedAndRemoteFrames)
 {
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
     auto a = frame(0x7FF, {1, 2, 3, 4, 5, 6, 7, 8});
@@ -302,7 +302,7 @@ TEST_F(Driver, SendsStandardExtendedAndRemoteFrames)
     EXPECT_EQ(model.violations, 0);
 }
 
-TEST_F(Driver, ThreeBuffersGoInIdentifierOrder)
+TEST_F(Mcp2515Driver, ThreeBuffersGoInIdentifierOrder)
 {
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
     // Every order of three identifiers (one twice: sent first goes first).
@@ -340,7 +340,7 @@ TEST_F(Driver, ThreeBuffersGoInIdentifierOrder)
     EXPECT_EQ(model.violations, 0);
 }
 
-TEST_F(Driver, UrgentFrameOvertakesAPendingOneThatKeepsLosing)
+TEST_F(Mcp2515Driver, UrgentFrameOvertakesAPendingOneThatKeepsLosing)
 {
     // Priority inversion: 0x400 waits (it loses arbitration twice); 0x050 sent meanwhile must
     // leave before it although 0x400 sits in the lower buffer with the earlier request.
@@ -363,7 +363,7 @@ TEST_F(Driver, UrgentFrameOvertakesAPendingOneThatKeepsLosing)
     EXPECT_EQ(order, (std::vector<uint32_t>{0x400, 0x400, 0x00000001, 0x050, 0x400}));
 }
 
-TEST_F(Driver, ReceivesThroughFiltersIntoBothBuffers)
+TEST_F(Mcp2515Driver, ReceivesThroughFiltersIntoBothBuffers)
 {
     cfg.filters.accept_all = 0;
     cfg.filters.mask[0] = 0x7FF;
@@ -377,9 +377,9 @@ TEST_F(Driver, ReceivesThroughFiltersIntoBothBuffers)
         uint32_t id;
         uint8_t ext;
         bool taken;
-    } cases[] = {{0x100, 0, true},  {0x101, 0, true},  {0x102, 0, false}, {0x230, 0, true},
-                 {0x23F, 0, true},  {0x240, 0, false}, {0x100, 1, false}, {0x7FF, 0, false},
-                 {0x000, 0, false}};
+    } cases[] = {{0x100, 0, true},  {0x101, 0, true},  {0x102, 0, false},
+                 {0x230, 0, true},  {0x23F, 0, true},  {0x240, 0, false},
+                 {0x100, 1, false}, {0x7FF, 0, false}, {0x000, 0, false}};
     for (const auto &c : cases) {
         received.clear();
         auto w = wire(c.id, {0x11, 0x22, 0x33}, c.ext);
@@ -396,7 +396,7 @@ TEST_F(Driver, ReceivesThroughFiltersIntoBothBuffers)
     }
 }
 
-TEST_F(Driver, AcceptAllTakesExtendedAndRemoteFrames)
+TEST_F(Mcp2515Driver, AcceptAllTakesExtendedAndRemoteFrames)
 {
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
     auto e = wire(0x1FFFFFFF, {9, 8, 7, 6, 5, 4, 3, 2}, 1);
@@ -419,7 +419,7 @@ TEST_F(Driver, AcceptAllTakesExtendedAndRemoteFrames)
     EXPECT_EQ(mcp2515_stats(&drv)->rx_frames, 3);
 }
 
-TEST_F(Driver, OverflowIsCountedAndCleared)
+TEST_F(Mcp2515Driver, OverflowIsCountedAndCleared)
 {
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
     // Three frames while nobody serves INT: RXB0, RXB1 (rollover), the third is lost.
@@ -437,7 +437,7 @@ TEST_F(Driver, OverflowIsCountedAndCleared)
     EXPECT_EQ(reg(CANINTF), 0x00);
 }
 
-TEST_F(Driver, HandlerServesAFloodInBoundedPasses)
+TEST_F(Mcp2515Driver, HandlerServesAFloodInBoundedPasses)
 {
     // A frame arrives each time one is read: the handler stops after 4 passes with the line
     // still low and says so; the next call goes on.
@@ -452,7 +452,7 @@ TEST_F(Driver, HandlerServesAFloodInBoundedPasses)
     EXPECT_EQ(received.size(), 11u);
 }
 
-TEST_F(Driver, SpiTrafficOfOneReceivedFrame)
+TEST_F(Mcp2515Driver, SpiTrafficOfOneReceivedFrame)
 {
     // docs/can.md: READ CANINTF..EFLG (4) + READ RX BUFFER (1 + 5 + 8) + the final READ (4).
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
@@ -463,7 +463,7 @@ TEST_F(Driver, SpiTrafficOfOneReceivedFrame)
     EXPECT_EQ(mcp2515_spi_stats()->bytes - before, 22u);
 }
 
-TEST_F(Driver, ErrorStatesUpToBusOffAndRecovery)
+TEST_F(Mcp2515Driver, ErrorStatesUpToBusOffAndRecovery)
 {
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
     auto f = frame(0x321, {0xAB});
@@ -521,7 +521,7 @@ TEST_F(Driver, ErrorStatesUpToBusOffAndRecovery)
     EXPECT_EQ(model.violations, 0);
 }
 
-TEST_F(Driver, RecoveryThroughTheErrorInterruptAndPoll)
+TEST_F(Mcp2515Driver, RecoveryThroughTheErrorInterruptAndPoll)
 {
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
     auto f = frame(0x10, {});
@@ -539,7 +539,7 @@ TEST_F(Driver, RecoveryThroughTheErrorInterruptAndPoll)
     EXPECT_EQ(mcp2515_tx_free(&drv), 3);
 }
 
-TEST_F(Driver, ManualRecoveryWaitsForTheRequest)
+TEST_F(Mcp2515Driver, ManualRecoveryWaitsForTheRequest)
 {
     cfg.manual_recovery = 1;
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
@@ -570,7 +570,7 @@ TEST_F(Driver, ManualRecoveryWaitsForTheRequest)
     EXPECT_EQ(model.violations, 0);
 }
 
-TEST_F(Driver, FifoOrderWhenAsked)
+TEST_F(Mcp2515Driver, FifoOrderWhenAsked)
 {
     cfg.tx_fifo = 1;
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
@@ -593,7 +593,7 @@ TEST_F(Driver, FifoOrderWhenAsked)
     EXPECT_EQ(order, (std::vector<uint32_t>{0x300, 0x100, 0x200, 0x001}));
 }
 
-TEST_F(Driver, TransmitAndReceiveErrorsAreTold)
+TEST_F(Mcp2515Driver, TransmitAndReceiveErrorsAreTold)
 {
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
     for (int i = 0; i < 5; i++)
@@ -613,7 +613,7 @@ TEST_F(Driver, TransmitAndReceiveErrorsAreTold)
     EXPECT_EQ(mcp2515_stats(&drv)->tx_frames, 1u);
 }
 
-TEST_F(Driver, ReceiveErrorsMakeItErrorPassive)
+TEST_F(Mcp2515Driver, ReceiveErrorsMakeItErrorPassive)
 {
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
     for (int i = 0; i < 128; i++)
@@ -630,7 +630,7 @@ TEST_F(Driver, ReceiveErrorsMakeItErrorPassive)
     EXPECT_EQ(mcp2515_state(&drv), MCP2515_ERROR_ACTIVE);
 }
 
-TEST_F(Driver, LoopbackSelfTestAndListenOnly)
+TEST_F(Mcp2515Driver, LoopbackSelfTestAndListenOnly)
 {
     cfg.mode = MCP2515_MODE_LOOPBACK;
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
@@ -652,7 +652,7 @@ TEST_F(Driver, LoopbackSelfTestAndListenOnly)
     EXPECT_EQ(mcp2515_set_mode(&drv, MCP2515_MODE_COUNT), MCP2515_ERR_ARG);
 }
 
-TEST_F(Driver, SendRefusesBadFramesWithoutTouchingTheBus)
+TEST_F(Mcp2515Driver, SendRefusesBadFramesWithoutTouchingTheBus)
 {
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
     uint32_t before = mcp2515_spi_stats()->bytes;
@@ -674,7 +674,7 @@ TEST_F(Driver, SendRefusesBadFramesWithoutTouchingTheBus)
     EXPECT_EQ(mcp2515_stats(nullptr), nullptr);
 }
 
-TEST_F(Driver, SpiErrorsAreReported)
+TEST_F(Mcp2515Driver, SpiErrorsAreReported)
 {
     ASSERT_EQ(mcp2515_init(&drv, &cfg), MCP2515_OK);
     mcp2515_spi_attach(&model); // the bus forgets its set-up: transfers are refused

@@ -36,10 +36,9 @@
 
 /** Port (1 or 2) of each edge line; 0 for the NMI pin. */
 #define HAL_EDGE_PORT_OF(line)                                                                     \
-    ((line) == HAL_EDGE_COORD_REQUEST ? 0                                                          \
-     : (line) == HAL_EDGE_DELTA_S || (line) == HAL_EDGE_CAN_INT || (line) == HAL_EDGE_TEST      \
-         ? 2                                                                                       \
-         : 1)
+    ((line) == HAL_EDGE_COORD_REQUEST                                                      ? 0     \
+     : (line) == HAL_EDGE_DELTA_S || (line) == HAL_EDGE_CAN_INT || (line) == HAL_EDGE_TEST ? 2     \
+                                                                                           : 1)
 
 /** Pin (0..7) of each edge line on its port (bit 0 of the NMI vector for the NMI pin). */
 static inline unsigned hal_edge_pin(hal_edge_line_t line)

@@ -52,11 +52,11 @@ typedef enum {
 /** Return codes. */
 enum {
     HAL_SPI_OK = 0,
-    HAL_SPI_ERR_ARG = -1,   /**< bus, chip select, mode or flags out of range, or rate 0 */
-    HAL_SPI_ERR_RATE = -2,  /**< hal_spi_init(): the rate is below the slowest the bus does
-                                 (MSP430: SMCLK / 16383, 977 Hz at 16 MHz) */
-    HAL_SPI_ERR_STATE = -3, /**< the bus is not initialised, or a held frame belongs to
-                                 another chip select */
+    HAL_SPI_ERR_ARG = -1,     /**< bus, chip select, mode or flags out of range, or rate 0 */
+    HAL_SPI_ERR_RATE = -2,    /**< hal_spi_init(): the rate is below the slowest the bus does
+                                   (MSP430: SMCLK / 16383, 977 Hz at 16 MHz) */
+    HAL_SPI_ERR_STATE = -3,   /**< the bus is not initialised, or a held frame belongs to
+                                   another chip select */
     HAL_SPI_ERR_TIMEOUT = -4, /**< a byte did not complete in twice its shift time (the bus
                                    hardware does not run); the chip select is released */
 };
@@ -84,8 +84,8 @@ uint32_t hal_spi_rate(hal_spi_bus_t bus);
  * or HAL_SPI_ERR_STATE (bus not initialised, or held by another chip select), and nothing is
  * sent then; or HAL_SPI_ERR_TIMEOUT when the bus stopped part way (chip select released).
  */
-int hal_spi_transfer(hal_spi_bus_t bus, hal_spi_cs_t cs, const uint8_t *tx, uint8_t *rx,
-                     uint16_t n, uint8_t flags);
+int hal_spi_transfer(hal_spi_bus_t bus, hal_spi_cs_t cs, const uint8_t *tx, uint8_t *rx, uint16_t n,
+                     uint8_t flags);
 
 #ifdef __cplusplus
 }

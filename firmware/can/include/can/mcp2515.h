@@ -28,10 +28,10 @@
 extern "C" {
 #endif
 
-#define MCP2515_MAX_DATA  8u
-#define MCP2515_MAX_STD   0x7FFul      /**< largest 11-bit (CAN 2.0A) identifier */
-#define MCP2515_MAX_EXT   0x1FFFFFFFul /**< largest 29-bit (CAN 2.0B) identifier */
-#define MCP2515_TX_BUFS   3u
+#define MCP2515_MAX_DATA   8u
+#define MCP2515_MAX_STD    0x7FFul      /**< largest 11-bit (CAN 2.0A) identifier */
+#define MCP2515_MAX_EXT    0x1FFFFFFFul /**< largest 29-bit (CAN 2.0B) identifier */
+#define MCP2515_TX_BUFS    3u
 #define MCP2515_RX_FILTERS 6u
 
 /** Fastest SPI clock the MCP2515 accepts (DS20001801, SPI timing: 10 MHz). */
@@ -51,10 +51,10 @@ enum {
 
 /** A CAN frame. */
 typedef struct {
-    uint32_t id;  /**< 0..0x7FF standard, 0..0x1FFFFFFF extended */
-    uint8_t ext;  /**< 1: 29-bit extended identifier (CAN 2.0B), 0: 11-bit (2.0A) */
-    uint8_t rtr;  /**< 1: remote frame (no data bytes travel) */
-    uint8_t len;  /**< data length code 0..8 */
+    uint32_t id; /**< 0..0x7FF standard, 0..0x1FFFFFFF extended */
+    uint8_t ext; /**< 1: 29-bit extended identifier (CAN 2.0B), 0: 11-bit (2.0A) */
+    uint8_t rtr; /**< 1: remote frame (no data bytes travel) */
+    uint8_t len; /**< data length code 0..8 */
     uint8_t data[MCP2515_MAX_DATA];
 } mcp2515_frame_t;
 
@@ -81,9 +81,9 @@ typedef enum {
  * accept_all every frame is (the masks and filters are then off: RXM = 11).
  */
 typedef struct {
-    uint16_t mask[2];                     /**< RXM0, RXM1: 0..0x7FF */
-    uint16_t filter[MCP2515_RX_FILTERS];  /**< RXF0..RXF5: 0..0x7FF */
-    uint8_t accept_all;                   /**< 1: every frame, standard or extended */
+    uint16_t mask[2];                    /**< RXM0, RXM1: 0..0x7FF */
+    uint16_t filter[MCP2515_RX_FILTERS]; /**< RXF0..RXF5: 0..0x7FF */
+    uint8_t accept_all;                  /**< 1: every frame, standard or extended */
 } mcp2515_filters_t;
 
 /** Received frame: interrupt context, @p f valid during the call. */
@@ -93,17 +93,17 @@ typedef void (*mcp2515_tx_cb_t)(void *arg);
 
 /** Configuration of mcp2515_init(). */
 typedef struct {
-    hal_spi_bus_t bus;          /**< SPI bus the controller is on */
-    hal_spi_cs_t cs;            /**< its chip select */
-    uint32_t osc_hz;            /**< the controller's oscillator: 8, 16 or 20 MHz */
-    uint32_t bitrate_bps;       /**< bit/s: a rate mcp2515_bit_timing() knows for osc_hz */
-    mcp2515_mode_t mode;        /**< mode after init */
-    mcp2515_filters_t filters;  /**< acceptance filters */
-    uint8_t tx_fifo;            /**< 1: frames leave in the order sent; 0: by identifier */
-    uint8_t manual_recovery;    /**< 1: after bus-off wait for mcp2515_recover() */
-    mcp2515_rx_cb_t rx_cb;      /**< receive callback, required */
-    mcp2515_tx_cb_t tx_cb;      /**< transmit-buffer-free callback, may be NULL */
-    void *arg;                  /**< passed to both callbacks */
+    hal_spi_bus_t bus;         /**< SPI bus the controller is on */
+    hal_spi_cs_t cs;           /**< its chip select */
+    uint32_t osc_hz;           /**< the controller's oscillator: 8, 16 or 20 MHz */
+    uint32_t bitrate_bps;      /**< bit/s: a rate mcp2515_bit_timing() knows for osc_hz */
+    mcp2515_mode_t mode;       /**< mode after init */
+    mcp2515_filters_t filters; /**< acceptance filters */
+    uint8_t tx_fifo;           /**< 1: frames leave in the order sent; 0: by identifier */
+    uint8_t manual_recovery;   /**< 1: after bus-off wait for mcp2515_recover() */
+    mcp2515_rx_cb_t rx_cb;     /**< receive callback, required */
+    mcp2515_tx_cb_t tx_cb;     /**< transmit-buffer-free callback, may be NULL */
+    void *arg;                 /**< passed to both callbacks */
 } mcp2515_config_t;
 
 /**
@@ -132,18 +132,18 @@ typedef struct {
     mcp2515_rx_cb_t rx_cb;
     mcp2515_tx_cb_t tx_cb;
     void *arg;
-    uint8_t ready;                       /**< 1 after a successful init */
-    uint8_t tx_fifo;                     /**< config: send order */
-    uint8_t manual_recovery;             /**< config: hold bus-off until mcp2515_recover() */
-    uint8_t held;                        /**< bus-off, held in configuration mode */
-    uint8_t recovering;                  /**< bus-off and counting its way back */
-    uint8_t pending;                     /**< bit n: TXBn holds a frame not reported done */
-    uint8_t seq;                         /**< age stamp of the last frame loaded */
-    uint8_t tx_seq[MCP2515_TX_BUFS];     /**< age stamp of each pending frame */
-    uint8_t tx_prio[MCP2515_TX_BUFS];    /**< TXP of each pending buffer (0..3) */
-    uint32_t tx_key[MCP2515_TX_BUFS];    /**< arbitration rank of each pending frame */
-    uint8_t eflg;                        /**< EFLG as last read */
-    uint8_t tec, rec;                    /**< TEC, REC as last read */
+    uint8_t ready;                    /**< 1 after a successful init */
+    uint8_t tx_fifo;                  /**< config: send order */
+    uint8_t manual_recovery;          /**< config: hold bus-off until mcp2515_recover() */
+    uint8_t held;                     /**< bus-off, held in configuration mode */
+    uint8_t recovering;               /**< bus-off and counting its way back */
+    uint8_t pending;                  /**< bit n: TXBn holds a frame not reported done */
+    uint8_t seq;                      /**< age stamp of the last frame loaded */
+    uint8_t tx_seq[MCP2515_TX_BUFS];  /**< age stamp of each pending frame */
+    uint8_t tx_prio[MCP2515_TX_BUFS]; /**< TXP of each pending buffer (0..3) */
+    uint32_t tx_key[MCP2515_TX_BUFS]; /**< arbitration rank of each pending frame */
+    uint8_t eflg;                     /**< EFLG as last read */
+    uint8_t tec, rec;                 /**< TEC, REC as last read */
     mcp2515_state_t state;
     mcp2515_stats_t stats;
 } mcp2515_t;
@@ -183,9 +183,9 @@ int mcp2515_set_mode(mcp2515_t *d, mcp2515_mode_t mode);
  * Load @p f into a free transmit buffer and request its transmission. Pending buffers get
  * transmit priorities in the order of their identifiers (lowest first, equal identifiers in
  * the order sent). Returns MCP2515_OK; MCP2515_ERR_ARG (NULL, id above the range of its
- * format, len > 8, ext or rtr not 0/1); MCP2515_ERR_FULL (three frames pending); MCP2515_ERR_BUS_OFF;
- * MCP2515_ERR_MODE (listen-only); MCP2515_ERR_SPI; MCP2515_ERR_DEVICE (not initialised).
- * Nothing is sent on an error.
+ * format, len > 8, ext or rtr not 0/1); MCP2515_ERR_FULL (three frames pending);
+ * MCP2515_ERR_BUS_OFF; MCP2515_ERR_MODE (listen-only); MCP2515_ERR_SPI; MCP2515_ERR_DEVICE (not
+ * initialised). Nothing is sent on an error.
  */
 int mcp2515_send(mcp2515_t *d, const mcp2515_frame_t *f);
 
