@@ -8,6 +8,9 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <fstream>
+#include <regex>
+#include <string>
 #include <vector>
 
 extern "C" {
@@ -188,6 +191,30 @@ TEST(Mcp2515Timing, EveryEntryFollowsTheDataSheetFormulas)
     EXPECT_EQ(mcp2515_bit_timing(16000000, 500000, nullptr), MCP2515_ERR_ARG);
     EXPECT_EQ(c.cnf1, 1);
     EXPECT_EQ(c.cnf3, 3) << "untouched on an error";
+}
+
+// docs/can.md's bit timing table is the driver's: every row, and every pair the driver has.
+TEST(Mcp2515Timing, DocsTableMatches)
+{
+    std::ifstream doc(CY_CAN_DOC);
+    ASSERT_TRUE(doc.good()) << CY_CAN_DOC;
+    std::regex row(
+        R"(^\| (\d+) \| (\d+) \| 0x([0-9A-F]{2}) \| 0x([0-9A-F]{2}) \| 0x([0-9A-F]{2}) \|)");
+    std::string line;
+    unsigned rows = 0;
+    while (std::getline(doc, line)) {
+        std::smatch m;
+        if (!std::regex_search(line, m, row))
+            continue;
+        uint32_t osc = std::stoul(m[1]) * 1000000u, rate = std::stoul(m[2]) * 1000u;
+        mcp2515_cnf_t c{};
+        ASSERT_EQ(mcp2515_bit_timing(osc, rate, &c), MCP2515_OK) << line;
+        EXPECT_EQ(c.cnf1, std::stoul(m[3], nullptr, 16)) << line;
+        EXPECT_EQ(c.cnf2, std::stoul(m[4], nullptr, 16)) << line;
+        EXPECT_EQ(c.cnf3, std::stoul(m[5], nullptr, 16)) << line;
+        rows++;
+    }
+    EXPECT_EQ(rows, 21u) << "one row per supported pair";
 }
 
 TEST_F(Mcp2515Driver, InitLeavesTheDataSheetRegisterValues)
