@@ -2,13 +2,13 @@
  * can_mcp2515.c - hal/can.h on the boards: instance 0 is a Microchip MCP2515 with a 16 MHz
  * crystal on USCI_B0 (hal/spi.h, P3.0-P3.3), driven by the portable driver of firmware/can
  * (can/mcp2515.h, docs/can.md). Its /INT is P2.2 (HAL_EDGE_CAN_INT, falling edge): the port-2
- * shim (edge.c) calls on_int(), which runs the driver's handler; when the line is still low
+ * shim (edge.c) calls can0_on_int(), which runs the driver's handler; when the line is still low
  * after the handler's passes, the shim's flag is set again by software so that the handler
  * comes back after the other pending interrupts (an edge-triggered pin never sees a level).
  *
  * Transmit queue: HAL_CAN_TX_QUEUE frames in all, the ones the MCP2515's three transmit
  * buffers hold and the ones waiting here; the driver keeps the hardware buffers in FIFO order
- * (tx_fifo), and a buffer that becomes free takes the oldest waiting frame (on_tx, in the
+ * (tx_fifo), and a buffer that becomes free takes the oldest waiting frame (can0_on_tx, in the
  * handler). Bus-off: the driver aborts the buffers, the waiting frames are dropped here; both
  * count as tx_aborted. With manual_recovery the MCP2515 waits in configuration mode until
  * hal_can_recover() (the driver's mcp2515_recover()). Received remote frames (no data frames)
@@ -30,7 +30,12 @@ static struct {
     mcp2515_t drv;
     hal_can_rx_cb_t rx_cb;
     void *rx_arg;
-    hal_can_frame_t q[HAL_CAN_TX_QUEUE]; /* waiting for a transmit buffer, oldest at head */
+    /* Frames waiting for a transmit buffer, oldest at head: identifiers, lengths and data in
+     * arrays of power-of-two strides (no multiplication in the handler: the main board's
+     * handlers must not reach the hardware multiplier, docs/stack.md). */
+    uint16_t q_id[HAL_CAN_TX_QUEUE];
+    uint8_t q_len[HAL_CAN_TX_QUEUE];
+    uint8_t q_data[HAL_CAN_TX_QUEUE][HAL_CAN_MAX_DATA];
     uint8_t head, count;
     uint8_t ready;
     uint32_t rx_frames; /* handed to rx_cb */
@@ -42,7 +47,7 @@ static void sat16(uint16_t *c, uint16_t n)
     *c = (uint16_t)(*c > 0xFFFFu - n ? 0xFFFFu : *c + n);
 }
 
-static void on_rx(void *arg, const mcp2515_frame_t *f)
+static void can0_on_rx(void *arg, const mcp2515_frame_t *f)
 {
     (void)arg;
     if (f->rtr || f->ext)
@@ -58,13 +63,13 @@ static void on_rx(void *arg, const mcp2515_frame_t *f)
 }
 
 /* Move waiting frames into free transmit buffers, oldest first (interrupts off). */
-static void refill(void)
+static void can0_refill(void)
 {
     while (c0.count != 0u && mcp2515_tx_free(&c0.drv) != 0u) {
-        const hal_can_frame_t *h = &c0.q[c0.head];
-        mcp2515_frame_t f = {h->id, 0u, 0u, h->len, {0}};
-        for (uint8_t i = 0; i < h->len; i++)
-            f.data[i] = h->data[i];
+        uint8_t k = c0.head;
+        mcp2515_frame_t f = {c0.q_id[k], 0u, 0u, c0.q_len[k], {0}};
+        for (uint8_t i = 0; i < f.len; i++)
+            f.data[i] = c0.q_data[k][i];
         if (mcp2515_send(&c0.drv, &f) != MCP2515_OK)
             return;
         c0.head = (uint8_t)((c0.head + 1u) % HAL_CAN_TX_QUEUE);
@@ -72,14 +77,14 @@ static void refill(void)
     }
 }
 
-static void on_tx(void *arg)
+static void can0_on_tx(void *arg)
 {
     (void)arg;
-    refill();
+    can0_refill();
 }
 
 /* Bus-off empties the transmit queue (hal/can.h). */
-static void drop_if_bus_off(void)
+static void can0_drop_if_bus_off(void)
 {
     if (c0.count != 0u && mcp2515_state(&c0.drv) == MCP2515_BUS_OFF) {
         sat16(&c0.dropped, c0.count);
@@ -87,12 +92,12 @@ static void drop_if_bus_off(void)
     }
 }
 
-static void on_int(void *arg)
+static void can0_on_int(void *arg)
 {
     (void)arg;
     if (mcp2515_isr(&c0.drv) == 1)
         P2IFG |= (uint8_t)(1u << hal_edge_pin(HAL_EDGE_CAN_INT));
-    drop_if_bus_off();
+    can0_drop_if_bus_off();
 }
 
 static int hal_rc(int rc)
@@ -127,17 +132,10 @@ int hal_can_init(hal_can_t can, const hal_can_config_t *cfg)
         return HAL_CAN_E_BITRATE;
     /* Filter 0 on RXB0 (RXM0, RXF0, RXF1), filter 1 on RXB1 (RXM1, RXF2-RXF5); one filter on
      * both; none: masks 0, every standard frame. */
-    mcp2515_config_t mc = {HAL_SPI_BUS_B0,
-                           HAL_SPI_CS_CAN,
-                           CAN0_OSC_HZ,
-                           cfg->bitrate_bps,
-                           MCP2515_MODE_NORMAL,
-                           {{0u, 0u}, {0u}, 0u},
-                           1u,
-                           cfg->manual_recovery,
-                           on_rx,
-                           on_tx,
-                           NULL};
+    mcp2515_config_t mc = {
+        HAL_SPI_BUS_B0,      HAL_SPI_CS_CAN,       CAN0_OSC_HZ, cfg->bitrate_bps,
+        MCP2515_MODE_NORMAL, {{0u, 0u}, {0u}, 0u}, 1u,          cfg->manual_recovery,
+        can0_on_rx,          can0_on_tx,           NULL};
     if (cfg->n_filters > 0u) {
         const hal_can_filter_t *f0 = &cfg->filters[0];
         const hal_can_filter_t *f1 = &cfg->filters[cfg->n_filters - 1u];
@@ -157,8 +155,8 @@ int hal_can_init(hal_can_t can, const hal_can_config_t *cfg)
         c0.rx_frames = 0u;
         c0.dropped = 0u;
         c0.ready = 1u;
-        hal_edge_init(HAL_EDGE_CAN_INT, HAL_EDGE_FALLING, on_int, NULL);
-        on_int(NULL); /* INT may have fallen before its edge was watched */
+        hal_edge_init(HAL_EDGE_CAN_INT, HAL_EDGE_FALLING, can0_on_int, NULL);
+        can0_on_int(NULL); /* INT may have fallen before its edge was watched */
     }
     hal_irq_restore(s);
     return hal_rc(rc);
@@ -182,9 +180,13 @@ int hal_can_send(hal_can_t can, const hal_can_frame_t *f)
     if (rc == 0 && (uint8_t)(c0.count + in_hw) >= HAL_CAN_TX_QUEUE)
         rc = HAL_CAN_E_FULL;
     if (rc == 0) {
-        c0.q[(uint8_t)((c0.head + c0.count) % HAL_CAN_TX_QUEUE)] = *f;
+        uint8_t k = (uint8_t)((c0.head + c0.count) % HAL_CAN_TX_QUEUE);
+        c0.q_id[k] = f->id;
+        c0.q_len[k] = f->len;
+        for (uint8_t i = 0; i < f->len; i++)
+            c0.q_data[k][i] = f->data[i];
         c0.count++;
-        refill();
+        can0_refill();
     }
     hal_irq_restore(s);
     return rc;
@@ -211,7 +213,7 @@ int hal_can_status(hal_can_t can, hal_can_status_t *out)
         return HAL_CAN_E_STATE;
     hal_irq_state_t s = hal_irq_disable();
     int rc = hal_rc(mcp2515_poll(&c0.drv));
-    drop_if_bus_off();
+    can0_drop_if_bus_off();
     uint8_t tec, rec;
     mcp2515_error_counters(&c0.drv, &tec, &rec);
     mcp2515_state_t st = mcp2515_state(&c0.drv);
