@@ -4,15 +4,17 @@
  * (SLAU144: f_bitclock = f_BRCLK / UCBRx); the MCP2515's /CS is P3.0 as a plain output.
  *
  * Bytes are polled one at a time: write UCB0TXBUF, wait for UCB0RXIFG, read UCB0RXBUF (which
- * clears the flag). At 8 MHz (SMCLK 16 MHz / 2) a byte shifts in 16 MCLK cycles. The wait is
+ * clears the flag). At 8 MHz (SMCLK 16 MHz / 2) a byte shifts in 16 MCLK cycles. The divider
+ * follows the clock hal_cpu_init() chose (cy_clock.h): 10 MHz asked gives 8 MHz from 16 MHz,
+ * 6 MHz from 12 MHz. The wait is
  * bounded by twice a byte's shift time (a poll takes at least 6 cycles: BIT.B &IFG2 and a
  * jump): a USCI that never completes a byte (a fault, or mspdebug's simulator, where the USCI
  * is plain memory) gives HAL_SPI_ERR_TIMEOUT instead of a hang.
  */
 #include <stddef.h>
 
-#include "f2618_usci_b.h"
-#include "hal/cpu.h"
+#include "cy_clock.h"
+#include "f2618.h"
 #include "hal/spi.h"
 
 #define CS_CAN_BIT 0x01u /* P3.0 */
@@ -29,17 +31,11 @@ static uint32_t rate;       /* Hz, 0 while not initialised */
 static uint16_t poll_limit; /* UCB0RXIFG polls per byte before HAL_SPI_ERR_TIMEOUT */
 static int8_t held = -1;    /* chip select of a held frame, -1 none */
 
-/* SMCLK, the bit clock's source. */
-static uint32_t smclk_hz(void)
-{
-    return HAL_CPU_HZ;
-}
-
 int hal_spi_init(hal_spi_bus_t bus, uint32_t rate_hz, hal_spi_mode_t mode)
 {
     if ((unsigned)bus >= HAL_SPI_BUS_COUNT || (unsigned)mode >= HAL_SPI_MODE_COUNT || rate_hz == 0u)
         return HAL_SPI_ERR_ARG;
-    uint32_t clk = smclk_hz();
+    uint32_t clk = cy_clock->hz;                   /* SMCLK: the clock hal_cpu_init() chose */
     uint32_t div = (clk + rate_hz - 1u) / rate_hz; /* the fastest rate not above the request */
     if (div == 0u)
         div = 1u;
