@@ -1,7 +1,10 @@
 # cyclopion - a thin wrapper over the CMake presets (CMakePresets.json).
 #   make demo   install what is missing, build, run the main job and print its summary
 #   make test   install what is missing, build host + MSP430, run every test under ctest
-.PHONY: all deps host host-asan msp430 build test demo format clean
+#   make fuzz   run every fuzz harness longer (FUZZ_SECONDS each, default 600; docs/fuzzing.md)
+.PHONY: all deps host host-asan msp430 fuzz-build build test fuzz demo format clean
+
+FUZZ_SECONDS ?= 600
 
 all: build
 
@@ -17,13 +20,22 @@ msp430: deps host
 	@cmake --preset $@ >/dev/null
 	@cmake --build --preset $@
 
-build: host host-asan msp430
+# The libFuzzer harnesses (clang-16, ASan, UBSan): tests/fuzz, docs/fuzzing.md.
+fuzz-build: deps
+	@cmake --preset fuzz >/dev/null
+	@cmake --build --preset fuzz
+
+build: host host-asan msp430 fuzz-build
 
 test: build
 	ctest --preset host-asan
+	ctest --preset fuzz
 	@rm -f build/msp430/cycles.json # rewritten by the target tests, without stale entries
 	ctest --preset msp430
 	@python3 tools/cycles_report.py build/msp430/cycles.json
+
+fuzz: fuzz-build
+	tools/fuzz.py --seconds $(FUZZ_SECONDS) $(FUZZERS)
 
 demo: host
 	@python3 tools/demo.py
