@@ -6,9 +6,11 @@
  * each line is answered. Properties beyond memory safety, leaks (LeakSanitizer) and time
  * (libFuzzer's -timeout): every answer is one line of JSON, an object with a boolean "ok";
  * ok:false has a non-empty "error" string; ok:true has the keys its op promises (CONTRACT.md),
- * numbers where numbers are promised.
+ * numbers where numbers are promised, headings in [0, 360) and positions within the
+ * firmware's +-32768 m.
  */
 #include <jansson.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -57,6 +59,17 @@ static void check_answer(const char *line, size_t len, const char *answer)
             for (size_t k = 0; k < 3 && promises[i].other[k]; k++)
                 FUZZ_CHECK(json_object_get(a, promises[i].other[k]) != NULL,
                            "%s: ok:true without \"%s\": %s", op, promises[i].other[k], answer);
+        }
+        /* CONTRACT.md: headings in [0, 360); positions the firmware can hold (Q15.16 metres) */
+        json_t *h = json_object_get(a, "heading_deg");
+        if (h)
+            FUZZ_CHECK(json_number_value(h) >= 0.0 && json_number_value(h) < 360.0,
+                       "%s: heading_deg outside [0, 360): %s", op, answer);
+        for (const char *const *k = (const char *const[]){"x", "y", NULL}; *k; k++) {
+            json_t *v = json_object_get(a, *k);
+            if (v)
+                FUZZ_CHECK(fabs(json_number_value(v)) < 32768.0,
+                           "%s: %s outside the firmware's range of +-32768 m: %s", op, *k, answer);
         }
         json_decref(req);
     }
