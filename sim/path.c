@@ -51,7 +51,33 @@ double sim_path_length(const sim_path_t *p)
     return s;
 }
 
-static double piece_distance(const sim_piece_t *pc, double x, double y)
+/* Arc geometry: centre, radius (signed like 1 / kappa), start angle, signed sweep. */
+typedef struct {
+    double cx, cy, r, a0, sweep;
+} arc_t;
+
+static arc_t arc_of(const sim_piece_t *pc)
+{
+    arc_t a;
+    double dir = pc->reverse ? -1.0 : 1.0;
+    /* Centre on the left of the heading for kappa > 0 (right for < 0). */
+    a.r = 1.0 / pc->kappa;
+    a.cx = pc->x0 - a.r * sin(pc->th0);
+    a.cy = pc->y0 + a.r * cos(pc->th0);
+    a.a0 = atan2(pc->y0 - a.cy, pc->x0 - a.cx);
+    a.sweep = pc->kappa * pc->length * dir; /* signed angle swept around the centre */
+    return a;
+}
+
+/* Is direction @p a (rad, from the centre) within the arc's swept angle? */
+static int arc_covers(const arc_t *arc, double a)
+{
+    double rel = remainder(a - arc->a0, 2.0 * M_PI);
+    return arc->sweep >= 0.0 ? (rel >= 0.0 ? rel <= arc->sweep : rel + 2.0 * M_PI <= arc->sweep)
+                             : (rel <= 0.0 ? rel >= arc->sweep : rel - 2.0 * M_PI >= arc->sweep);
+}
+
+double sim_piece_distance(const sim_piece_t *pc, double x, double y)
 {
     sim_pose_t e = sim_piece_end(pc);
     double to_end = hypot(x - e.x, y - e.y), to_start = hypot(x - pc->x0, y - pc->y0);
@@ -65,25 +91,43 @@ static double piece_distance(const sim_piece_t *pc, double x, double y)
             best = fmin(best, fabs(-(x - pc->x0) * uy + (y - pc->y0) * ux));
         return best;
     }
-    /* Arc: centre on the left of the heading for kappa > 0 (right for < 0). */
-    double r = 1.0 / pc->kappa;
-    double cx = pc->x0 - r * sin(pc->th0), cy = pc->y0 + r * cos(pc->th0);
-    double a0 = atan2(pc->y0 - cy, pc->x0 - cx);
-    double a = atan2(y - cy, x - cx);
-    double sweep = pc->kappa * pc->length * dir; /* signed angle swept around the centre */
-    double rel = remainder(a - a0, 2.0 * M_PI);
-    /* Is the point's direction within the swept angle? */
-    int inside = sweep >= 0.0 ? (rel >= 0.0 ? rel <= sweep : rel + 2.0 * M_PI <= sweep)
-                              : (rel <= 0.0 ? rel >= sweep : rel - 2.0 * M_PI >= sweep);
-    if (inside)
-        best = fmin(best, fabs(hypot(x - cx, y - cy) - fabs(r)));
+    arc_t arc = arc_of(pc);
+    if (arc_covers(&arc, atan2(y - arc.cy, x - arc.cx)))
+        best = fmin(best, fabs(hypot(x - arc.cx, y - arc.cy) - fabs(arc.r)));
     return best;
+}
+
+void sim_piece_bounds(const sim_piece_t *pc, double box[4])
+{
+    sim_pose_t e = sim_piece_end(pc);
+    box[0] = fmin(pc->x0, e.x);
+    box[1] = fmin(pc->y0, e.y);
+    box[2] = fmax(pc->x0, e.x);
+    box[3] = fmax(pc->y0, e.y);
+    if (fabs(pc->kappa) >= 1e-12) {
+        /* The circle's extreme points in x and y that the arc passes. */
+        arc_t arc = arc_of(pc);
+        double r = fabs(arc.r);
+        for (int k = 0; k < 4; k++) {
+            double a = k * 0.5 * M_PI;
+            if (!arc_covers(&arc, remainder(a, 2.0 * M_PI)))
+                continue;
+            double px = arc.cx + r * cos(a), py = arc.cy + r * sin(a);
+            box[0] = fmin(box[0], px);
+            box[1] = fmin(box[1], py);
+            box[2] = fmax(box[2], px);
+            box[3] = fmax(box[3], py);
+        }
+    }
+    /* Rounding of the pose and trig evaluations: a micrometre of slack. */
+    for (int k = 0; k < 4; k++)
+        box[k] += (k < 2 ? -1.0 : 1.0) * (1e-6 + 1e-12 * fabs(box[k]));
 }
 
 double sim_path_distance(const sim_path_t *p, double x, double y)
 {
     double best = INFINITY;
     for (size_t i = 0; i < p->n; i++)
-        best = fmin(best, piece_distance(&p->piece[i], x, y));
+        best = fmin(best, sim_piece_distance(&p->piece[i], x, y));
     return best;
 }

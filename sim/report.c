@@ -5,6 +5,7 @@
 
 #include <jansson.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -61,6 +62,58 @@ void sim_stat_free(sim_stat_t *s)
     s->n = s->cap = 0;
 }
 
+/* A criterion missed: count it and append its text to the list. */
+typedef struct {
+    char *why;
+    size_t whylen, len;
+    int misses;
+} misses_t;
+
+static void miss(misses_t *m, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void miss(misses_t *m, const char *fmt, ...)
+{
+    m->misses++;
+    if (m->len >= m->whylen)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(m->why + m->len, m->whylen - m->len, fmt, ap);
+    va_end(ap);
+    m->len += n > 0 ? (size_t)n : 0;
+}
+
+int sim_report_judge(sim_report_t *r, const sim_success_t *c, char *why, size_t whylen)
+{
+    misses_t m = {why, whylen, 0, 0};
+    if (whylen)
+        why[0] = '\0';
+    if (c->require_goal && !r->reached_goal)
+        miss(&m, " goal not reached (%s);",
+             r->fault            ? "fault"
+             : r->stop_requested ? "stop request: no fix for too long"
+                                 : "time out");
+    if (sim_stat_mean(&r->cross_track) > c->max_cross_track_mean)
+        miss(&m, " cross-track mean %.4f m > %.4f;", sim_stat_mean(&r->cross_track),
+             c->max_cross_track_mean);
+    if (r->cross_track.n && r->cross_track.max > c->max_cross_track_max)
+        miss(&m, " cross-track max %.4f m > %.4f;", r->cross_track.max, c->max_cross_track_max);
+    if (r->final_error > c->max_final_error)
+        miss(&m, " final error %.4f m > %.4f;", r->final_error, c->max_final_error);
+    if (r->fix_error.n && r->fix_error.max > c->max_fix_error)
+        miss(&m, " fix error max %.4f m > %.4f;", r->fix_error.max, c->max_fix_error);
+    double ratio = r->fixes_attempted ? (double)r->fixes_accepted / r->fixes_attempted : 0.0;
+    if (ratio < c->min_fix_ratio)
+        miss(&m, " %.0f%% of fixes accepted < %.0f%%;", 100 * ratio, 100 * c->min_fix_ratio);
+    return m.misses == 0;
+}
+
+void sim_report_free(sim_report_t *r)
+{
+    sim_stat_free(&r->fix_error);
+    sim_stat_free(&r->heading_error);
+    sim_stat_free(&r->cross_track);
+}
+
 /* Fixed decimals: the text of a number never depends on float formatting quirks. */
 static json_t *num(double v, int decimals)
 {
@@ -76,7 +129,7 @@ char *sim_report_json(sim_report_t *r)
     json_t *root = json_object();
     json_object_set_new(root, "scenario", json_string(r->scenario));
     json_object_set_new(root, "seed", json_integer((json_int_t)r->seed));
-    json_object_set_new(root, "mode", json_string(r->full_travel ? "full" : "simplified"));
+    json_object_set_new(root, "mode", json_string(r->mode));
     json_object_set_new(root, "sim_time_s", num(r->sim_time, 6));
     json_object_set_new(root, "wall_time_s", num(r->wall_time, 6));
 

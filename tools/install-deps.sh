@@ -29,7 +29,18 @@ if [ -n "$missing" ]; then
     apt-get install -y -q --no-install-recommends $missing
 fi
 
-if ! python3 -c "import lcm, numpy, matplotlib, ezdxf" 2>/dev/null; then
+# Every pinned requirement present at its version (tools/requirements.txt), or pip runs.
+if ! python3 - "$here/requirements.txt" <<'PYEOF' 2>/dev/null
+import sys
+from importlib.metadata import version
+for line in open(sys.argv[1]):
+    line = line.split("#")[0].strip()
+    if line:
+        name, _, want = line.partition("==")
+        if version(name) != want:
+            sys.exit(1)
+PYEOF
+then
     echo "install-deps: installing Python packages from tools/requirements.txt"
     if ! python3 -m pip install -q --disable-pip-version-check -r "$here/requirements.txt" 2>/tmp/cy-pip.log; then
         if grep -q externally-managed /tmp/cy-pip.log; then

@@ -9,6 +9,7 @@
 #include "hal/fault.h"
 #include "hal/irq.h"
 #include "main_board.h"
+#include "mission/mission.h"
 #include "mission_builtin.h"
 
 static const optical_xy_t beacons[MISSION_N_BEACONS] = MISSION_BEACONS;
@@ -23,16 +24,8 @@ static const main_board_config_t cfg = {
     .n_path = MISSION_N_PATH,
     .start = MISSION_START,
     .board = DRIVE_BOARD_SEED_WITH(MISSION_WHEELBASE, MISSION_MIN_RADIUS),
-    .path_cfg = {MISSION_MIN_RADIUS, 52429l /* 0.8 m: the double-arc length */, false},
-    .seq_cfg =
-        {
-            .mode = MISSION_FULL_TRAVEL ? DRIVE_MODE_FULL : DRIVE_MODE_SIMPLIFIED,
-            .load_ms = 35,
-            .settle_ms = 50,
-            .stop_speed = 9830l, /* 0.15 m/s */
-            .advance = 26214l,   /* 0.4 m */
-            .max_fix_failures = 3,
-        },
+    .path_cfg = MISSION_PATH_CONFIG(MISSION_MIN_RADIUS),
+    .seq_cfg = MISSION_SEQ_CONFIG(MISSION_FULL_TRAVEL ? DRIVE_MODE_FULL : DRIVE_MODE_SIMPLIFIED),
     .counts_per_turn = MISSION_COUNTS,
     .optical = OPTICAL_CONFIG_DEFAULT(MISSION_BEACON_DIAMETER),
 };

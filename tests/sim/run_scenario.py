@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """ctest (label sim): run one scenario through agv-sim and check it.
 
-  run_scenario.py AGV_SIM SCENARIO            the run must meet the scenario's criteria (exit 0),
-                                              and its report must have the CONTRACT.md keys
+  run_scenario.py AGV_SIM SCENARIO            the scenario file must follow its JSON Schema, the
+                                              run must meet the scenario's criteria (exit 0),
+                                              and its report must follow the report's schema
+                                              (docs/schema/*.schema.json)
   run_scenario.py AGV_SIM SCENARIO --twice    and a second run gives byte-identical report
                                               (wall time aside) and logs
 """
@@ -13,25 +15,17 @@ import subprocess
 import sys
 import tempfile
 
-REQUIRED = {
-    "scenario": None, "seed": None, "mode": None, "sim_time_s": None, "wall_time_s": None,
-    "fixes": {"attempted": None, "accepted": None, "rejected": None,
-              "error_m": {"rms": None, "p95": None, "max": None},
-              "heading_error_deg": {"rms": None, "max": None}},
-    "path": {"reached_goal": None, "cross_track_m": {"mean": None, "max": None},
-             "final_error_m": None},
-    "isr": None,
-}
+import jsonschema
+
+SCHEMAS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "schema")
 
 
-def missing(spec, obj, path=""):
-    out = []
-    for k, sub in spec.items():
-        if k not in obj:
-            out.append(path + k)
-        elif sub is not None:
-            out += missing(sub, obj[k], path + k + ".")
-    return out
+def violations(doc, name):
+    with open(os.path.join(SCHEMAS, name)) as f:
+        schema = json.load(f)
+    v = jsonschema.Draft202012Validator(schema)
+    return [f"{'.'.join(str(p) for p in e.absolute_path) or '(root)'}: {e.message}"
+            for e in v.iter_errors(doc)]
 
 
 def run(agv, scenario, tmp, tag):
@@ -45,6 +39,11 @@ def run(agv, scenario, tmp, tag):
 def main():
     agv, scenario = sys.argv[1], sys.argv[2]
     twice = "--twice" in sys.argv[3:]
+    with open(scenario) as f:
+        bad = violations(json.load(f), "scenario.schema.json")
+    if bad:
+        print(f"FAIL {scenario}: not a valid scenario: {bad}")
+        return 1
     with tempfile.TemporaryDirectory() as tmp:
         r, rep, logs = run(agv, scenario, tmp, "a")
         sys.stdout.write(r.stderr)
@@ -53,9 +52,9 @@ def main():
             return 1
         with open(rep) as f:
             report = json.load(f)
-        gaps = missing(REQUIRED, report)
-        if gaps:
-            print(f"FAIL {scenario}: report lacks {gaps}")
+        bad = violations(report, "report.schema.json")
+        if bad:
+            print(f"FAIL {scenario}: the report does not follow its schema: {bad}")
             return 1
         p, fx = report["path"], report["fixes"]
         print(f"{report['scenario']}: cross-track mean {p['cross_track_m']['mean'] * 1000:.2f} mm"

@@ -4,7 +4,8 @@
  * Timer_A counts (16 bits, wrapping), and a photodetector pulse while the beam sweeps across a
  * beacon (or a glint). The beam direction in the world is heading(t) + mirror(t); a post of
  * diameter D at range d is lit while the beam is within asin(D / 2d) of its centre, so the
- * pulse spans 2 asin(D / 2d) of mirror angle (CONTRACT.md), measured while the vehicle moves.
+ * pulse spans 2 asin(D / 2d) of mirror angle (docs/interfaces.md), measured while the vehicle
+ * moves.
  */
 #ifndef SIM_GONIO_H
 #define SIM_GONIO_H

@@ -1,6 +1,6 @@
 /*
  * path.h - the nominal path: a chain of circular arcs and straights (double precision),
- * and the distance of a point to it (the cross-track error of CONTRACT.md).
+ * and the distance of a point to it (the cross-track error of docs/interfaces.md).
  */
 #ifndef SIM_PATH_H
 #define SIM_PATH_H
@@ -36,7 +36,14 @@ sim_pose_t sim_piece_end(const sim_piece_t *pc);
 /** The pose at the end of the whole path (the start pose of an empty path is undefined). */
 sim_pose_t sim_path_end(const sim_path_t *p);
 
-/** Shortest distance from (x, y) to the path, m; INFINITY for an empty path. */
+/** Shortest distance from (x, y) to the piece, m. */
+double sim_piece_distance(const sim_piece_t *pc, double x, double y);
+
+/** The piece's bounding box {xmin, ymin, xmax, ymax}, m, with a micrometre of slack. */
+void sim_piece_bounds(const sim_piece_t *pc, double box[4]);
+
+/** Shortest distance from (x, y) to the path, m (the minimum over its pieces); INFINITY for an
+ * empty path. */
 double sim_path_distance(const sim_path_t *p, double x, double y);
 
 /** Total length, m. */

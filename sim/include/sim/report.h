@@ -1,6 +1,6 @@
 /*
- * report.h - what agv-sim measures and writes (CONTRACT.md "Report"): fix accuracy, path
- * tracking, interrupt counts. Numbers are rounded to fixed decimals so that the same run gives
+ * report.h - what agv-sim measures and writes (docs/interfaces.md "Report file"): fix accuracy,
+ * path tracking, interrupt counts. Numbers are rounded to fixed decimals so that the same run gives
  * the same bytes (wall time aside).
  */
 #ifndef SIM_REPORT_H
@@ -9,6 +9,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+
+#include "sim/scenario.h"
 
 /** Samples of one quantity: mean, RMS, max, 95th percentile. */
 typedef struct {
@@ -29,18 +31,29 @@ void sim_stat_free(sim_stat_t *s);
 typedef struct {
     char scenario[64];
     uint64_t seed;
-    int full_travel;
+    const char *mode; /* travel mode, as in the scenario file */
     double sim_time, wall_time;
     uint32_t fixes_attempted, fixes_accepted, fixes_rejected;
     sim_stat_t fix_error;     /* m, accepted fixes vs truth at their reference instant */
     sim_stat_t heading_error; /* deg, absolute */
     bool reached_goal;
-    sim_stat_t cross_track; /* m, sampled along the travelled distance */
-    double final_error;     /* m, truth at the end vs the last prescribed point */
+    bool fault, stop_requested; /* why the goal was not reached: a fault, the nav board's stop */
+    sim_stat_t cross_track;     /* m, sampled along the travelled distance */
+    double final_error;         /* m, truth at the end vs the last prescribed point */
     const char *isr_name[SIM_MAX_ISR_NAMES];
     uint64_t isr_count[SIM_MAX_ISR_NAMES];
     size_t n_isr;
 } sim_report_t;
+
+/**
+ * Judge the run against the scenario's criteria @p c. Returns 1 when every criterion is met,
+ * else 0 with the misses in @p why ("; "-separated, each with the measured value and its
+ * limit).
+ */
+int sim_report_judge(sim_report_t *r, const sim_success_t *c, char *why, size_t whylen);
+
+/** Free the samples the report holds. */
+void sim_report_free(sim_report_t *r);
 
 /** Write the report as JSON to @p path. Returns 0 or -1 (errno set). */
 int sim_report_write(sim_report_t *r, const char *path);

@@ -1,20 +1,22 @@
 /*
- * scenario.h - agv-sim scenario files (CONTRACT.md "Scenario file"), parsed and validated.
- * Units at this interface: metres, seconds, degrees (converted to radians in the struct).
+ * scenario.h - agv-sim scenario files, read and checked as their JSON Schema says
+ * (docs/schema/scenario.schema.json; the reader's tables are generated from it by
+ * tools/gen_schema_c.py, and each key's "x-c" names the field below that holds it).
+ * Units in the file: metres, seconds, degrees; in the struct: metres, seconds, radians.
  */
 #ifndef SIM_SCENARIO_H
 #define SIM_SCENARIO_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
+#include "sim/scenario_keys.h" /* generated: SIM_SCENARIO_MODE_*, SIM_SCENARIO_*_MAX_ITEMS */
 #include "sim/world.h"
-
-#define SIM_MAX_PATH 1024
 
 typedef struct {
     double x, y, heading; /* m, m, rad */
-    double speed;         /* m/s, > 0 */
+    double speed;         /* m/s, > 0 (absent in the file: the vehicle's speed) */
 } sim_waypoint_t;
 
 typedef struct {
@@ -23,18 +25,17 @@ typedef struct {
     double max_final_error;      /* m */
     double max_fix_error;        /* m: no accepted fix further from the truth */
     double min_fix_ratio;        /* accepted / attempted */
-    int require_goal;            /* the run must reach the last point */
+    bool require_goal;           /* the run must reach the last point */
 } sim_success_t;
 
 typedef struct {
     char name[64];
-    int full_travel; /* mode: 1 full, 0 simplified */
+    int mode; /* SIM_SCENARIO_MODE_FULL or SIM_SCENARIO_MODE_SIMPLIFIED */
     sim_world_t world;
     double wheelbase, min_radius, speed; /* m, m, m/s */
-    double steer_rate;                   /* rad/s, 0 = instantaneous */
     double start_x, start_y, start_heading;
     double start_err_x, start_err_y, start_err_heading; /* initial estimate minus truth */
-    sim_waypoint_t path[SIM_MAX_PATH];
+    sim_waypoint_t path[SIM_SCENARIO_PATH_MAX_ITEMS];
     size_t n_path;
     double rev_per_s;
     uint32_t counts;
@@ -57,5 +58,8 @@ int sim_scenario_load(const char *path, sim_scenario_t *sc, char *err, size_t er
 
 /** The same from a JSON text (for tests). */
 int sim_scenario_parse(const char *text, sim_scenario_t *sc, char *err, size_t errlen);
+
+/** The name of travel mode @p mode in the file ("full", "simplified"). */
+const char *sim_scenario_mode_name(int mode);
 
 #endif

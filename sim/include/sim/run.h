@@ -1,0 +1,44 @@
+/*
+ * run.h - one closed-loop run: both boards' firmware on the harness (hal/posix), the drive
+ * board and the vehicle (sim/drive_board.h), its sensors (sim/sensors.h) and the telemetry
+ * (sim/telemetry.h), from the start to the end of the scenario's time or, once the travel is
+ * done or has faulted, half a second after the vehicle stands.
+ */
+#ifndef SIM_RUN_H
+#define SIM_RUN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "sim/mission.h"
+#include "sim/report.h"
+#include "sim/scenario.h"
+
+typedef struct {
+    const char *log_dir; /* CSV logs there (created with its parents), or NULL */
+    const char *lcm_url; /* LCM telemetry there, or NULL */
+    int quiet;           /* no progress lines on stderr */
+    int trace;           /* every fix attempt and travel state on stderr */
+} sim_run_options_t;
+
+/** Work counters of a run: deterministic (the same scenario and seed give the same), and the
+ * processor time the run took (which is not). */
+typedef struct {
+    double cpu_time_s;        /* processor time of the run's loop, s (varies) */
+    uint64_t events;          /* harness events run */
+    uint64_t samples;         /* cross-track samples */
+    uint64_t pieces;          /* pieces of the nominal path */
+    uint64_t pieces_indexed;  /* of them, distinct (a repeated route is indexed once) */
+    uint64_t pieces_examined; /* piece distances computed by the samples */
+} sim_run_stats_t;
+
+/**
+ * Run scenario @p sc with its download @p m (sim_mission_build()) under options @p o; fill
+ * @p r (zeroed first; the caller frees it with sim_report_free()) and @p stats. Returns 0
+ * when the run went to its end, or -1 with the reason in @p err when it could not start (a
+ * board refused its configuration, an output could not be opened).
+ */
+int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t *o, sim_report_t *r,
+            sim_run_stats_t *stats, char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,70 @@
+/*
+ * sensors.h - the vehicle's pulse sources, scheduled on the harness along the true motion:
+ *  - the odometer: one delta-l pulse to the nav board per dl of front-wheel travel (times the
+ *    wheel's scale error);
+ *  - the gyro: a step up or down to the nav board whenever the measured heading (truth plus
+ *    drift) crosses a step boundary, steps counted around the start heading;
+ *  - the goniometer: the index pulse at every mirror turn and the photodetector's edges
+ *    (sim/gonio.h) as captures on the main board; each rising edge also reaches the nav board
+ *    (it latches its pose there) and is recorded with the true pose of its instant, so that a
+ *    fix referring to that latch can be compared with the truth.
+ * Every change of motion reschedules them (sim_sensors_motion()).
+ */
+#ifndef SIM_SENSORS_H
+#define SIM_SENSORS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "sim/gonio.h"
+#include "sim/motion.h"
+#include "sim/rng.h"
+#include "sim/scenario.h"
+
+#define SIM_SENSORS_MAX_EDGES 256 /* photodetector edges of one revolution */
+#define SIM_SENSORS_LATCHES   256 /* rising edges remembered (divides 2^16) */
+
+typedef struct {
+    const sim_segment_t *seg; /* the true motion (the drive board's) */
+    int main_board, nav_board;
+    double dl;         /* m of true front-wheel travel per odometer pulse */
+    double gyro_step;  /* rad */
+    double gyro_drift; /* rad/s */
+    double heading0;   /* rad: the start heading, centre of gyro step 0 */
+    const sim_world_t *world;
+    sim_gonio_cfg_t gonio;
+    sim_rng_t rng_gonio;
+    /* state */
+    double front_next; /* front-wheel total at the next odometer pulse, m */
+    long gyro_count;   /* measured heading, in steps from the start */
+    int gyro_dir;      /* direction of the scheduled step, +-1 */
+    double t_index;    /* last index pulse, s */
+    sim_gonio_event_t edges[SIM_SENSORS_MAX_EDGES];
+    size_t n_edges, next_edge;
+    sim_photo_t photo;
+    uint32_t rises; /* rising edges so far (the nav board's latch numbers count them) */
+    double rise_t[SIM_SENSORS_LATCHES];
+    sim_pose_t rise_pose[SIM_SENSORS_LATCHES];
+    uint64_t ev_dl, ev_gyro, ev_gonio; /* harness event ids, 0 = none */
+} sim_sensors_t;
+
+/**
+ * The sensors of scenario @p sc on a vehicle moving along @p *seg (read at every event; its
+ * owner calls sim_sensors_motion() when it changes), pulses going to harness boards
+ * @p main_board and @p nav_board. The mirror turns from t = 0, its first index pulse a
+ * random part of a turn later (seeded from the scenario's seed). Nothing is scheduled yet.
+ */
+void sim_sensors_init(sim_sensors_t *s, const sim_scenario_t *sc, const sim_segment_t *seg,
+                      int main_board, int nav_board);
+
+/** The motion changed at the current time: schedule every pulse source along the new one. */
+void sim_sensors_motion(sim_sensors_t *s);
+
+/**
+ * The instant (s) and true pose of rising edge number @p latch (counted from 0, modulo 2^16 as
+ * the nav board numbers its latches). Returns 0, or -1 when that edge has not happened or is
+ * one of the last SIM_SENSORS_LATCHES no more.
+ */
+int sim_sensors_latch(const sim_sensors_t *s, uint16_t latch, double *t, sim_pose_t *pose);
+
+#endif

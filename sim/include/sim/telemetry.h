@@ -1,0 +1,72 @@
+/*
+ * telemetry.h - what a run shows while it goes: the measurements of the report (each fix
+ * against the truth at its reference latch, the cross-track error sampled along the way), the
+ * CSV logs of --log-dir, the LCM messages of --lcm (the types in sim/lcm/) and the --trace lines on
+ * stderr. The log files and their columns are described in docs/interfaces.md.
+ */
+#ifndef SIM_TELEMETRY_H
+#define SIM_TELEMETRY_H
+
+#include <lcm/lcm.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#include "drive/drive_proto.h"
+#include "main_board.h"
+#include "sim/drive_board.h"
+#include "sim/path_index.h"
+#include "sim/report.h"
+#include "sim/scenario.h"
+#include "sim/sensors.h"
+
+#define SIM_TELEMETRY_SAMPLE 0.01 /* s: cross-track samples */
+#define SIM_TELEMETRY_LOG    0.05 /* s: truth and estimate rows, LCM pose and truth messages */
+
+typedef struct sim_telemetry {
+    /* what it watches */
+    const sim_drive_t *drive;
+    const sim_sensors_t *sensors;
+    sim_path_index_t *nominal;
+    int nav_board;
+    sim_report_t *report; /* fixes and cross-track go here */
+    /* outputs */
+    FILE *f_truth, *f_est, *f_fix, *f_cmd;
+    lcm_t *lcm;
+    int trace; /* every fix attempt and travel state on stderr */
+    /* state */
+    sim_pose_t last_sample;
+    double next_log;
+    int done; /* the run is over: no more cross-track samples */
+} sim_telemetry_t;
+
+/**
+ * Open the outputs: with @p log_dir (may be NULL) the directory (and its parents) and the CSV
+ * logs, including the static ones (beacons.csv of @p sc's world, path.csv of @p nominal
+ * sampled every centimetre); with @p lcm_url (may be NULL) an LCM publisher. Returns 0, or -1
+ * with the reason (naming the file or URL) in @p err.
+ */
+int sim_telemetry_open(sim_telemetry_t *tm, const char *log_dir, const char *lcm_url,
+                       const sim_scenario_t *sc, const sim_path_t *nominal, char *err,
+                       size_t errlen);
+
+/**
+ * Watch @p drive, @p sensors, the nav board @p nav_board, measure the cross-track distance to
+ * @p nominal, and count into @p report; schedules the first sample at the current time.
+ */
+void sim_telemetry_start(sim_telemetry_t *tm, const sim_drive_t *drive,
+                         const sim_sensors_t *sensors, sim_path_index_t *nominal, int nav_board,
+                         sim_report_t *report);
+
+/** The main board's observer of fix attempts (main_board_observer_t.on_fix; ctx = tm). */
+void sim_telemetry_fix(void *ctx, const main_board_fix_event_t *ev);
+
+/** The main board's observer of travel states (main_board_observer_t.on_state; ctx = tm). */
+void sim_telemetry_state(void *ctx, drive_state_t st);
+
+/** The drive board took a command at @p t (s) (sim_drive_command_fn; ctx = tm). */
+void sim_telemetry_command(void *ctx, double t, const drive_event_t *ev);
+
+/** The run is over: stop sampling, flush and close every output. */
+void sim_telemetry_close(sim_telemetry_t *tm);
+
+#endif

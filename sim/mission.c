@@ -1,0 +1,115 @@
+/*
+ * mission.c - a scenario turned into the boards' download and the nominal path (see
+ * mission.h).
+ */
+#include "sim/mission.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "drive/drive.h"
+#include "fx/fx_host.h"
+#include "mission/mission.h"
+
+static fx_q16_t q16(double v)
+{
+    return fx_q16_from_double(v);
+}
+
+static drive_pose_t dpose(double x, double y, double th)
+{
+    drive_pose_t p = {q16(x), q16(y), fx_angle_from_rad(th)};
+    return p;
+}
+
+static int build_nominal(sim_mission_t *m, const sim_scenario_t *sc, char *err, size_t errlen)
+{
+    const main_board_config_t *mc = &m->main;
+    drive_pose_t from = mc->start;
+    sim_pose_t s0 = {sc->start_x, sc->start_y, sc->start_heading};
+    m->nominal.n = 0;
+    for (size_t i = 0; i < sc->n_path; i++) {
+        drive_pose_t to = mc->path[i].pose;
+        drive_solution_t sol;
+        drive_status_t st =
+            drive_solve(&from, &to, mc->path_cfg.nominal_radius, mc->path_cfg.reverse, &sol, NULL);
+        if (st != DRIVE_OK) {
+            snprintf(err, errlen,
+                     "path[%zu]: no double arc from the previous point: %s (min_radius_m %.3f)", i,
+                     drive_status_text(st), sc->min_radius);
+            return -1;
+        }
+        for (int k = 0; k < 2; k++) {
+            double len = fx_q16_to_double(sol.seg[k].length);
+            if (len <= 0)
+                continue;
+            double kap = (double)sol.seg[k].curvature / (double)(1l << DRIVE_CURV_SHIFT);
+            /* Each leg starts at its prescribed pose (the solver lands within 0.05 mm). */
+            if (k == 0 || m->nominal.n == 0)
+                sim_path_append_from(&m->nominal, s0, kap, len, mc->path_cfg.reverse);
+            else
+                sim_path_append(&m->nominal, s0, kap, len, mc->path_cfg.reverse);
+        }
+        from = to;
+        s0 = (sim_pose_t){sc->path[i].x, sc->path[i].y, sc->path[i].heading};
+    }
+    return 0;
+}
+
+int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, size_t errlen)
+{
+    memset(m, 0, sizeof *m);
+    if (sc->n_path > MAIN_BOARD_MAX_PATH) {
+        snprintf(err, errlen, "path: %zu points, the main board holds at most %d", sc->n_path,
+                 MAIN_BOARD_MAX_PATH);
+        return -1;
+    }
+    if (sc->world.n_beacons > OPTICAL_MAX_BEACONS) {
+        snprintf(err, errlen, "beacons: %zu, the main board's map holds at most %d",
+                 sc->world.n_beacons, OPTICAL_MAX_BEACONS);
+        return -1;
+    }
+    main_board_config_t *mc = &m->main;
+    for (size_t i = 0; i < sc->world.n_beacons; i++) {
+        m->beacons[i].x = q16(sc->world.beacon[i].x);
+        m->beacons[i].y = q16(sc->world.beacon[i].y);
+    }
+    if (!optical_map_compile(&mc->map, m->beacons, (uint8_t)sc->world.n_beacons, m->beacons8)) {
+        snprintf(err, errlen,
+                 "beacons: %zu of them; the main board needs 3..%d within +-128 m of one "
+                 "point (a site of at most 256 m by 256 m)",
+                 sc->world.n_beacons, OPTICAL_MAX_BEACONS);
+        return -1;
+    }
+    for (size_t i = 0; i < sc->n_path; i++) {
+        m->points[i].pose = dpose(sc->path[i].x, sc->path[i].y, sc->path[i].heading);
+        m->points[i].speed = q16(sc->path[i].speed);
+        m->points[i].nsub = 0;
+    }
+    mc->path = m->points;
+    mc->n_path = (uint8_t)sc->n_path;
+    mc->start = dpose(sc->start_x, sc->start_y, sc->start_heading);
+    drive_board_t seed_board = DRIVE_BOARD_SEED;
+    mc->board = seed_board;
+    mc->board.wheelbase = q16(sc->wheelbase);
+    mc->board.min_radius = q16(sc->min_radius);
+    mc->path_cfg = (drive_path_config_t)MISSION_PATH_CONFIG(q16(sc->min_radius));
+    mc->seq_cfg = (drive_seq_config_t)MISSION_SEQ_CONFIG(
+        sc->mode == SIM_SCENARIO_MODE_FULL ? DRIVE_MODE_FULL : DRIVE_MODE_SIMPLIFIED);
+    mc->counts_per_turn = (uint16_t)sc->counts;
+    optical_config_default(&mc->optical);
+    mc->optical.beacon_diameter = q16(sc->world.beacon[0].diameter);
+    if (build_nominal(m, sc, err, errlen))
+        return -1;
+
+    gnav_config_t *g = &m->nav.gnav;
+    g->wheelbase = q16(sc->wheelbase);
+    g->dl_q40 = (uint32_t)llround(sc->dl * 1099511627776.0);
+    g->gyro_step_q48 = (uint64_t)llround(sc->gyro_step / (2 * M_PI) * 281474976710656.0);
+    g->stop_distance = MISSION_STOP_DISTANCE;
+    m->nav.start.x = q16(sc->start_x + sc->start_err_x);
+    m->nav.start.y = q16(sc->start_y + sc->start_err_y);
+    m->nav.start.heading = fx_angle_from_rad(sc->start_heading + sc->start_err_heading);
+    return 0;
+}

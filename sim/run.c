@@ -1,0 +1,227 @@
+/*
+ * run.c - one closed-loop run on the harness (see run.h).
+ */
+#include "sim/run.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "hal/cpu.h"
+#include "hal/irq.h"
+#include "hal/pinmap.h"
+#include "hal_posix/drive_port_posix.h"
+#include "hal_posix/harness.h"
+#include "main_board.h"
+#include "nav_board.h"
+#include "sim/clock.h"
+#include "sim/drive_board.h"
+#include "sim/path_index.h"
+#include "sim/sensors.h"
+#include "sim/telemetry.h"
+
+/* Everything of one run; the harness and the boards' firmware are single instances anyway. */
+typedef struct {
+    int main_b, nav_b;
+    sim_drive_t drive;
+    sim_sensors_t sensors;
+    sim_telemetry_t tm;
+    sim_path_index_t nominal;
+} run_t;
+
+static run_t R;
+
+/* The drive board moved the vehicle differently: the sensors follow. */
+static void on_motion(void *ctx, double t)
+{
+    (void)ctx;
+    (void)t;
+    sim_sensors_motion(&R.sensors);
+}
+
+/* The drive board took a command: the telemetry logs it. */
+static void on_command(void *ctx, double t, const drive_event_t *ev)
+{
+    (void)ctx;
+    sim_telemetry_command(&R.tm, t, ev);
+}
+
+/* Every write the main board makes on its drive bus reaches the drive board here. */
+static void drive_sink(void *ctx, int board, const posix_drive_write_t *w)
+{
+    (void)board;
+    sim_drive_write(ctx, w->reg, w->value);
+}
+
+static double wall_since(const struct timespec *w0)
+{
+    struct timespec w1;
+    clock_gettime(CLOCK_MONOTONIC, &w1);
+    return (double)(w1.tv_sec - w0->tv_sec) + 1e-9 * (double)(w1.tv_nsec - w0->tv_nsec);
+}
+
+/* Both boards on the harness, configured and wired to the drive board and the vehicle. */
+static int boards_up(const sim_scenario_t *sc, sim_mission_t *m, char *err, size_t errlen)
+{
+    posix_reset();
+    R.main_b = posix_board_create("main");
+    R.nav_b = posix_board_create("nav");
+    sim_pose_t start = {sc->start_x, sc->start_y, sc->start_heading};
+    sim_drive_init(&R.drive, &m->main.board, sc->wheelbase, R.main_b, start, on_motion, on_command,
+                   NULL);
+    posix_board_select(R.nav_b);
+    hal_cpu_init();
+    int rc = nav_board_init(&m->nav);
+    if (rc != 0) {
+        snprintf(err, errlen, "the nav board refuses the vehicle: %s", gnav_strerror(rc));
+        return -1;
+    }
+    posix_board_select(R.main_b);
+    hal_cpu_init();
+    posix_drive_port_set_sink(R.main_b, drive_sink, &R.drive);
+    drive_status_t ds = main_board_init(&m->main);
+    if (ds != DRIVE_OK) {
+        const drive_path_t *pp = main_board_path();
+        snprintf(err, errlen, "the main board refuses the path: leg %u piece %u: %s", pp->bad_leg,
+                 pp->bad_sub, drive_status_text(pp->bad_why));
+        return -1;
+    }
+    static main_board_observer_t obs;
+    obs = (main_board_observer_t){&R.tm, sim_telemetry_fix, 0, sim_telemetry_state};
+    main_board_set_observer(&obs);
+    posix_signal_connect(R.main_b, HAL_SIGNAL_COORD_REQUEST, R.nav_b, HAL_EDGE_COORD_REQUEST);
+    return 0;
+}
+
+/* Run passes of the boards' main loops while their handlers left work. */
+static void poll_boards(void)
+{
+    for (int pass = 0; pass < 8; pass++) {
+        int any = 0;
+        if (posix_board_take_wake(R.nav_b)) {
+            posix_board_select(R.nav_b);
+            nav_board_poll();
+            any = 1;
+        }
+        if (posix_board_take_wake(R.main_b)) {
+            posix_board_select(R.main_b);
+            main_board_poll();
+            any = 1;
+        }
+        if (!any)
+            break;
+    }
+}
+
+/* The interrupt counts of the report: each handler of both boards, by name. */
+static void count_isrs(sim_report_t *r)
+{
+    struct {
+        const char *name;
+        int board, source;
+    } isrs[] = {
+        {"main.index_pulse", R.main_b,
+         posix_source_find(R.main_b, (int)hal_capture_vector(HAL_CAPTURE_INDEX),
+                           HAL_CAPTURE_INDEX)},
+        {"main.sighting_edge", R.main_b,
+         posix_source_find(R.main_b, (int)hal_capture_vector(HAL_CAPTURE_BEACON),
+                           HAL_CAPTURE_BEACON)},
+        {"main.delta_s", R.main_b, posix_edge_source(R.main_b, HAL_EDGE_DELTA_S)},
+        {"main.link_rx", R.main_b, posix_source_find(R.main_b, HAL_VEC_LINK_RX, 0)},
+        {"main.clock_tick", R.main_b, posix_source_find(R.main_b, HAL_VEC_TIMERB0, 0)},
+        {"nav.delta_l", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_DELTA_L)},
+        {"nav.gyro_up", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_GYRO_UP)},
+        {"nav.gyro_down", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_GYRO_DOWN)},
+        {"nav.beacon_sighted", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_BEACON_SIGHTED)},
+        {"nav.coord_request", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_COORD_REQUEST)},
+        {"nav.link_rx", R.nav_b, posix_source_find(R.nav_b, HAL_VEC_LINK_RX, 0)},
+    };
+    for (size_t i = 0; i < sizeof isrs / sizeof isrs[0] && i < SIM_MAX_ISR_NAMES; i++) {
+        r->isr_name[r->n_isr] = isrs[i].name;
+        r->isr_count[r->n_isr++] =
+            isrs[i].source >= 0 ? posix_source_count(isrs[i].board, isrs[i].source) : 0;
+    }
+}
+
+int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t *o, sim_report_t *r,
+            sim_run_stats_t *stats, char *err, size_t errlen)
+{
+    memset(r, 0, sizeof *r);
+    memset(stats, 0, sizeof *stats);
+    memset(&R, 0, sizeof R);
+    if (boards_up(sc, m, err, errlen))
+        return -1;
+    sim_sensors_init(&R.sensors, sc, &R.drive.seg, R.main_b, R.nav_b);
+    if (sim_path_index_build(&R.nominal, &m->nominal)) {
+        snprintf(err, errlen, "out of memory for the nominal path's index");
+        return -1;
+    }
+    R.tm.trace = o->trace;
+    if (sim_telemetry_open(&R.tm, o->log_dir, o->lcm_url, sc, &m->nominal, err, errlen)) {
+        sim_path_index_free(&R.nominal);
+        return -1;
+    }
+
+    struct timespec w0, c0, c1;
+    clock_gettime(CLOCK_MONOTONIC, &w0);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
+    posix_board_select(R.nav_b);
+    hal_irq_enable();
+    posix_board_select(R.main_b);
+    hal_irq_enable();
+    sim_telemetry_start(&R.tm, &R.drive, &R.sensors, &R.nominal, R.nav_b, r);
+    sim_sensors_motion(&R.sensors);
+    sim_drive_schedule(&R.drive, sim_clock_now());
+    main_board_start();
+
+    uint64_t end_ns = sim_clock_ns(sc->duration);
+    double done_at = -1, next_progress = 0.1, wall_next = 0;
+    while (posix_next_event_ns() <= end_ns) {
+        stats->events += posix_run_until(posix_next_event_ns());
+        poll_boards();
+        double now = sim_clock_now();
+        drive_state_t st = main_board_state();
+        if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT) && done_at < 0)
+            done_at = now;
+        if (done_at >= 0 && sim_drive_standing(&R.drive) && now > done_at + 0.5)
+            break; /* finished and standing */
+        if (!o->quiet) {
+            double frac = now / sc->duration, wall = wall_since(&w0);
+            if (frac >= next_progress || wall >= wall_next) {
+                fprintf(stderr, "agv-sim: %s t=%.1f/%.0f s, fixes %u/%u accepted, state %s\n",
+                        sc->name, now, sc->duration, r->fixes_accepted, r->fixes_attempted,
+                        drive_seq_state_name(st));
+                while (next_progress <= frac)
+                    next_progress += 0.1;
+                wall_next = wall + 2.0;
+            }
+        }
+    }
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
+    stats->cpu_time_s = (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
+    sim_telemetry_close(&R.tm);
+
+    snprintf(r->scenario, sizeof r->scenario, "%s", sc->name);
+    r->seed = sc->seed;
+    r->mode = sim_scenario_mode_name(sc->mode);
+    r->sim_time = sim_clock_now();
+    r->wall_time = wall_since(&w0);
+    main_board_stats_t ms;
+    posix_board_select(R.main_b);
+    main_board_stats(&ms);
+    r->fault = ms.fault;
+    r->stop_requested = ms.stop_requested;
+    r->reached_goal = ms.done && !ms.fault && !ms.stop_requested;
+    sim_pose_t end = sim_drive_pose(&R.drive, r->sim_time);
+    const sim_waypoint_t *goal = &sc->path[sc->n_path - 1];
+    r->final_error = hypot(end.x - goal->x, end.y - goal->y);
+    count_isrs(r);
+
+    stats->samples = R.nominal.queries;
+    stats->pieces = m->nominal.n;
+    stats->pieces_indexed = R.nominal.n_distinct;
+    stats->pieces_examined = R.nominal.examined;
+    sim_path_index_free(&R.nominal);
+    return 0;
+}

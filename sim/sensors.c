@@ -1,0 +1,163 @@
+/*
+ * sensors.c - odometer, gyro and goniometer pulses on the harness (see sensors.h).
+ */
+#include "sim/sensors.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "hal/capture.h"
+#include "hal/edge.h"
+#include "sim/clock.h"
+
+static void on_dl(void *ctx, uint64_t t_ns);
+static void on_gyro(void *ctx, uint64_t t_ns);
+static void on_gonio(void *ctx, uint64_t t_ns);
+
+void sim_sensors_init(sim_sensors_t *s, const sim_scenario_t *sc, const sim_segment_t *seg,
+                      int main_board, int nav_board)
+{
+    memset(s, 0, sizeof *s);
+    s->seg = seg;
+    s->main_board = main_board;
+    s->nav_board = nav_board;
+    s->dl = sc->dl * sc->odo_scale;
+    s->gyro_step = sc->gyro_step;
+    s->gyro_drift = sc->gyro_drift;
+    s->heading0 = sc->start_heading;
+    s->world = &sc->world;
+    s->gonio.rev_per_s = sc->rev_per_s;
+    s->gonio.counts = sc->counts;
+    s->gonio.noise_rad = sc->gonio_noise;
+    s->gonio.max_range = sc->gonio_range;
+    sim_rng_seed(&s->rng_gonio, sc->seed, 1);
+    sim_photo_init(&s->photo);
+    s->front_next = s->dl;
+    sim_rng_t rng_phase;
+    sim_rng_seed(&rng_phase, sc->seed, 2);
+    s->t_index = -sim_rng_uniform(&rng_phase) / s->gonio.rev_per_s;
+}
+
+int sim_sensors_latch(const sim_sensors_t *s, uint16_t latch, double *t, sim_pose_t *pose)
+{
+    /* The nav board numbers its latches on 16 bits: the age is counted the same way. */
+    uint16_t age = (uint16_t)(s->rises - 1u - latch);
+    if (s->rises == 0 || age >= SIM_SENSORS_LATCHES)
+        return -1;
+    *t = s->rise_t[latch % SIM_SENSORS_LATCHES];
+    *pose = s->rise_pose[latch % SIM_SENSORS_LATCHES];
+    return 0;
+}
+
+/* ------------------------------------------------------------------ odometer */
+
+static void schedule_dl(sim_sensors_t *s, double after)
+{
+    double t = sim_segment_time_at_front(s->seg, s->front_next, after);
+    if (isfinite(t))
+        s->ev_dl = sim_clock_schedule(t, on_dl, s);
+}
+
+static void on_dl(void *ctx, uint64_t t_ns)
+{
+    sim_sensors_t *s = ctx;
+    s->ev_dl = 0;
+    posix_edge_raise(s->nav_board, HAL_EDGE_DELTA_L);
+    s->front_next += s->dl;
+    schedule_dl(s, sim_clock_s(t_ns));
+}
+
+/* ------------------------------------------------------------------ gyro */
+
+/* Measured heading: truth (linear in time on a segment) plus the gyro's drift. */
+static double gyro_heading(const sim_sensors_t *s, double t)
+{
+    return s->seg->p0.th + sim_segment_omega(s->seg) * (t - s->seg->t0) + s->gyro_drift * t;
+}
+
+static void schedule_gyro(sim_sensors_t *s, double t0)
+{
+    sim_clock_cancel(&s->ev_gyro);
+    double rate = sim_segment_omega(s->seg) + s->gyro_drift;
+    if (fabs(rate) < 1e-12)
+        return;
+    double m = gyro_heading(s, t0);
+    /* Steps are counted around the start heading: count c covers (c -+ 1/2) steps. */
+    double boundary = s->heading0 + (s->gyro_count + (rate > 0 ? 0.5 : -0.5)) * s->gyro_step;
+    double t = t0 + (boundary - m) / rate;
+    if (t < t0)
+        t = t0;
+    s->gyro_dir = rate > 0 ? 1 : -1;
+    s->ev_gyro = sim_clock_schedule(t, on_gyro, s);
+}
+
+static void on_gyro(void *ctx, uint64_t t_ns)
+{
+    sim_sensors_t *s = ctx;
+    s->ev_gyro = 0;
+    s->gyro_count += s->gyro_dir;
+    posix_edge_raise(s->nav_board, s->gyro_dir > 0 ? HAL_EDGE_GYRO_UP : HAL_EDGE_GYRO_DOWN);
+    schedule_gyro(s, sim_clock_s(t_ns) + 1e-12);
+}
+
+/* ------------------------------------------------------------------ goniometer */
+
+/* The goniometer's next event: an edge of this revolution, or the next index pulse. */
+static void schedule_gonio(sim_sensors_t *s)
+{
+    sim_clock_cancel(&s->ev_gonio);
+    double t_next_index = s->t_index + 1.0 / s->gonio.rev_per_s;
+    double t = s->next_edge < s->n_edges ? s->edges[s->next_edge].t : t_next_index;
+    s->ev_gonio = sim_clock_schedule(t, on_gonio, s);
+}
+
+/* Edges of the rest of the revolution along the current motion. */
+static void gonio_recompute(sim_sensors_t *s, double from)
+{
+    double t_next_index = s->t_index + 1.0 / s->gonio.rev_per_s;
+    s->n_edges = sim_gonio_edges(&s->gonio, s->world, s->seg, s->t_index, from, t_next_index,
+                                 &s->rng_gonio, s->edges, SIM_SENSORS_MAX_EDGES);
+    s->next_edge = 0;
+    schedule_gonio(s);
+}
+
+static void on_gonio(void *ctx, uint64_t t_ns)
+{
+    sim_sensors_t *s = ctx;
+    s->ev_gonio = 0;
+    double t = sim_clock_s(t_ns);
+    uint16_t count = sim_gonio_count(&s->gonio, t);
+    if (s->next_edge < s->n_edges) {
+        const sim_gonio_event_t *e = &s->edges[s->next_edge++];
+        int rising = e->edge == SIM_GEV_RISE;
+        if (!sim_photo_feed(&s->photo, e)) {
+            schedule_gonio(s); /* overlapping pulses: the photodetector stays lit */
+            return;
+        }
+        posix_capture_raise(s->main_board, HAL_CAPTURE_BEACON, count, (uint8_t)rising);
+        if (rising) {
+            /* The photodetector is wired to the nav board too: it latches its pose. */
+            posix_edge_raise(s->nav_board, HAL_EDGE_BEACON_SIGHTED);
+            uint32_t k = s->rises++ % SIM_SENSORS_LATCHES;
+            s->rise_t[k] = t;
+            s->rise_pose[k] = sim_segment_pose(s->seg, t);
+        }
+        schedule_gonio(s);
+        return;
+    }
+    /* Index pulse: a new revolution. */
+    s->t_index = t;
+    posix_capture_raise(s->main_board, HAL_CAPTURE_INDEX, count, 1);
+    gonio_recompute(s, t + 1e-9);
+}
+
+/* ------------------------------------------------------------------ all of them */
+
+void sim_sensors_motion(sim_sensors_t *s)
+{
+    double t = sim_clock_now();
+    sim_clock_cancel(&s->ev_dl);
+    schedule_dl(s, t);
+    schedule_gyro(s, t);
+    gonio_recompute(s, t + 1e-9);
+}

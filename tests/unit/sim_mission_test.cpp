@@ -1,0 +1,121 @@
+// sim/mission: a scenario turned into the boards' download: the values the seed and the
+// mission header document, the start in the firmware's formats, a nominal path that is a
+// connected chain of arcs through every prescribed pose, and refusals naming key and value.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+extern "C" {
+#include "sim/mission.h"
+#include "sim/scenario.h"
+}
+
+namespace
+{
+
+const char *kScenario = R"({
+ "name": "unit", "mode": "simplified",
+ "beacons": [{"x":0,"y":0,"diameter_m":0.1},{"x":10,"y":0,"diameter_m":0.1},
+             {"x":10,"y":10,"diameter_m":0.1}],
+ "vehicle": {"wheelbase_m":0.762,"min_radius_m":0.5,"speed_mps":1.0},
+ "start": {"x":1,"y":1,"heading_deg":90},
+ "start_error": {"x":0.01,"heading_deg":-1},
+ "path": [{"x":1,"y":4,"heading_deg":90},{"x":3,"y":6,"heading_deg":0,"speed_mps":0.5},
+          {"x":6,"y":6,"heading_deg":0}],
+ "sensors": {"goniometer":{"rev_per_s":2,"counts":50000,"noise_deg":0},
+             "odometer":{"dl_m":0.000254},"gyro":{"step_deg":0.25,"drift_deg_per_s":0}},
+ "seed": 7, "duration_s": 20})";
+
+long q16(double v)
+{
+    return std::lround(v * 65536.0);
+}
+
+TEST(Mission, DownloadHoldsTheScenarioInTheFirmwaresFormats)
+{
+    static sim_scenario_t sc;
+    static sim_mission_t m;
+    char err[256];
+    ASSERT_EQ(sim_scenario_parse(kScenario, &sc, err, sizeof err), 0) << err;
+    ASSERT_EQ(sim_mission_build(&m, &sc, err, sizeof err), 0) << err;
+    const main_board_config_t &mc = m.main;
+    EXPECT_EQ(mc.n_path, 3);
+    EXPECT_EQ(mc.start.x, q16(1.0));
+    EXPECT_EQ(mc.start.heading, 0x40000000u); // 90 degrees of 2^32
+    EXPECT_EQ(mc.path[1].speed, q16(0.5));
+    EXPECT_EQ(mc.path[2].speed, q16(1.0)); // no speed: the vehicle's
+    EXPECT_EQ(mc.board.wheelbase, q16(0.762));
+    EXPECT_EQ(mc.optical.beacon_diameter, q16(0.1));
+    EXPECT_EQ(mc.counts_per_turn, 50000);
+    EXPECT_EQ(mc.seq_cfg.mode, DRIVE_MODE_SIMPLIFIED);
+    // The mission's fixed part (mission/mission.h, the seed's values).
+    EXPECT_EQ(mc.path_cfg.spacing, q16(0.8));
+    EXPECT_EQ(mc.path_cfg.nominal_radius, q16(0.5));
+    EXPECT_EQ(mc.seq_cfg.load_ms, 35);
+    EXPECT_EQ(mc.seq_cfg.settle_ms, 50);
+    EXPECT_EQ(mc.seq_cfg.stop_speed, q16(0.15));
+    EXPECT_EQ(mc.seq_cfg.advance, q16(0.4));
+    EXPECT_EQ(mc.seq_cfg.max_fix_failures, 3);
+    EXPECT_EQ(m.nav.gnav.stop_distance, q16(5.0));
+    // The nav board: odometer pulse in Q40 m, gyro step in Q48 turns, start plus its error.
+    EXPECT_EQ(m.nav.gnav.dl_q40, (uint32_t)std::llround(0.000254 * std::ldexp(1.0, 40)));
+    EXPECT_EQ(m.nav.gnav.gyro_step_q48, (uint64_t)std::llround(0.25 / 360 * std::ldexp(1.0, 48)));
+    EXPECT_EQ(m.nav.start.x, q16(1.01));
+    EXPECT_EQ(m.nav.start.heading, (uint32_t)std::llround(89.0 / 360 * std::ldexp(1.0, 32)));
+}
+
+TEST(Mission, NominalPathChainsThroughEveryPrescribedPose)
+{
+    static sim_scenario_t sc;
+    static sim_mission_t m;
+    char err[256];
+    ASSERT_EQ(sim_scenario_parse(kScenario, &sc, err, sizeof err), 0) << err;
+    ASSERT_EQ(sim_mission_build(&m, &sc, err, sizeof err), 0) << err;
+    const sim_path_t &p = m.nominal;
+    ASSERT_GE(p.n, 3u);
+    EXPECT_EQ(p.piece[0].x0, 1.0);
+    EXPECT_EQ(p.piece[0].y0, 1.0);
+    // Connected (each leg starts at its prescribed pose; the solver lands within 0.05 mm).
+    for (size_t i = 1; i < p.n; i++) {
+        sim_pose_t e = sim_piece_end(&p.piece[i - 1]);
+        EXPECT_NEAR(e.x, p.piece[i].x0, 5e-5) << i;
+        EXPECT_NEAR(e.y, p.piece[i].y0, 5e-5) << i;
+        EXPECT_NEAR(std::remainder(e.th - p.piece[i].th0, 2 * M_PI), 0.0, 1e-4) << i;
+    }
+    // Through every prescribed point (distance 0 within the solver's landing).
+    for (size_t i = 0; i < sc.n_path; i++)
+        EXPECT_LT(sim_path_distance(&p, sc.path[i].x, sc.path[i].y), 5e-5) << i;
+    sim_pose_t end = sim_path_end(&p);
+    EXPECT_NEAR(end.x, 6.0, 5e-5);
+    EXPECT_NEAR(end.y, 6.0, 5e-5);
+    // No turn tighter than the vehicle's minimum radius.
+    for (size_t i = 0; i < p.n; i++)
+        EXPECT_LE(std::fabs(p.piece[i].kappa), 1 / 0.5 + 1e-6) << i;
+}
+
+TEST(Mission, RefusalsNameTheKeyAndTheValue)
+{
+    static sim_scenario_t sc;
+    static sim_mission_t m;
+    char err[256];
+    ASSERT_EQ(sim_scenario_parse(kScenario, &sc, err, sizeof err), 0) << err;
+    sim_scenario_t many = sc;
+    many.n_path = MAIN_BOARD_MAX_PATH + 1;
+    for (size_t i = 0; i < many.n_path; i++)
+        many.path[i] = sc.path[i % 3];
+    EXPECT_EQ(sim_mission_build(&m, &many, err, sizeof err), -1);
+    EXPECT_NE(std::string(err).find("path: 255 points"), std::string::npos) << err;
+    // A point 3 m behind the start's side, facing east: no forward double arc reaches it.
+    sim_scenario_t tight = sc;
+    tight.path[0] = {-2.0, 1.0, 0.0, 1.0};
+    EXPECT_EQ(sim_mission_build(&m, &tight, err, sizeof err), -1);
+    EXPECT_NE(std::string(err).find("path[0]: no double arc"), std::string::npos) << err;
+    // Beacons farther apart than the map's 256 m.
+    sim_scenario_t wide = sc;
+    wide.world.beacon[1].x = 300;
+    EXPECT_EQ(sim_mission_build(&m, &wide, err, sizeof err), -1);
+    EXPECT_NE(std::string(err).find("beacons: 3 of them"), std::string::npos) << err;
+}
+
+} // namespace
