@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the fuzz harnesses' seed corpora (tests/fuzz/corpus/<harness>/): small, meaningful
-inputs - valid frames and messages of every kind, valid request lines of every agvcalc op -
-and the edge cases around them. The frame coding is implemented here from its description in
+inputs - valid frames and messages of every kind, valid request lines of every agvcalc op, the
+shipped scenarios - and the edge cases around them. The frame coding is implemented here from its description in
 hal/common/link_framer.h and firmware/link/include/link/linkmsg.h, not taken from the C.
 
 The output is deterministic; the seeds are committed, beside the findings kept as regression
@@ -182,8 +182,54 @@ def agvcalc_seeds():
     return s
 
 
+# ----------------------------------------------------------------------- scenarios
+
+
+def scenario_seeds():
+    """The shipped scenarios (compact), a minimal one, every optional key, and edge cases."""
+    s = {}
+    sdir = os.path.join(HERE, "..", "..", "sim", "scenarios")
+    for f in sorted(os.listdir(sdir)):
+        if f.endswith(".json"):
+            with open(os.path.join(sdir, f)) as fh:
+                s[f[:-5]] = json.dumps(json.load(fh), separators=(",", ":")).encode()
+    minimal = {"name": "m", "mode": "full",
+               "beacons": [{"x": 0, "y": 0, "diameter_m": 0.08}, {"x": 5, "y": 0, "diameter_m": 0.08},
+                           {"x": 0, "y": 5, "diameter_m": 0.08}],
+               "vehicle": {"wheelbase_m": 0.75, "min_radius_m": 0.5, "speed_mps": 1.0},
+               "start": {"x": 1, "y": 1, "heading_deg": 0},
+               "path": [{"x": 3, "y": 1, "heading_deg": 0}],
+               "sensors": {"goniometer": {"rev_per_s": 2, "counts": 50000, "noise_deg": 0},
+                           "odometer": {"dl_m": 0.000254}, "gyro": {"step_deg": 0.25, "drift_deg_per_s": 0}},
+               "seed": 1, "duration_s": 10}
+    full = dict(minimal, mode="simplified",
+                spurious=[{"x": 2, "y": 2, "width_deg": 0.1}],
+                occluders=[{"x1": -1, "y1": 3, "x2": 1, "y2": 3}],
+                start_error={"x": 0.01, "y": -0.01, "heading_deg": 0.5},
+                success={"cross_track_mean_m": 0.02, "cross_track_max_m": 0.05, "final_error_m": 0.1,
+                         "fix_error_max_m": 0.05, "fix_accept_ratio": 0.9, "reach_goal": True})
+    full["sensors"] = {"goniometer": {"rev_per_s": 2, "counts": 50000, "noise_deg": 0.01, "range_m": 30},
+                       "odometer": {"dl_m": 0.000254, "scale": 1.001},
+                       "gyro": {"step_deg": 0.25, "drift_deg_per_s": 0.001}}
+
+    def text(o):
+        return json.dumps(o, separators=(",", ":")).encode()
+
+    s["minimal"] = text(minimal)
+    s["every_key"] = text(full)
+    s["unknown_keys"] = text(dict(minimal, colour="red", vehicle=dict(minimal["vehicle"], wings=2)))
+    s["bad_mode"] = text(dict(minimal, mode="teleport"))
+    s["too_many_beacons"] = text(dict(minimal, beacons=[{"x": i, "y": 0, "diameter_m": 0.08} for i in range(65)]))
+    s["long_name"] = text(dict(minimal, name="n" * 100))
+    s["fractional_seed"] = text(dict(minimal, seed=1.5))
+    s["no_path"] = text(dict(minimal, path=[]))
+    s["not_object"] = b"[]"
+    return s
+
+
 def write(check):
-    corpora = {"link_framer": framer_seeds(), "linkmsg": linkmsg_seeds(), "agvcalc": agvcalc_seeds()}
+    corpora = {"link_framer": framer_seeds(), "linkmsg": linkmsg_seeds(), "agvcalc": agvcalc_seeds(),
+               "scenario": scenario_seeds()}
     differ = []
     for harness, seeds in corpora.items():
         d = os.path.join(HERE, "corpus", harness)
