@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Writes the fuzz harnesses' seed corpora (tests/fuzz/corpus/<harness>/): small, meaningful
 inputs - valid frames and messages of every kind, valid request lines of every agvcalc op, the
-shipped scenarios - and the edge cases around them. The frame coding is implemented here from its description in
-hal/common/link_framer.h and firmware/link/include/link/linkmsg.h, not taken from the C.
+shipped scenarios - and the edge cases around them. The frame coding is implemented here from
+its description in hal/common/link_framer.h and firmware/link/include/link/linkmsg.h, not taken
+from the C.
 
 The output is deterministic; the seeds are committed, beside the findings kept as regression
 seeds (regress_*, left alone). Run it again after a format changes:
