@@ -10,7 +10,8 @@
  * gyro_count (0 before the first run) to this run's, one edge per step, all before the run's
  * first pulse; then |n_pulses| odometer pulses arrive (backwards when n_pulses < 0). The gyro
  * reads the nearest whole step, so the start heading is the centre of step 0's cell: a vehicle
- * turning steadily by one step every p pulses from the start is [[p/2, 0], [p, 1], [p, 2], ...].
+ * turning steadily by one step every p pulses from the start crosses the first threshold after
+ * p/2 pulses: [[p/2, 0], [p, 1], [p, 2], ...].
  * The answer is the pose the nav board publishes after the last run (its heading is estimated
  * inside the gyro's cell, docs/groundnav.md).
  *
@@ -29,7 +30,7 @@
 #include "groundnav/gnav.h"
 
 /* Work per line: 2^24 pulses (4.26 km of 0.01 in pulses) and 2^22 gyro steps (2,913 turns of
- * 0.25 degrees): 0.4 s and 0.26 s of host time (docs/agvcalc.md). */
+ * 0.25 degrees): well under a second of host time together (docs/agvcalc.md). */
 #define DR_MAX_PULSES (1l << 24)
 #define DR_MAX_STEPS  (1l << 22)
 
