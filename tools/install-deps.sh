@@ -2,12 +2,14 @@
 # Installs what cyclopion needs to build and test, and nothing when it is all there.
 # Debian 12, as root: one `apt-get update`, then the missing packages; then the Python
 # packages of tools/requirements.txt with pip. Without root it only reports what is missing.
+# qemu-system-x86, busybox-static and can-utils serve the SocketCAN tests (tools/canvm.py).
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 
 # libclang-rt-16-dev: libFuzzer and the sanitizers' runtimes for clang-16 (the fuzz preset)
 debs="clang-16 lld-16 llvm-16 clang-format-16 libclang-rt-16-dev mspdebug cmake ninja-build make \
-libgtest-dev libeigen3-dev liblcm-dev liblcm-bin libjansson-dev pkg-config python3 python3-pip gdb"
+libgtest-dev libeigen3-dev liblcm-dev liblcm-bin libjansson-dev pkg-config python3 python3-pip gdb \
+qemu-system-x86 busybox-static can-utils iproute2"
 
 missing=""
 for p in $debs; do

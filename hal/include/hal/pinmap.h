@@ -11,8 +11,10 @@
 #ifndef HAL_PINMAP_H
 #define HAL_PINMAP_H
 
+#ifndef __ASSEMBLER__
 #include "hal/capture.h"
 #include "hal/edge.h"
+#endif
 
 /** Vector numbers of the MSP430F2618 (word at 0xFFC0 + 2N; a higher N is served first). */
 #define HAL_VEC_LINK_TX 16 /* 0xFFE0 USCIAB1TX */
@@ -29,6 +31,7 @@
 /** Number of vectors (0..HAL_VEC_COUNT-1). */
 #define HAL_VEC_COUNT   32
 
+#ifndef __ASSEMBLER__
 /** Port (1 or 2) of each edge line; 0 for the NMI pin. */
 #define HAL_EDGE_PORT_OF(line)                                                                     \
     ((line) == HAL_EDGE_COORD_REQUEST                        ? 0                                   \
@@ -54,5 +57,6 @@ static inline unsigned hal_capture_vector(hal_capture_channel_t ch)
 {
     return ch == HAL_CAPTURE_INDEX ? HAL_VEC_TIMERA0 : HAL_VEC_TIMERA1;
 }
+#endif
 
 #endif
