@@ -1,7 +1,7 @@
 /*
- * gnav_arith.S - MSP430 versions of gnav_add64x2, gnav_sub64x2 and gnav_mac64 (gnav_arith.h; the portable
- * C in gnav_arith.c defines the results, tests/vectors/groundnav_vectors.c checks the two
- * bit for bit).
+ * gnav_arith.S - the groundnav kernels (gnav_arith.h, docs/kernels.md): gnav_add64x2,
+ * gnav_sub64x2 and gnav_mac64, the dl handler's 64-bit accumulations as ADDC/SUBC chains.
+ * Their C twins (gnav_arith_k.c) define the results; the check images compare every call.
  *
  * Registers as clang emits the calls (TI EABI): R12 = the first pointer, R13 the second
  * pointer or the 16-bit a, R14 the 16-bit b. R11..R15 may be clobbered.
