@@ -260,19 +260,20 @@ function(cy_kernels lib)
     set_tests_properties(target.kernels.${lib} PROPERTIES LABELS target)
 endfunction()
 
-# cy_asm_offsets(LIB SOURCE msp430/M_offsets.c HEADER M_offsets.h)
+# cy_asm_offsets(LIB SOURCE msp430/M_offsets.c HEADER M_offsets.h [DEPENDS generated.h...])
 # Offsets, sizes and constants for LIB's assembly, from the C headers at build time (the
 # Linux asm-offsets trick): SOURCE lists them with CY_OFFSET(SYM, value) (cmake/cy_offsets.h)
 # inside one non-static function; it is compiled for the MSP430 with -S (LIB's include
 # directories and definitions) and tools/gen_asm_offsets.py writes HEADER (#define SYM value)
-# into the build tree, on LIB's include path. Only where LIB assembles its .S files.
+# into the build tree, on LIB's include path. DEPENDS: generated headers SOURCE includes
+# (made in the same directory). Only where LIB assembles its .S files.
 function(cy_asm_offsets lib)
-    cmake_parse_arguments(A "" "SOURCE;HEADER" "" ${ARGN})
+    cmake_parse_arguments(A "" "SOURCE;HEADER" "DEPENDS" ${ARGN})
     if(NOT CY_TARGET_MSP430 OR NOT CY_KERNELS STREQUAL "ASM")
         return()
     endif()
     set(dir ${CMAKE_CURRENT_BINARY_DIR}/asm_offsets)
-    add_library(${lib}_offsets_s OBJECT ${A_SOURCE})
+    add_library(${lib}_offsets_s OBJECT ${A_SOURCE} ${A_DEPENDS})
     target_compile_options(${lib}_offsets_s PRIVATE -S) # the "object" is assembly text
     # LIB's headers and those of what it links (not LIB itself: LIB waits for the header)
     target_link_libraries(${lib}_offsets_s PRIVATE $<TARGET_PROPERTY:${lib},LINK_LIBRARIES>)

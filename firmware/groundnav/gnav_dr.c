@@ -36,8 +36,9 @@ void gnav_publish(gnav_t *g)
     g->pub_seq = (uint16_t)(s + 1u);
 }
 
-/* Deferred from the closing to the next pulse: the deficit per pulse and the curved step. */
-void gnav_finish_interval(gnav_t *g)
+/* Deferred from the closing to the next pulse: the deficit per pulse and the curved step.
+ * (Not inlined: the plain pulse would pay for its registers.) */
+__attribute__((noinline)) void gnav_finish_interval(gnav_t *g)
 {
     if (g->rho_due) {
         uint32_t r = (gnav_umul16(g->x_p, g->g_p) + 0x20000u) >> 18; /* Q33 -> Q15 */
@@ -55,6 +56,12 @@ void gnav_on_delta_l(void *arg)
 {
     gnav_t *g = arg;
     if (g->dc_due) {
+        /* the closing point P of the last closing: the position it left */
+        if (g->p_due) {
+            g->xp = g->x;
+            g->yp = g->y;
+            g->p_due = 0;
+        }
         /* an interval that closes at its first pulse has no curved part (its step is
          * replaced by the closing anyway); otherwise set the curved step up now */
         if (g->pending)
@@ -65,25 +72,34 @@ void gnav_on_delta_l(void *arg)
     /* the step: curved for the first n_p pulses away from P, straight beyond (moving back,
      * the same steps in reverse order, so the pose is a function of n alone) */
     int16_t q = g->nq;
-    uint16_t m;
+    uint16_t m = (uint16_t)q, lo = g->n_lo;
     if (!g->reverse) {
-        m = q >= 0 ? (uint16_t)q : (uint16_t)~q;
+        if (q < 0) /* m = |q + 1/2| - 1/2: the pulse's distance from P */
+            m = (uint16_t)~m;
         if (q < 32767)
             g->nq = (int16_t)(q + 1);
-        if (++g->n_lo == 0u)
+        g->n_lo = (uint16_t)(lo + 1u);
+        if (lo == 0xFFFFu)
             g->n_hi++;
-        gnav_add64x2(&g->x, g->inc[m >= g->n_p]);
     } else {
-        m = q > 0 ? (uint16_t)(q - 1) : (uint16_t)-q;
+        if (q > 0)
+            m = (uint16_t)(m - 1u);
+        else
+            m = (uint16_t)(0u - m);
         if (q > -32767)
             g->nq = (int16_t)(q - 1);
-        if (g->n_lo-- == 0u)
+        g->n_lo = (uint16_t)(lo - 1u);
+        if (lo == 0u)
             g->n_hi--;
-        gnav_sub64x2(&g->x, g->inc[m >= g->n_p]);
     }
+    const int32_t *step = m >= g->n_p ? g->inc[1] : g->inc[0];
+    if (g->pending) /* the closing takes the step along with its correction */
+        gnav_close_arc(g, step);
+    else if (!g->reverse)
+        gnav_add64x2(&g->x, step);
+    else
+        gnav_sub64x2(&g->x, step);
     HAL_PREEMPT_POINT();
-    if (g->pending)
-        gnav_close_arc(g);
     /* travel without a fix: stop_hi * 2^16 + stop_lo pulses left (stop_lo 0 meaning 2^16) */
     if (--g->stop_lo == 0u && g->stop_armed) {
         if (g->stop_hi == 0u) {

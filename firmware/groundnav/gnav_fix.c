@@ -119,7 +119,8 @@ int gnav_fix(gnav_t *g, const gnav_pose_t *fix, const gnav_latch_t *ref)
         hal_critical_enter();
         uint16_t version = g->version;
         uint8_t gen = g->gen;
-        int64_t x = g->x, y = g->y, xp = g->xp, yp = g->yp;
+        int64_t x = g->x, y = g->y;
+        int64_t xp = g->p_due ? x : g->xp, yp = g->p_due ? y : g->yp; /* (P taken yet?) */
         uint64_t head = ((uint64_t)g->hd << 16) | g->hd_frac;
         uint16_t dcell = (uint16_t)(g->cell - g->cell_int);
         gnav_pub_t cur = g->pub[g->pub_seq & 1u];
@@ -165,6 +166,7 @@ int gnav_fix(gnav_t *g, const gnav_pose_t *fix, const gnav_latch_t *ref)
         g->y = ny + my;
         g->xp = nxp;
         g->yp = nyp;
+        g->p_due = 0;
         g->hd = (uint32_t)(nhead >> 16);
         g->hd_frac = (uint16_t)nhead;
         g->heading = nh;

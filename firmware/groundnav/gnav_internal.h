@@ -96,13 +96,23 @@ static inline uint16_t gnav_pulses_since_edge(int16_t k)
     return (uint16_t)(k < 0 ? 1 - k : k + 1);
 }
 
+/* (v + 1) >> 1 for a 32-bit v, on its words (a 32-bit shift is long code on the MSP430). */
+static inline int32_t gnav_half_up(uint32_t v)
+{
+    v += 1u;
+    uint16_t hi = (uint16_t)(v >> 16), lo = (uint16_t)v;
+    lo = (uint16_t)((lo >> 1) | ((hi & 1u) ? 0x8000u : 0u));
+    return (int32_t)(((uint32_t)(uint16_t)(hi >> 1) << 16) | lo);
+}
+
 /* ------------------------------------------------------------------ between the files */
 
 /** Fill the free slot of the published pose, then flip (gnav_dr.c). */
 void gnav_publish(gnav_t *g);
 
-/** The gyro left the interval's cell: close the arc at this pulse (gnav_arc.c). */
-void gnav_close_arc(gnav_t *g);
+/** The gyro left the interval's cell: close the arc at this pulse, whose step @p step it
+ * applies (gnav_arc.c). */
+void gnav_close_arc(gnav_t *g, const int32_t *step);
 
 /** The deferred part of a closing, at the next pulse: the deficit per pulse and the curved
  * step of the new interval (gnav_dr.c). */

@@ -137,6 +137,7 @@ typedef struct gnav {
     int16_t d15_c, d15_s;      /* unit vector of the interval's cell, Q15 */
     uint16_t stop_lo, stop_hi; /* pulses left before the stop request */
     uint8_t pending, reverse, dc_due, rho_due, stop_armed, stop;
+    uint8_t p_due; /* the closing point P is the position now: taken at the next pulse */
     /* gyro: the current cell */
     int32_t nxt_c, nxt_s;    /* its unit vector, Q25 */
     int16_t n15_c, n15_s;    /* and in Q15 */
