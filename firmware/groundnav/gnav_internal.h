@@ -58,14 +58,22 @@ static inline int32_t gnav_q25_to_q4(int64_t v)
 /* Q1.30 to Q1.15, rounded, +1 saturating at 32767. */
 static inline int16_t gnav_q30_to_q15(fx_q30_t v)
 {
-    int32_t r = (v + (1l << 14)) >> 15;
-    return (int16_t)(r > 32767 ? 32767 : r);
+    /* (v + 2^14) >> 15 on the words (|v| <= 2^30: the result fits 16 bits but for +2^15) */
+    uint32_t u = (uint32_t)v + (1u << 14);
+    uint16_t hi = (uint16_t)(u >> 16), lo = (uint16_t)u;
+    if ((int16_t)hi >= 0x4000)
+        return 32767;
+    return (int16_t)((uint16_t)(hi << 1) | ((int16_t)lo < 0 ? 1u : 0u));
 }
 
-/* Q1.30 to the per-pulse step in Q25, rounded. */
+/* Q1.30 to the per-pulse step in Q25, rounded: (v + 16) >> 5 on the words. */
 static inline int32_t gnav_q30_to_q25(fx_q30_t v)
 {
-    return (v + 16) >> 5;
+    uint32_t u = (uint32_t)v + 16u;
+    uint16_t hi = (uint16_t)(u >> 16), lo = (uint16_t)u;
+    uint16_t rl = (uint16_t)((uint16_t)(hi << 11) | (uint16_t)(lo >> 5));
+    uint16_t rh = (uint16_t)((int16_t)hi >> 5);
+    return (int32_t)(((uint32_t)rh << 16) | rl);
 }
 
 /* The heading inside the cell (gyro edge, readers): a one-step interval entered at @p rate
