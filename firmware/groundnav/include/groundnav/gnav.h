@@ -226,11 +226,11 @@ void gnav_set_coord_callback(gnav_t *g, gnav_coord_fn fn, void *ctx);
 void gnav_set_stop_callback(gnav_t *g, gnav_stop_fn fn, void *ctx);
 
 /**
- * The current pose, consistent (never torn), from any context: retries while dl or gyro
- * handlers publish under it. Position error: at most 8 um of rounding on top of the dead
- * reckoning itself. Heading: inside the current gyro cell (within +-half a step of its centre),
- * extrapolated from the last edge at the rate the intervals showed (1,700 cycles on the
- * MSP430).
+ * The current pose, consistent (never torn), from any context but the NMI (it multiplies):
+ * retries while dl or gyro handlers publish under it. Position error: at most 8 um of rounding
+ * on top of the dead reckoning itself. Heading: inside the current gyro cell (within +-half a
+ * step of its centre), extrapolated from the last edge at the rate the intervals showed
+ * (cycles: gnav_pose in build/msp430/cycles.json).
  */
 void gnav_pose(gnav_t *g, gnav_pose_t *out);
 
