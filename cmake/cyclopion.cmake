@@ -264,19 +264,20 @@ function(cy_kernels lib)
     set_tests_properties(target.kernels.${lib} PROPERTIES LABELS target)
 endfunction()
 
-# cy_asm_offsets(LIB SOURCE msp430/M_offsets.c HEADER M_offsets.h)
+# cy_asm_offsets(LIB SOURCE msp430/M_offsets.c HEADER M_offsets.h [DEPENDS generated.h...])
 # Offsets, sizes and constants for LIB's assembly, from the C headers at build time (the
 # Linux asm-offsets trick): SOURCE lists them with CY_OFFSET(SYM, value) (cmake/cy_offsets.h)
 # inside one non-static function; it is compiled for the MSP430 with -S (LIB's include
 # directories and definitions) and tools/gen_asm_offsets.py writes HEADER (#define SYM value)
-# into the build tree, on LIB's include path. Only where LIB assembles its .S files.
+# into the build tree, on LIB's include path. DEPENDS: generated headers SOURCE includes
+# (made in the same directory). Only where LIB assembles its .S files.
 function(cy_asm_offsets lib)
-    cmake_parse_arguments(A "" "SOURCE;HEADER" "" ${ARGN})
+    cmake_parse_arguments(A "" "SOURCE;HEADER" "DEPENDS" ${ARGN})
     if(NOT CY_TARGET_MSP430 OR NOT CY_KERNELS STREQUAL "ASM")
         return()
     endif()
     set(dir ${CMAKE_CURRENT_BINARY_DIR}/asm_offsets)
-    add_library(${lib}_offsets_s OBJECT ${A_SOURCE})
+    add_library(${lib}_offsets_s OBJECT ${A_SOURCE} ${A_DEPENDS})
     target_compile_options(${lib}_offsets_s PRIVATE -S) # the "object" is assembly text
     # LIB's headers and those of what it links (not LIB itself: LIB waits for the header)
     target_link_libraries(${lib}_offsets_s PRIVATE $<TARGET_PROPERTY:${lib},LINK_LIBRARIES>)
@@ -335,6 +336,15 @@ function(cy_link_closure out)
     set(${out} ${seen} PARENT_SCOPE)
 endfunction()
 
+# cy_kernel_check_scope(PROGRAM lib...)
+# Narrows the check image of vector program PROGRAM to the kernels of the libraries named
+# (default: every library with kernels the program reaches); none of them with kernels: no
+# check image. Only for an image that cannot hold every twin: say why where it is called.
+function(cy_kernel_check_scope program)
+    set_property(GLOBAL PROPERTY CY_VP_${program}_SCOPE "${ARGN}")
+    set_property(GLOBAL PROPERTY CY_VP_${program}_SCOPED ON)
+endfunction()
+
 # cy_kernel_check_must_fail(NAME PROGRAM prog PERTURB wrong.c WRAP NAME_c KERNEL kernel)
 # The proof that a check image can fail: PROGRAM's check image once more, with PERTURB linked
 # in and --wrap=WRAP (PERTURB defines __wrap_WRAP: a C twin made wrong for one input). The
@@ -356,9 +366,21 @@ function(cy_kernel_check_image img name found_out)
     get_property(sources GLOBAL PROPERTY CY_VP_${name}_SOURCES)
     get_property(links GLOBAL PROPERTY CY_VP_${name}_LINK)
     cy_link_closure(libs ${links})
+    get_property(scoped GLOBAL PROPERTY CY_VP_${name}_SCOPED)
+    if(scoped)
+        get_property(scope GLOBAL PROPERTY CY_VP_${name}_SCOPE)
+        set(kept)
+        foreach(l IN LISTS libs)
+            if(l IN_LIST scope)
+                list(APPEND kept ${l})
+            endif()
+        endforeach()
+        set(libs ${kept})
+    endif()
     set(wrappers)
     set(twins)
     set(wraps)
+    set(incs)
     foreach(l IN LISTS libs)
         get_target_property(kernels ${l} CY_KERNELS)
         if(NOT kernels)
@@ -368,6 +390,7 @@ function(cy_kernel_check_image img name found_out)
         get_target_property(twin ${l} CY_KERNEL_TWIN)
         list(APPEND wrappers ${check})
         list(APPEND twins ${twin})
+        list(APPEND incs $<TARGET_PROPERTY:${l},INCLUDE_DIRECTORIES>) # the module's own headers
         foreach(k IN LISTS kernels)
             list(APPEND wraps --wrap=${k})
         endforeach()
@@ -393,7 +416,7 @@ function(cy_kernel_check_image img name found_out)
     if(deps)
         add_dependencies(${img} ${deps})
     endif()
-    target_include_directories(${img} PRIVATE ${PROJECT_SOURCE_DIR}/tests/target/check)
+    target_include_directories(${img} PRIVATE ${PROJECT_SOURCE_DIR}/tests/target/check ${incs})
     target_compile_definitions(${img} PRIVATE CY_KCHECK_IMAGE="${name}")
 endfunction()
 

@@ -24,11 +24,11 @@ static uint8_t stop_pending;
 static uint16_t send_first; /* latches still to send */
 static uint8_t send_left;
 
-/* Coordinate request (NMI): gnav copied a consistent pose into g.coord; answer it from the
- * main loop, where sending cannot collide with another sender (an NMI is not held off). */
-static void on_coord(const gnav_pose_t *pose, void *ctx)
+/* Coordinate request (NMI): gnav took a consistent pose; answer it from the main loop, where
+ * converting it (gnav_coord multiplies) and sending cannot collide with anything (an NMI is
+ * not held off). */
+static void on_coord(void *ctx)
 {
-    (void)pose;
     (void)ctx;
     coord_pending = 1;
     hal_cpu_wake();

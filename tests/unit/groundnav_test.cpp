@@ -1154,9 +1154,9 @@ TEST_F(GroundNavHarness, CoordinateRequestAtEveryPointIsNeverTorn)
 {
     Published pub = record();
     gnav_pose_t handed{};
+    size_t taken = 0; /* the NMI's callback counts; the main loop reads the pose after it */
     gnav_set_coord_callback(
-        &g, [](const gnav_pose_t *p, void *ctx) { *static_cast<gnav_pose_t *>(ctx) = *p; },
-        &handed);
+        &g, [](void *ctx) { ++*static_cast<size_t *>(ctx); }, &taken);
     size_t requests = 0, points_total = 0, max_points = 0;
     for (Ev e : stream.ev) {
         if (e == REV_ON || e == REV_OFF) {
@@ -1177,10 +1177,12 @@ TEST_F(GroundNavHarness, CoordinateRequestAtEveryPointIsNeverTorn)
             LandAt land{board, HAL_EDGE_COORD_REQUEST, posix_preempt_points(board) + k,
                         HAL_EDGE_COUNT, 0};
             posix_set_preempt_hook(land_hook, &land);
-            handed = {};
+            size_t before = taken;
             deliver(e);
             posix_set_preempt_hook(nullptr, nullptr);
             ASSERT_EQ(land.landed, 1);
+            ASSERT_EQ(taken, before + 1);
+            gnav_coord(&g, &handed);
             ASSERT_TRUE(pub.has(handed)) << "torn pose at point " << k;
             requests++;
         }

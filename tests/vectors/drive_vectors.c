@@ -934,7 +934,8 @@ int main(void)
     cy_bench_report(&st_leg);
     cy_stack_report(&sk_solve);
     cy_stack_report(&sk_cmd);
-    cy_check(st_solve.max <= 20000u, "doublearc within 20,000 cycles (0 on the host)");
+    if (!cy_kernel_check_mode()) /* (a check image runs both sides of every fx kernel) */
+        cy_check(st_solve.max <= 20000u, "doublearc within 20,000 cycles (0 on the host)");
     cy_test_end();
     return 0;
 }
