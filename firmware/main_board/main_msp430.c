@@ -28,6 +28,7 @@ static const main_board_config_t cfg = {
     .seq_cfg = MISSION_SEQ_CONFIG(MISSION_FULL_TRAVEL ? DRIVE_MODE_FULL : DRIVE_MODE_SIMPLIFIED),
     .counts_per_turn = MISSION_COUNTS,
     .optical = OPTICAL_CONFIG_DEFAULT(MISSION_BEACON_DIAMETER),
+    .link = MISSION_LINK_CONFIG(LINKMSG_NODE_MAIN),
 };
 
 int main(void)

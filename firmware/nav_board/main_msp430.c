@@ -15,6 +15,7 @@
 static const nav_board_config_t config = {
     {MISSION_WHEELBASE, MISSION_DL_Q40, MISSION_GYRO_STEP_Q48, MISSION_STOP_DISTANCE},
     MISSION_START,
+    MISSION_LINK_CONFIG(LINKMSG_NODE_NAV),
 };
 int main(void)
 {
