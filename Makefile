@@ -1,7 +1,10 @@
 # cyclopion - a thin wrapper over the CMake presets (CMakePresets.json).
 #   make demo   install what is missing, build, run the main job and print its summary
 #   make test   install what is missing, build host + MSP430, run every test under ctest
-.PHONY: all deps host host-asan msp430 build test demo format clean
+#   make flash BOARD=main|nav [PROBE=uif|tilib|olimex]   program a board (README)
+#   make debug BOARD=main|nav [PROBE=...] | make debug SIM=1 BOARD=...|IMAGE=...
+#   make sim IMAGE=name|path.elf   run one MSP430 image in mspdebug's simulator, as ctest does
+.PHONY: all deps host host-asan msp430 build test demo format clean flash debug sim image
 
 all: build
 
@@ -33,3 +36,47 @@ format:
 
 clean:
 	rm -rf build
+
+# --- the MSP430 boards: flash, debug, simulate (README "Flashing a board") ------------------
+BOARD ?= main
+PROBE ?= uif
+BIN := build/msp430/bin
+# A name (irq_test, main_board) or a path to an ELF.
+IMAGE_ELF = $(if $(filter %.elf,$(IMAGE)),$(IMAGE),$(BIN)/$(IMAGE).elf)
+BOARD_ELF = $(BIN)/$(BOARD)_board.elf
+# The MSP430F2618 is JTAG-only (no Spy-Bi-Wire): mspdebug's -j. uif: FET430UIF/eZ430 over
+# its USB serial chip (UIF_TTY=/dev/ttyUSB0 to use the kernel's tty); tilib: TI's
+# libmsp430.so (MSP-FET, FET430UIF with v3 firmware; Debian does not ship it); olimex:
+# MSP430-JTAG-TINY. rf2500 (eZ430-RF2500, LaunchPad) speaks only Spy-Bi-Wire: it cannot.
+MSPDEBUG_uif = mspdebug -j uif$(if $(UIF_TTY), -d $(UIF_TTY))
+MSPDEBUG_tilib = mspdebug tilib
+MSPDEBUG_olimex = mspdebug -j olimex
+MSPDEBUG_PROBE = $(or $(MSPDEBUG_$(PROBE)),$(error PROBE=$(PROBE): use uif, tilib or olimex (the F2618 is JTAG-only; rf2500 cannot program it)))
+
+# The board image, built with the MSP430 preset only.
+image:
+	@case "$(BOARD)" in main|nav) ;; *) echo "BOARD=$(BOARD): use main or nav" >&2; exit 2;; esac
+	@cmake --preset msp430 >/dev/null
+	cmake --build --preset msp430 --target $(BOARD)_board
+
+flash: image
+	$(MSPDEBUG_PROBE) "prog $(BOARD_ELF)"
+
+ifeq ($(SIM),1)
+# The simulator with the image loaded, the devices of tools/mspdebug-f2618.cfg, the chip's
+# reset state (calibration data, transmit flags): break and step at the prompt.
+debug:
+	@test -f "$(if $(IMAGE),$(IMAGE_ELF),$(BOARD_ELF))" || { echo "no $(if $(IMAGE),$(IMAGE_ELF),$(BOARD_ELF)): make msp430 first" >&2; exit 2; }
+	python3 tools/msp430sim.py --elf $(if $(IMAGE),$(IMAGE_ELF),$(BOARD_ELF)) --mspdebug-script build/msp430/debug.mspdebug
+	mspdebug -q -C build/msp430/debug.mspdebug sim
+else
+# The board on the probe: programmed, then mspdebug's prompt (break, step, regs, md);
+# mspdebug's `gdb` command serves an msp430-elf-gdb where one is installed (Debian has none).
+debug: flash
+	$(MSPDEBUG_PROBE)
+endif
+
+sim:
+	@test -n "$(IMAGE)" || { echo "IMAGE=name|path.elf (e.g. make sim IMAGE=irq_test)" >&2; exit 2; }
+	@test -f "$(IMAGE_ELF)" || { echo "no $(IMAGE_ELF): make msp430 first" >&2; exit 2; }
+	python3 tools/msp430sim.py --elf $(IMAGE_ELF) --verbose

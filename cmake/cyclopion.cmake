@@ -41,14 +41,15 @@ if(CY_TARGET_MSP430)
     set(CY_BOARD_FLASH_BUDGET 49152)
     set(CY_BOARD_RAM_BUDGET 6144)
 
-    # cy_msp430_image(NAME KIND board|test SOURCES src... [LINK lib...])
+    # cy_msp430_image(NAME KIND board|test SOURCES src... [LINK lib...] [CONSOLE uart])
     # An MSP430 ELF in bin/. Board images get the UART console, test images the simulator
-    # console; both the F2618's memory map. Board images are checked against the project
+    # console (CONSOLE uart: the board's, for tests of it under tools/msp430sim.py --uart);
+    # both the F2618's memory map. Board images are checked against the project
     # budget (48 KB flash, 6 KB RAM with the stack: the static part here, static + proven
     # worst-case stack in target.stack_bound.*), test images against the part; the sizes are
     # recorded in images/<name>.json.
     function(cy_msp430_image name)
-        cmake_parse_arguments(A "" "KIND" "SOURCES;LINK" ${ARGN})
+        cmake_parse_arguments(A "" "KIND;CONSOLE" "SOURCES;LINK" ${ARGN})
         add_executable(${name} ${A_SOURCES})
         cy_warnings(${name})
         if(A_KIND STREQUAL "board")
@@ -57,6 +58,9 @@ if(CY_TARGET_MSP430)
         else()
             set(ld ${PROJECT_SOURCE_DIR}/hal/msp430/ld/f2618_test.ld)
             set(console cy_hal_msp430_simcon)
+        endif()
+        if(A_CONSOLE STREQUAL "uart")
+            set(console cy_hal_msp430_uart)
         endif()
         target_link_libraries(${name} PRIVATE ${A_LINK} cy_hal_msp430 ${console} cy_mspabi)
         target_link_options(${name} PRIVATE -T ${ld} -L ${PROJECT_SOURCE_DIR}/hal/msp430/ld
@@ -158,7 +162,9 @@ endif()
 # output). Host tree: bin/NAME, printing to stdout. MSP430 tree: the image NAME_target, run
 # in the simulator by ctest (label "target") and compared line by line with the host
 # program's output (the host tree's bin/, CY_HOST_BIN_DIR): bit-identical results. The
-# program's @cycles lines go to the cycle report.
+# program's @cycles lines go to the cycle report. When the program reaches assembly kernels
+# (a library it links, directly or not, declared them with cy_kernels()), it also gets its
+# kernel check image NAME_check_target and the test target.NAME_check (docs/kernels.md).
 function(cy_vector_program name)
     cmake_parse_arguments(A "" "MAX_CYCLES;TIMEOUT" "SOURCES;LINK;ARGS" ${ARGN})
     if(CY_TARGET_MSP430)
@@ -172,11 +178,271 @@ function(cy_vector_program name)
         endif()
         cy_target_test(${name} IMAGE ${name}_target ${extra}
             ARGS --compare-cmd ${CY_HOST_BIN_DIR}/${name} ${A_ARGS})
+        set(sources)
+        foreach(s IN LISTS A_SOURCES)
+            get_filename_component(s ${s} ABSOLUTE)
+            list(APPEND sources ${s})
+        endforeach()
+        cy_kernel_check_later(${name} "${sources}" "${A_LINK}" "${A_MAX_CYCLES}" "${A_TIMEOUT}"
+            "${A_ARGS}")
     else()
         add_executable(${name} ${A_SOURCES})
         cy_warnings(${name})
         target_link_libraries(${name} PRIVATE ${A_LINK} cy_test_support cy_hal_posix)
     endif()
+endfunction()
+
+# ------------------------------------------------------------------------------ kernels
+# Assembly kernels, their C twins, generated offsets and the check mode: docs/kernels.md.
+
+if(CY_TARGET_MSP430)
+    find_program(CY_NM NAMES llvm-nm-16 REQUIRED)
+    set(CY_KERNELS ASM CACHE STRING
+        "MSP430 kernels: ASM (the .S files; check images link both) or C (the C twins only)")
+    set_property(CACHE CY_KERNELS PROPERTY STRINGS ASM C)
+    if(NOT CY_KERNELS MATCHES "^(ASM|C)$")
+        message(FATAL_ERROR "CY_KERNELS is `${CY_KERNELS}`: ASM or C")
+    endif()
+endif()
+
+# cy_kernels(LIB KERNELS name... C twin.c... ASM file.S... CHECK wrapper.c)
+# The kernels of library LIB (made by cy_library): the functions KERNELS, defined by the C
+# twin files (which hold nothing else) and, with the same names, by the assembly files. The
+# build takes one side whole: the host tree and the MSP430 tree with CY_KERNELS=C compile the
+# C files into LIB; the MSP430 tree with CY_KERNELS=ASM (the default) assembles the .S files
+# into LIB and compiles the C files once more, every kernel renamed NAME_c, as the object
+# library LIB_ctwin for the check images, with CHECK (the module's wrappers, __wrap_NAME for
+# every kernel: tests/target/check/kernel_check.h). target.kernels.LIB checks that the .S
+# files, the C twins and KERNELS name the same functions, and docs/kernels.md all of them.
+function(cy_kernels lib)
+    cmake_parse_arguments(A "" "CHECK" "KERNELS;C;ASM" ${ARGN})
+    if(NOT A_KERNELS OR NOT A_C OR NOT A_ASM OR NOT A_CHECK)
+        message(FATAL_ERROR "cy_kernels(${lib}): KERNELS, C, ASM and CHECK are all required")
+    endif()
+    if(NOT CY_TARGET_MSP430 OR CY_KERNELS STREQUAL "C")
+        target_sources(${lib} PRIVATE ${A_C})
+        return()
+    endif()
+    target_sources(${lib} PRIVATE ${A_ASM})
+    # The twins' names: an -include header renaming every kernel (prototypes, definitions and
+    # the twins' calls of each other alike).
+    set(names ${CMAKE_CURRENT_BINARY_DIR}/kernels/${lib}_twin_names.h)
+    set(text "/* Generated by cy_kernels(${lib}): the C twins' names in check images. */\n")
+    foreach(k IN LISTS A_KERNELS)
+        string(APPEND text "#define ${k} ${k}_c\n")
+    endforeach()
+    file(CONFIGURE OUTPUT ${names} CONTENT "${text}" @ONLY)
+    add_library(${lib}_ctwin OBJECT ${A_C})
+    cy_warnings(${lib}_ctwin)
+    target_link_libraries(${lib}_ctwin PRIVATE ${lib})
+    target_include_directories(${lib}_ctwin PRIVATE
+        $<TARGET_PROPERTY:${lib},INCLUDE_DIRECTORIES>)
+    target_compile_definitions(${lib}_ctwin PRIVATE
+        $<TARGET_PROPERTY:${lib},COMPILE_DEFINITIONS>)
+    target_compile_options(${lib}_ctwin PRIVATE $<TARGET_PROPERTY:${lib},COMPILE_OPTIONS>
+        -include ${names})
+    add_dependencies(${lib}_ctwin ${lib}) # whatever LIB generates before it compiles
+    set(asm)
+    foreach(s IN LISTS A_ASM)
+        get_filename_component(s ${s} ABSOLUTE)
+        list(APPEND asm ${s})
+    endforeach()
+    set(twins)
+    foreach(s IN LISTS A_C)
+        get_filename_component(s ${s} ABSOLUTE)
+        list(APPEND twins ${s})
+    endforeach()
+    get_filename_component(check ${A_CHECK} ABSOLUTE)
+    set_target_properties(${lib} PROPERTIES CY_KERNELS "${A_KERNELS}" CY_KERNEL_CHECK ${check}
+        CY_KERNEL_TWIN ${lib}_ctwin)
+    add_test(NAME target.kernels.${lib}
+        COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/check_kernels.py
+            --nm ${CY_NM} --library $<TARGET_FILE:${lib}> --twins $<TARGET_OBJECTS:${lib}_ctwin>
+            --asm ${asm} --c ${twins} --doc ${PROJECT_SOURCE_DIR}/docs/kernels.md
+            --kernels ${A_KERNELS}
+        COMMAND_EXPAND_LISTS)
+    set_tests_properties(target.kernels.${lib} PROPERTIES LABELS target)
+endfunction()
+
+# cy_asm_offsets(LIB SOURCE msp430/M_offsets.c HEADER M_offsets.h)
+# Offsets, sizes and constants for LIB's assembly, from the C headers at build time (the
+# Linux asm-offsets trick): SOURCE lists them with CY_OFFSET(SYM, value) (cmake/cy_offsets.h)
+# inside one non-static function; it is compiled for the MSP430 with -S (LIB's include
+# directories and definitions) and tools/gen_asm_offsets.py writes HEADER (#define SYM value)
+# into the build tree, on LIB's include path. Only where LIB assembles its .S files.
+function(cy_asm_offsets lib)
+    cmake_parse_arguments(A "" "SOURCE;HEADER" "" ${ARGN})
+    if(NOT CY_TARGET_MSP430 OR NOT CY_KERNELS STREQUAL "ASM")
+        return()
+    endif()
+    set(dir ${CMAKE_CURRENT_BINARY_DIR}/asm_offsets)
+    add_library(${lib}_offsets_s OBJECT ${A_SOURCE})
+    target_compile_options(${lib}_offsets_s PRIVATE -S) # the "object" is assembly text
+    # LIB's headers and those of what it links (not LIB itself: LIB waits for the header)
+    target_link_libraries(${lib}_offsets_s PRIVATE $<TARGET_PROPERTY:${lib},LINK_LIBRARIES>)
+    target_include_directories(${lib}_offsets_s PRIVATE ${PROJECT_SOURCE_DIR}/cmake
+        $<TARGET_PROPERTY:${lib},INCLUDE_DIRECTORIES>)
+    target_compile_definitions(${lib}_offsets_s PRIVATE
+        $<TARGET_PROPERTY:${lib},COMPILE_DEFINITIONS>)
+    get_filename_component(src ${A_SOURCE} ABSOLUTE)
+    file(RELATIVE_PATH src ${PROJECT_SOURCE_DIR} ${src})
+    add_custom_command(OUTPUT ${dir}/${A_HEADER}
+        COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/gen_asm_offsets.py
+            --input $<TARGET_OBJECTS:${lib}_offsets_s> --output ${dir}/${A_HEADER}
+            --source ${src}
+        DEPENDS $<TARGET_OBJECTS:${lib}_offsets_s> ${PROJECT_SOURCE_DIR}/tools/gen_asm_offsets.py
+        COMMENT "Generating ${A_HEADER} from ${src}"
+        VERBATIM)
+    add_custom_target(${lib}_offsets DEPENDS ${dir}/${A_HEADER})
+    add_dependencies(${lib} ${lib}_offsets)
+    target_include_directories(${lib} PRIVATE ${dir})
+endfunction()
+
+# The check images, made at the end of the configuration (when every library exists): one
+# per vector program that reaches kernels.
+function(cy_kernel_check_later name sources links max_cycles timeout args)
+    set_property(GLOBAL APPEND PROPERTY CY_VECTOR_PROGRAMS ${name})
+    set_property(GLOBAL PROPERTY CY_VP_${name}_SOURCES "${sources}")
+    set_property(GLOBAL PROPERTY CY_VP_${name}_LINK "${links}")
+    set_property(GLOBAL PROPERTY CY_VP_${name}_MAX_CYCLES "${max_cycles}")
+    set_property(GLOBAL PROPERTY CY_VP_${name}_TIMEOUT "${timeout}")
+    set_property(GLOBAL PROPERTY CY_VP_${name}_ARGS "${args}")
+    get_property(deferred GLOBAL PROPERTY CY_KERNEL_CHECKS_DEFERRED)
+    if(NOT deferred)
+        set_property(GLOBAL PROPERTY CY_KERNEL_CHECKS_DEFERRED ON)
+        cmake_language(DEFER DIRECTORY ${PROJECT_SOURCE_DIR} CALL cy_kernel_checks_now)
+    endif()
+endfunction()
+
+# The libraries LIBS reach, themselves included (LINK_LIBRARIES, INTERFACE_LINK_LIBRARIES).
+function(cy_link_closure out)
+    set(seen)
+    set(todo ${ARGN})
+    while(todo)
+        list(POP_FRONT todo t)
+        string(REGEX REPLACE "^\\$<LINK_ONLY:(.+)>$" "\\1" t "${t}")
+        if(NOT TARGET ${t} OR t IN_LIST seen)
+            continue()
+        endif()
+        list(APPEND seen ${t})
+        foreach(prop LINK_LIBRARIES INTERFACE_LINK_LIBRARIES)
+            get_target_property(deps ${t} ${prop})
+            if(deps)
+                list(APPEND todo ${deps})
+            endif()
+        endforeach()
+    endwhile()
+    set(${out} ${seen} PARENT_SCOPE)
+endfunction()
+
+# cy_kernel_check_must_fail(NAME PROGRAM prog PERTURB wrong.c WRAP NAME_c KERNEL kernel)
+# The proof that a check image can fail: PROGRAM's check image once more, with PERTURB linked
+# in and --wrap=WRAP (PERTURB defines __wrap_WRAP: a C twin made wrong for one input). The
+# test target.NAME passes only when the image stops at a KERNEL-MISMATCH naming KERNEL.
+function(cy_kernel_check_must_fail name)
+    cmake_parse_arguments(A "" "PROGRAM;PERTURB;WRAP;KERNEL" "" ${ARGN})
+    if(NOT CY_TARGET_MSP430)
+        return()
+    endif()
+    get_filename_component(perturb ${A_PERTURB} ABSOLUTE)
+    set_property(GLOBAL APPEND PROPERTY CY_KERNEL_MUST_FAIL ${name})
+    set_property(GLOBAL PROPERTY CY_KMF_${name} "${A_PROGRAM};${perturb};${A_WRAP};${A_KERNEL}")
+endfunction()
+
+# The check image IMG of vector program NAME (recorded by cy_vector_program) with the extra
+# SOURCES and link OPTIONS; FOUND_OUT: whether the program reaches kernels at all.
+function(cy_kernel_check_image img name found_out)
+    cmake_parse_arguments(A "" "" "SOURCES;OPTIONS" ${ARGN})
+    get_property(sources GLOBAL PROPERTY CY_VP_${name}_SOURCES)
+    get_property(links GLOBAL PROPERTY CY_VP_${name}_LINK)
+    cy_link_closure(libs ${links})
+    set(wrappers)
+    set(twins)
+    set(wraps)
+    foreach(l IN LISTS libs)
+        get_target_property(kernels ${l} CY_KERNELS)
+        if(NOT kernels)
+            continue()
+        endif()
+        get_target_property(check ${l} CY_KERNEL_CHECK)
+        get_target_property(twin ${l} CY_KERNEL_TWIN)
+        list(APPEND wrappers ${check})
+        list(APPEND twins ${twin})
+        foreach(k IN LISTS kernels)
+            list(APPEND wraps --wrap=${k})
+        endforeach()
+    endforeach()
+    if(NOT twins)
+        set(${found_out} OFF PARENT_SCOPE)
+        return()
+    endif()
+    set(${found_out} ON PARENT_SCOPE)
+    list(REMOVE_DUPLICATES wrappers)
+    cy_msp430_image(${img} KIND test
+        SOURCES ${sources} ${wrappers} ${PROJECT_SOURCE_DIR}/tests/target/check/kernel_check.c
+            ${A_SOURCES}
+        LINK ${links} cy_test_support ${twins})
+    target_link_options(${img} PRIVATE ${wraps} ${A_OPTIONS})
+    # what the program's own image was given after cy_vector_program (include directories of
+    # generated headers, the targets generating them)
+    get_target_property(inc ${name}_target INCLUDE_DIRECTORIES)
+    if(inc)
+        target_include_directories(${img} PRIVATE ${inc})
+    endif()
+    get_target_property(deps ${name}_target MANUALLY_ADDED_DEPENDENCIES)
+    if(deps)
+        add_dependencies(${img} ${deps})
+    endif()
+    target_include_directories(${img} PRIVATE ${PROJECT_SOURCE_DIR}/tests/target/check)
+    target_compile_definitions(${img} PRIVATE CY_KCHECK_IMAGE="${name}")
+endfunction()
+
+function(cy_kernel_checks_now)
+    if(NOT CY_KERNELS STREQUAL "ASM")
+        return()
+    endif()
+    get_property(programs GLOBAL PROPERTY CY_VECTOR_PROGRAMS)
+    foreach(name IN LISTS programs)
+        cy_kernel_check_image(${name}_check_target ${name} found)
+        if(NOT found)
+            continue()
+        endif()
+        foreach(p MAX_CYCLES TIMEOUT ARGS)
+            get_property(${p} GLOBAL PROPERTY CY_VP_${name}_${p})
+        endforeach()
+        # Both sides of every kernel call run: allow three times the program's cycles.
+        if(NOT MAX_CYCLES)
+            set(MAX_CYCLES 200000000)
+        endif()
+        math(EXPR MAX_CYCLES "${MAX_CYCLES} * 3")
+        set(extra MAX_CYCLES ${MAX_CYCLES})
+        if(TIMEOUT)
+            math(EXPR TIMEOUT "${TIMEOUT} * 2")
+            list(APPEND extra TIMEOUT ${TIMEOUT})
+        endif()
+        cy_target_test(${name}_check IMAGE ${name}_check_target ${extra}
+            ARGS --compare-cmd ${CY_HOST_BIN_DIR}/${name} ${ARGS})
+    endforeach()
+    get_property(must_fail GLOBAL PROPERTY CY_KERNEL_MUST_FAIL)
+    foreach(name IN LISTS must_fail)
+        get_property(spec GLOBAL PROPERTY CY_KMF_${name})
+        list(GET spec 0 program)
+        list(GET spec 1 perturb)
+        list(GET spec 2 wrap)
+        list(GET spec 3 kernel)
+        cy_kernel_check_image(${name}_target ${program} found SOURCES ${perturb}
+            OPTIONS --wrap=${wrap})
+        if(NOT found)
+            message(FATAL_ERROR "cy_kernel_check_must_fail(${name}): ${program} reaches no kernels")
+        endif()
+        get_property(max_cycles GLOBAL PROPERTY CY_VP_${program}_MAX_CYCLES)
+        if(NOT max_cycles)
+            set(max_cycles 200000000)
+        endif()
+        math(EXPR max_cycles "${max_cycles} * 3")
+        cy_target_test(${name} IMAGE ${name}_target MAX_CYCLES ${max_cycles}
+            ARGS --expect-kernel-mismatch ${kernel})
+    endforeach()
 endfunction()
 
 # cy_agvcalc_op(NAME op SOURCE file.c HELP "one line" [LINK lib...])

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "drive/drive.h"
+#include "drive/drive_path.h"
 #include "fx/fx_host.h"
 #include "mission/mission.h"
 #include "sim/canbus.h"
@@ -31,21 +32,24 @@ static int build_nominal(sim_mission_t *m, const sim_scenario_t *sc, char *err, 
     sim_pose_t s0 = {sc->start_x, sc->start_y, sc->start_heading};
     m->nominal.n = 0;
     for (size_t i = 0; i < sc->n_path; i++) {
+        /* The board's nominal leg: a turn over 90 degrees is two double arcs through the pose
+         * path preparation inserts (drive_leg_solve()). */
         drive_pose_t to = mc->path[i].pose;
-        drive_solution_t sol;
+        drive_leg_t leg;
         drive_status_t st =
-            drive_solve(&from, &to, mc->path_cfg.nominal_radius, mc->path_cfg.reverse, &sol, NULL);
+            drive_leg_solve(&from, &to, mc->path_cfg.nominal_radius, mc->path_cfg.reverse, &leg);
         if (st != DRIVE_OK) {
             snprintf(err, errlen,
                      "path[%zu]: no double arc from the previous point: %s (min_radius_m %.3f)", i,
                      drive_status_text(st), sc->min_radius);
             return -1;
         }
-        for (int k = 0; k < 2; k++) {
-            double len = fx_q16_to_double(sol.seg[k].length);
+        for (int k = 0; k < 2 * leg.parts; k++) {
+            const drive_segment_t *g = &leg.sol[k / 2].seg[k % 2];
+            double len = fx_q16_to_double(g->length);
             if (len <= 0)
                 continue;
-            double kap = (double)sol.seg[k].curvature / (double)(1l << DRIVE_CURV_SHIFT);
+            double kap = (double)g->curvature / (double)(1l << DRIVE_CURV_SHIFT);
             /* Each leg starts at its prescribed pose (the solver lands within 0.05 mm). */
             if (k == 0 || m->nominal.n == 0)
                 sim_path_append_from(&m->nominal, s0, kap, len, mc->path_cfg.reverse);

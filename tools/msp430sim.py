@@ -6,6 +6,10 @@ The image talks to this runner through the simulator's console device (address 0
   @sim <device> <args...>   queue `simio config <device> <args...>` (raise a pin, latch a
                             capture...); the image then calls cy_target_sync(), where a
                             breakpoint stops it, the runner applies the queue and resumes.
+  @sim-on-read ADDR <device> <args...>, @sim-on-write ADDR ...
+                            armed at the next cy_target_sync(): `simio config <device>
+                            <args...>` right after the next instruction that reads (writes)
+                            ADDR, once.
   @cycles <name> <max> <mean> <n>
                             a cycle measurement for the cycle report (--cycles-json).
   @stack-use <name> <bytes> the deepest stack one measured call needed (CY_STACK).
@@ -13,6 +17,10 @@ The image talks to this runner through the simulator's console device (address 0
   CY-TEST-END PASS | CY-TEST-END FAIL <n>
                             the sentinel: the verdict of the image itself.
   FAULT 0x....              printed by hal_fault() before the CPU stops.
+  KERNEL-MISMATCH <kernel> ...
+                            a kernel check image (docs/kernels.md) found the assembly and
+                            the C twin of a kernel disagreeing, and stopped: the run fails
+                            (or, with --expect-kernel-mismatch, passes on exactly that).
   anything else             a data line, compared with the host's output (--compare-cmd)
                             and/or handed to a checker (--check).
 
@@ -27,8 +35,15 @@ the wall-clock --timeout passes, or mspdebug itself misbehaves.
 
 Simulated devices (tools/mspdebug-f2618.cfg): the MSP430F2618's Timer_A3 at 0x160 (vectors
 0xFFF2/0xFFF0), Timer_B7 at 0x180 (0xFFFA/0xFFF8), ports P1 (0x20, 0xFFE4) and P2 (0x28,
-0xFFE6) with interrupts, the 16 x 16 hardware multiplier, the watchdog, the console and the
-tracer.
+0xFFE6) with interrupts, ports P3-P6, the 16 x 16 hardware multiplier, the watchdog, the
+console and the tracer; stand-ins that make SVSCTL, the clock registers and USCI_A0's
+status and buffers readable.
+
+Where the simulator differs from the chip the runner emulates the chip (class Chip below,
+docs/hardware.md): the reset state of the transmit flags, the DCO calibration data, NMI
+entry (NMIIE cleared, NMIIFG kept), and on request USCI_A0's transmitter (--uart), the
+supply voltage supervisor (--vcc) and an event between two instructions (@sim-on-read,
+@sim-on-write).
 """
 import argparse
 import fcntl
@@ -53,6 +68,7 @@ def devices():
 
 
 SENTINEL = "CY-TEST-END"
+MISMATCH = "KERNEL-MISMATCH"
 PC_RE = re.compile(r"\(\s*PC:\s*([0-9a-fA-F]+)\)")
 DUMP_RE = re.compile(r"\s*\(\s*PC:")
 ERROR_RE = re.compile(r"(can't|invalid|unknown|failed|expected|error|no such)", re.I)
@@ -223,7 +239,7 @@ def merge_cycles(path, entries, images_dir, stack=None, source=None):
 
     Entries carry the image that measured them (`source`): a run replaces all of that image's
     earlier entries, so an entry the image no longer prints does not linger in a reused build
-    directory."""
+    directory. The static bounds tools/cycle_bound.py put into an entry (static_* keys) stay."""
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     with open(path + ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
@@ -234,12 +250,20 @@ def merge_cycles(path, entries, images_dir, stack=None, source=None):
                     report = json.load(f)
             except (OSError, ValueError):
                 pass
-        by_name = {e["name"]: e for e in report.get("entries", [])
-                   if source is None or e.get("image") != source}
+        # The static bounds of tools/cycle_bound.py (static_* keys) stay with their entry.
+        by_name = {}
+        for e in report.get("entries", []):
+            if source is not None and e.get("image") == source:
+                e = {k: v for k, v in e.items() if k == "name" or k.startswith("static_")}
+                if len(e) == 1:
+                    continue
+            by_name[e["name"]] = e
         for e in entries:
             if source is not None:
                 e["image"] = source
-            by_name[e["name"]] = e
+            old = by_name.get(e["name"], {})
+            by_name[e["name"]] = {**{k: v for k, v in old.items() if k.startswith("static_")},
+                                  **e}
         report["entries"] = [by_name[k] for k in sorted(by_name)]
         images = []
         if images_dir and os.path.isdir(images_dir):
@@ -262,6 +286,181 @@ def merge_cycles(path, entries, images_dir, stack=None, source=None):
         os.replace(tmp, path)
 
 
+# ---------------------------------------------------------------------------------------------
+# Where mspdebug 0.22's simulator differs from the MSP430F2618, the runner emulates the chip
+# (docs/hardware.md "What the simulator gets wrong").
+
+# A typical part's DCO calibration bytes in information memory segment A (SLAS541: CALDCO_16MHZ
+# at 0x10F8 .. CALBC1_1MHZ at 0x10FF; every part has its own). The simulator's information
+# memory reads 0xFF (an erased part) unless the runner writes them.
+DCO_CAL = {"typical": [0x95, 0x8F, 0x9E, 0x8E, 0x8B, 0x8D, 0x4B, 0x86], "erased": None}
+CAL_ADDR = 0x10F8
+# Special function registers (SLAU144): IE1/IFG1 (NMIIE, NMIIFG), IFG2 (UCA0TXIFG), UC1IFG.
+IE1, IFG1, IFG2, UC1IFG = 0x0000, 0x0002, 0x0003, 0x0007
+NMIIE = NMIIFG = 0x10
+UCA0TXIFG = UCA1TXIFG = 0x02
+UCA0STAT, UCA0TXBUF, UCBUSY = 0x0065, 0x0067, 0x01
+SVSCTL, SVSOP, SVSON, PORON = 0x0055, 0x02, 0x04, 0x08
+# SVSCTL's VLDx levels, V (SLAU144, supply voltage supervisor, SVSCTL register).
+VLD_VOLTS = {1: 1.9, 2: 2.1, 3: 2.2, 4: 2.3, 5: 2.4, 6: 2.5, 7: 2.65, 8: 2.8, 9: 2.9,
+             10: 3.05, 11: 3.2, 12: 3.35, 13: 3.5, 14: 3.7}
+NMI_VECTOR_WORD = 0xFFFC
+SET_BP_RE = re.compile(r"Set breakpoint (\d+)")
+
+
+class Chip:
+    """The emulation of one run: what the runner does when the simulator stops.
+
+    - Reset state: UCA0TXIFG and UCA1TXIFG set (SLAU144: set after a PUC; the simulator's
+      special function registers start at 0) and the DCO calibration bytes of --dco-cal.
+    - NMI entry: the chip clears NMIIE and leaves NMIIFG set when it accepts the NMI;
+      mspdebug's watchdog model does the reverse. A breakpoint on the NMI handler's first
+      instruction puts the chip's state back.
+    - @sim-on-read / @sim-on-write ADDR CMD: CMD applied right after the next instruction that
+      reads / writes ADDR (a watchpoint), e.g. a capture between a read of TACCTL1 and the
+      write that follows it.
+    - --uart: USCI_A0's transmitter (not modelled by mspdebug): a byte written to UCA0TXBUF
+      clears UCA0TXIFG and sets UCBUSY; the flag comes back after the firmware polled IFG2
+      twice, UCBUSY clears after two polls of UCA0STAT (time passes while it waits). The
+      bytes are the console. Stopping with UCBUSY set is a failure (the message is cut).
+    - --vcc: the supply voltage supervisor (not modelled): after each write of SVSCTL, SVSOP
+      reads 1 when the supply is below the selected VLDx level; PORON with the supply below
+      the level would reset the part (reported as a failure).
+    """
+
+    def __init__(self, sim, args, syms, elf_words):
+        self.sim, self.args = sim, args
+        self.watch = {}  # breakpoint index -> (kind, address)
+        self.hooks = []  # (kind, address, command) armed at the next sync
+        self.nmi_pc = elf_words.get(NMI_VECTOR_WORD)
+        self.seen = None
+        self.uart_bytes = []
+        self.uart_polls = {"ifg2": 0, "stat": 0}
+        self.uart_busy = False
+        self.uart_txifg = True
+        self.failures = []
+
+    def setbreak(self, cmd, addr):
+        for line in self.sim.cmd(f"{cmd} 0x{addr:04x}"):
+            m = SET_BP_RE.search(line)
+            if m:
+                return int(m.group(1))
+        raise SimError(f"`{cmd} 0x{addr:04x}`: mspdebug did not say which slot it used")
+
+    def reset_state(self):
+        self.sim.cmd(f"mw 0x{IFG2:04x} 0x{UCA0TXIFG:02x}")
+        self.sim.cmd(f"mw 0x{UC1IFG:04x} 0x{UCA1TXIFG:02x}")
+        cal = DCO_CAL[self.args.dco_cal]
+        if cal is not None:
+            self.sim.cmd(f"mw 0x{CAL_ADDR:04x} " + " ".join(f"0x{b:02x}" for b in cal))
+        if self.nmi_pc is not None and not self.args.sim_nmi:
+            self.sim.cmd(f"setbreak 0x{self.nmi_pc:04x}")
+        if self.args.uart:
+            for cmd, addr in (("setwatch_w", UCA0TXBUF), ("setwatch_r", IFG2),
+                              ("setwatch_r", UCA0STAT)):
+                self.watch[self.setbreak(cmd, addr)] = ("uart",)
+        if self.args.vcc is not None:
+            self.watch[self.setbreak("setwatch_w", SVSCTL)] = ("svs",)
+
+    def byte(self, addr):
+        for line in self.sim.cmd(f"md 0x{addr:04x} 1"):
+            m = MD_RE.match(line)
+            if m:
+                return int(m.group(2).split()[0], 16)
+        raise SimError(f"`md 0x{addr:04x} 1` returned nothing")
+
+    def set_bits(self, addr, mask, on):
+        v = self.byte(addr)
+        self.sim.cmd(f"mw 0x{addr:04x} 0x{(v | mask) if on else (v & ~mask & 0xFF):02x}")
+
+    def arm(self):
+        """At a sync: set the watchpoints the image asked for."""
+        for kind, addr, command in self.hooks:
+            if addr < 0x10:
+                raise SimError(f"@sim-on-{kind} 0x{addr:04x}: the tracer does not see the "
+                               "special function registers (below 0x0010)")
+            idx = self.setbreak("setwatch_r" if kind == "read" else "setwatch_w", addr)
+            self.watch[idx] = ("hook", command, kind, addr)
+        self.hooks = []
+
+    def on_nmi(self):
+        """IE1 .. IFG2 read and written back in one command each: NMIIE off, NMIIFG on."""
+        for line in self.sim.cmd("md 0x0000 4"):
+            m = MD_RE.match(line)
+            if m:
+                b = [int(x, 16) for x in m.group(2).split()]
+                b[IE1] &= ~NMIIE & 0xFF
+                b[IFG1] |= NMIIFG
+                self.sim.cmd("mw 0x0000 " + " ".join(f"0x{x:02x}" for x in b))
+                return
+        raise SimError("`md 0x0000 4` returned nothing")
+
+    def on_watch(self):
+        """A stop that was no breakpoint: a watchpoint fired. mspdebug does not say which:
+        the tracer's newest IO event tells (SFR reads such as IFG2's are not traced: a stop
+        without a new event is the IFG2 poll)."""
+        if not self.watch:
+            return
+        ev = self.newest_io_event()
+        new = ev is not None and ev != self.seen
+        self.seen = ev
+        for i, w in list(self.watch.items()):
+            if w[0] == "hook" and new and (ev[0], ev[1]) == (w[2], w[3]):
+                self.sim.cmd("simio config " + w[1])
+                self.sim.cmd(f"delbreak {i}")
+                del self.watch[i]
+                return
+        kinds = {w[0] for w in self.watch.values()}
+        if "svs" in kinds and new and ev[:2] == ("write", SVSCTL):
+            self.svs()
+        elif "uart" in kinds:
+            if new and ev[:2] == ("write", UCA0TXBUF):
+                self.uart_bytes.append(ev[2])
+                self.uart_txifg, self.uart_busy = False, True
+                self.uart_polls = {"ifg2": 0, "stat": 0}
+                self.set_bits(IFG2, UCA0TXIFG, False)
+                self.sim.cmd("simio config ua0 set 0 1")
+            elif new and ev[:2] == ("read", UCA0STAT):
+                if self.uart_txifg and self.uart_busy:
+                    self.uart_polls["stat"] += 1
+                    if self.uart_polls["stat"] >= 2:
+                        self.uart_busy = False
+                        self.sim.cmd("simio config ua0 set 0 0")
+            elif not new and not self.uart_txifg:
+                self.uart_polls["ifg2"] += 1
+                if self.uart_polls["ifg2"] >= 2:
+                    self.uart_txifg = True
+                    self.set_bits(IFG2, UCA0TXIFG, True)
+
+    def svs(self):
+        v = self.byte(SVSCTL)
+        vld = v >> 4
+        below = vld in VLD_VOLTS and self.args.vcc < VLD_VOLTS[vld]
+        if below and v & PORON:
+            self.failures.append(f"the SVS would reset the part: VCC {self.args.vcc} V below "
+                                 f"VLD {vld} ({VLD_VOLTS[vld]} V) with PORON set")
+        self.sim.cmd(f"simio config clk set 1 {1 if below else 0}")
+        self.sim.cmd(f"simio config clk set 2 {1 if vld else 0}")
+
+    def newest_io_event(self):
+        """(read|write, address, value, cycle) of the newest event in the tracer's history."""
+        last = None
+        for line in self.sim.cmd("simio info tr", check=False):
+            m = TRACE_RE.match(line)
+            if m:
+                last = (m.group(2), int(m.group(4), 16), int(m.group(5) or "0", 16),
+                        int(m.group(1)))
+        return last
+
+    def at_halt(self):
+        if self.args.uart and self.uart_busy:
+            self.failures.append("the CPU stopped while the UART was still sending: the "
+                                 "message is cut (no flush before the halt)")
+
+
+TRACE_RE = re.compile(r"^\s*(\d+): (read|write)\.([bw]) => 0x([0-9a-fA-F]+)(?: 0x([0-9a-fA-F]+))?\s*$")
+
+
 def run_image(args, log):
     syms = symbols(args.elf)
     for needed in ("cy_halt",):
@@ -281,6 +480,8 @@ def run_image(args, log):
             sim.cmd(c)
         sim.cmd(f"prog {args.elf}", timeout=60)
         sim.cmd("reset")
+        chip = Chip(sim, args, syms, vector_words(args.elf))
+        chip.reset_state()
         sim.cmd(f"setbreak 0x{halt_pc:04x}")
         if sync_pc is not None:
             sim.cmd(f"setbreak 0x{sync_pc:04x}")
@@ -296,30 +497,54 @@ def run_image(args, log):
         queue = []
         started = time.monotonic()
         halted = False
-        while not halted:
-            lines, broken = sim.run(args.slice)
-            text, partial, pc = split_run_output(lines, broken)
-            for t in text:
+        uart_done = 0
+
+        def take(text_lines):
+            nonlocal pending_line
+            for t in text_lines:
                 full = pending_line + t
                 pending_line = ""
                 console_text.append(full)
                 if full.startswith("@sim "):
                     queue.append(full[5:].strip())
+                elif full.startswith(("@sim-on-read ", "@sim-on-write ")):
+                    kind, addr, command = full.split(None, 2)
+                    chip.hooks.append((kind[8:], int(addr, 0), command))
                 if args.verbose:
                     print("  | " + full)
+
+        while not halted:
+            lines, broken = sim.run(args.slice)
+            text, partial, pc = split_run_output(lines, broken)
+            take(text)
             pending_line += partial
-            cycles = sim.cycles()
+            if args.uart and len(chip.uart_bytes) > uart_done:
+                chunk = bytes(chip.uart_bytes[uart_done:]).decode("latin-1").replace("\r", "")
+                uart_done = len(chip.uart_bytes)
+                *done, rest = (pending_line + chunk).split("\n")
+                pending_line = ""
+                take(done)
+                pending_line = rest
+            # The count is read when a slice ran out (a hang shows there) or at the end, not
+            # at every breakpoint: a run with thousands of stops saves as many commands.
+            cycles = sim.cycles() if broken or pc in (halt_pc, until_pc) else 0
             if until_pc is not None and pc == until_pc:
                 sr = next(int(m.group(1), 16) for m in
                           (re.search(r"\(\s*SR:\s*([0-9a-fA-F]+)\)", l) for l in lines) if m)
                 console_text.append(f"@until {args.until} sr=0x{sr:04x}")
                 halted = True
             elif pc == halt_pc:
+                chip.at_halt()
                 halted = True
             elif sync_pc is not None and pc == sync_pc:
                 for q in queue:
                     sim.cmd("simio config " + q)
                 queue = []  # `run` steps over the breakpoint it stands on
+                chip.arm()
+            elif chip.nmi_pc is not None and pc == chip.nmi_pc and not args.sim_nmi:
+                chip.on_nmi()
+            elif not broken:
+                chip.on_watch()
             if cycles > args.max_cycles:
                 raise SimError(f"cycle limit: {cycles} cycles > {args.max_cycles} "
                                f"(PC 0x{pc or 0:04x}); the image hangs or needs a larger "
@@ -329,6 +554,7 @@ def run_image(args, log):
                                f"(PC 0x{pc or 0:04x})")
         if pending_line:
             console_text.append(pending_line)
+        console_text += [f"@chip {f}" for f in chip.failures]
         if stack_lo is not None and stack_top is not None and stack_top > stack_lo:
             used = stack_used(sim.cmd(f"md 0x{stack_lo:04x} {stack_top - stack_lo}"), stack_lo,
                               stack_top)
@@ -338,14 +564,41 @@ def run_image(args, log):
         sim.close()
 
 
+def vector_words(elf_path):
+    """{address: word} of the image's vector table (0xFFC0-0xFFFF)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import stack_bound
+    elf = stack_bound.Elf(elf_path)
+    return {a: w for a, w in elf.words(lambda s: s["name"] == ".vectors")}
+
+
+def write_script(args):
+    """The commands that set up an interactive simulator session like a run of this tool
+    (without the stops of the NMI emulation: mspdebug's own NMI entry applies there)."""
+    lines = ["# Written by tools/msp430sim.py --mspdebug-script: mspdebug -C THIS sim"]
+    lines += devices()
+    lines += [f"prog {os.path.abspath(args.elf)}", "reset",
+              f"mw 0x{IFG2:04x} 0x{UCA0TXIFG:02x}", f"mw 0x{UC1IFG:04x} 0x{UCA1TXIFG:02x}"]
+    cal = DCO_CAL[args.dco_cal]
+    if cal is not None:
+        lines.append(f"mw 0x{CAL_ADDR:04x} " + " ".join(f"0x{b:02x}" for b in cal))
+    os.makedirs(os.path.dirname(os.path.abspath(args.mspdebug_script)), exist_ok=True)
+    with open(args.mspdebug_script, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
 def data_lines(lines):
-    return [l for l in lines if l and not l.startswith(("@", "#", SENTINEL))]
+    return [l for l in lines if l and not l.startswith(("@", "#", SENTINEL, MISMATCH))]
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--elf", required=True, help="image to run")
+    ap.add_argument("--mspdebug-script", metavar="OUT",
+                    help="write the start-up commands of an interactive session instead of "
+                         "running: the devices, the image loaded and reset, the chip's reset "
+                         "state (`mspdebug -C OUT sim`; make debug SIM=1)")
     ap.add_argument("--max-cycles", type=int, default=200_000_000,
                     help="fail when the simulated MCLK count passes this (default 2e8)")
     ap.add_argument("--timeout", type=float, default=120, help="wall-clock limit, s")
@@ -356,6 +609,23 @@ def main():
     ap.add_argument("--expect-gie", action="store_true",
                     help="with --until: interrupts must be enabled there")
     ap.add_argument("--expect-fault", help="pass only if the image stops with this fault code")
+    ap.add_argument("--expect-kernel-mismatch", metavar="KERNEL",
+                    help="pass only if the image stops at its first line KERNEL-MISMATCH, "
+                         "naming KERNEL (the proof that a check image can fail)")
+    ap.add_argument("--expect-text", action="append", default=[], metavar="LINE",
+                    help="the console must show this line (repeatable)")
+    ap.add_argument("--dco-cal", choices=sorted(DCO_CAL), default="typical",
+                    help="information memory's DCO calibration bytes: a typical part's "
+                         "(default) or erased (0xFF, what the simulator holds by itself)")
+    ap.add_argument("--vcc", type=float, metavar="VOLTS",
+                    help="emulate the supply voltage supervisor with this supply (default: "
+                         "none, the SVS output stays low: above every level)")
+    ap.add_argument("--uart", action="store_true",
+                    help="emulate USCI_A0's transmitter; its bytes are the console (board "
+                         "images' console_uart)")
+    ap.add_argument("--sim-nmi", action="store_true",
+                    help="keep mspdebug's NMI entry (NMIIE left set, NMIIFG cleared) instead "
+                         "of the chip's")
     ap.add_argument("--compare-cmd", help="host command whose stdout data lines must equal "
                                           "the image's, line by line (bit-identical results)")
     ap.add_argument("--check", help="Python file with check(lines) -> list of errors, run on "
@@ -369,6 +639,9 @@ def main():
     ap.add_argument("--verbose", action="store_true", help="echo the console")
     args = ap.parse_args()
 
+    if args.mspdebug_script:
+        write_script(args)
+        return 0
     log = open(args.log, "w") if args.log else None
     name = os.path.basename(args.elf)
     try:
@@ -380,9 +653,28 @@ def main():
         if log:
             log.close()
 
-    failures = []
+    failures = [l[6:] for l in console if l.startswith("@chip ")]
+    for want in args.expect_text:
+        if want not in console:
+            failures.append(f"the console never showed `{want}`")
     faults = [l for l in console if l.startswith("FAULT ")]
-    if args.until:
+    mismatches = [l for l in console if l.startswith(MISMATCH)]
+    if args.expect_kernel_mismatch:
+        rest = [l for l in console if l and not l.startswith("@stack ")]
+        if len(mismatches) != 1 or not mismatches[0].startswith(
+                f"{MISMATCH} {args.expect_kernel_mismatch} "):
+            failures.append(f"expected one `{MISMATCH} {args.expect_kernel_mismatch} ...`, "
+                            f"the image printed {mismatches or 'none'}")
+        elif rest[-1] != mismatches[0]:
+            failures.append(f"the image went on after `{mismatches[0]}`: `{rest[-1]}`")
+        else:
+            print(f"  stopped as expected: {mismatches[0]}")
+        args.compare_cmd = None  # the run stopped early on purpose
+    elif mismatches:
+        failures.append(f"kernel check: {mismatches[0]}")
+    if args.expect_kernel_mismatch:
+        pass
+    elif args.until:
         stops = [l for l in console if l.startswith("@until ")]
         if not stops:
             failures.append(f"never reached {args.until}")

@@ -18,7 +18,9 @@ Roots: the reset vector (the start-up code, main below it) and every other inter
 an interrupt costs 4 bytes (PC and SR) on top of its handler. No maskable handler may set
 GIE again (checked: every instruction that can set GIE in a handler's reach is listed; the
 restores of a state saved inside the handler keep it off); the NMI can come on top of a
-maskable handler. Worst case = reset + the deepest maskable handler + the NMI handler.
+maskable handler, and the NMI handler may set NMIIE again only as its last instruction before
+RETI (checked), where a second request lands on the first one's 4 bytes. Worst case = reset +
+the deepest maskable handler + the NMI handler (+ 4 bytes when it re-arms itself).
 
 Prints the table (root, bound, deepest chain as function(frame) names), the worst case and
 the RAM left free (RAM end, __stack_top unless --ram-end, minus __noinit_end) and exits 1 when
@@ -266,6 +268,7 @@ class Func:
         self.returns = False
         self.gie = []  # (insn address, 'set'|'restore', text)
         self.stack_reset = False
+        self.depth_at = {}  # instruction address -> stack depth there
 
 
 class Image:
@@ -415,6 +418,7 @@ class Image:
             if nxt is not None:
                 goto(insn, nxt, d, saved)
 
+        f.depth_at = depth_at
         # A write of GIE after a copy of SR was taken on every path to it (push r2 / mov r2,
         # in this function) puts back the state of that copy: GIE off inside a handler.
         for a in sorted(depth_at):
@@ -555,6 +559,55 @@ def mpy_operands(image, fn):
     return out
 
 
+IE1_ADDR, NMIIE = 0x0000, 0x10  # SLAU144: interrupt enable 1, NMI interrupt enable (bit 4)
+
+
+def nmiie_writes(image, fn):
+    """[(address, text)] of the instructions of fn that can set NMIIE (a bis or mov of an
+    immediate with bit 4 to &IE1, or any other write of IE1 from a register)."""
+    f = image.funcs[fn]
+    out = []
+    for a in sorted(f.depth_at):
+        i = image.insns[a]
+        d = dest(i)
+        if d is None or not re.fullmatch(r"&0+|&0x0+", d.strip()):
+            continue
+        if i.mnem.startswith(("bic", "and")):
+            continue
+        v = imm(i.ops[0]) if len(i.ops) == 2 else None
+        if v is not None and not v & NMIIE:
+            continue
+        out.append((a, repr(i)))
+    return out
+
+
+def nmi_rearm(image, root, reach):
+    """How the NMI handler @root re-enables NMIIE (SLAU144: only as the last instruction
+    before RETI, or NMIs nest without bound): (nested bytes, note, errors). Accepted: every
+    write setting NMIIE in the handler's reach is in the root itself, at stack depth 0 (the
+    handler's registers restored), followed by `reti`. A request that came while the handler
+    ran is then taken right there, on top of this NMI's PC and SR: 4 bytes under one more NMI
+    (counted; a third request during the second's handler would nest again: the coordinate
+    requests come a link message apart, far more than two handler run times)."""
+    errors, sites = [], []
+    for fn in sorted(reach):
+        for a, text in nmiie_writes(image, fn):
+            sites.append(text)
+            f = image.funcs[fn]
+            nxt = image._next(a)
+            ok = fn == root and f.depth_at.get(a) == 0 and nxt is not None and \
+                image.insns[nxt].mnem == "reti"
+            if not ok:
+                errors.append(f"{fn}: {text}: sets NMIIE other than as the NMI handler's last "
+                              "instruction before RETI (SLAU144): nested NMIs are not bounded")
+    if not sites:
+        return 0, "NMIIE not set again by the handler: no nesting", errors
+    if errors:
+        return 0, "NMIIE set before the handler's last instruction: nesting not bounded", errors
+    return INTERRUPT_ENTRY, "NMIIE set as the last instruction before RETI: one more NMI on " \
+        "the first one's 4 bytes", errors
+
+
 def report(image, vectors, free_ram, limit, restorers=GIE_RESTORERS, no_mpy_in_isr=False,
            static_ram=None, ram_budget=None):
     """The analysis of an image as a dict; vectors: {vector number: function name}.
@@ -605,6 +658,10 @@ def report(image, vectors, free_ram, limit, restorers=GIE_RESTORERS, no_mpy_in_i
     isrs = [r for r in roots if r["root"] == "isr"]
     maskable = [r for r in isrs if NMI_VECTOR not in r["vectors"]]
     nmi = [r for r in isrs if NMI_VECTOR in r["vectors"]]
+    nmi_nested, nmi_note = 0, None
+    for r in nmi:
+        nmi_nested, nmi_note, errs = nmi_rearm(image, r["function"], bounds.reach(r["function"]))
+        errors += errs
     nesting = any(r["reenables"] for r in isrs)
     worst = None
     if reset and not errors:
@@ -616,6 +673,7 @@ def report(image, vectors, free_ram, limit, restorers=GIE_RESTORERS, no_mpy_in_i
         else:
             worst += max((r["bound"] for r in maskable), default=0)
             worst += max((r["bound"] for r in nmi), default=0)
+            worst += nmi_nested if nmi else 0
     over = []
     if worst is not None and free_ram is not None and worst > free_ram:
         over.append(f"worst case {worst} B exceeds the free RAM {free_ram} B")
@@ -626,6 +684,7 @@ def report(image, vectors, free_ram, limit, restorers=GIE_RESTORERS, no_mpy_in_i
         over.append(f"static RAM {static_ram} B + worst case {worst} B = "
                     f"{static_ram + worst} B exceeds the RAM budget {ram_budget} B")
     return {"roots": roots, "worst": worst, "free_ram": free_ram, "nesting": nesting,
+            "nmi_nested": nmi_nested, "nmi_note": nmi_note,
             "static_ram": static_ram, "ram_budget": ram_budget,
             "address_taken": image.taken, "errors": sorted(set(errors)), "over": over,
             "resets": sorted(n for n in image.taken if image.funcs[n].stack_reset)}
@@ -660,9 +719,13 @@ def print_report(r, out=sys.stdout):
               + ", ".join(r["resets"]), file=out)
     for e in r["errors"]:
         print(f"error: {e}", file=out)
+    if r.get("nmi_note"):
+        print(f"NMI: {r['nmi_note']}", file=out)
     if r["worst"] is not None:
         how = ("reset + every handler" if r["nesting"]
                else "reset + deepest maskable handler + NMI handler")
+        if r.get("nmi_nested"):
+            how += f" + {r['nmi_nested']} (the NMI under a second one)"
         print(f"worst case: {r['worst']} B ({how})", file=out)
     if r["free_ram"] is not None:
         print(f"free RAM: {r['free_ram']} B", file=out)

@@ -4,7 +4,7 @@
 #include <stddef.h>
 
 #include "drive/drive_cmd.h"
-#include "drive_internal.h"
+#include "drive_math.h"
 
 /* 89.6 degrees as a binary angle: the steering byte stays within 1..255 below it. */
 #define STEER_LIMIT 1069547520l /* 127.5 * 2^23 */
@@ -42,7 +42,6 @@ uint8_t drive_dac_speed_byte(int8_t speed)
     return (uint8_t)(128 + speed);
 }
 
-#ifndef DRIVE_ASM /* MSP430: msp430/cmd.S, the same steps */
 drive_status_t drive_speed_counts(fx_q16_t speed_mps, bool reverse, const drive_board_t *board,
                                   int8_t *out)
 {
@@ -109,4 +108,3 @@ drive_status_t drive_cmd_build(const drive_solution_t *sol, const drive_board_t 
     *cmd = c;
     return DRIVE_OK;
 }
-#endif

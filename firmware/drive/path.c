@@ -1,46 +1,69 @@
 /*
- * path.c - path preparation and secondary points (drive_path.h).
+ * path.c - path preparation, secondary points and the cursor (drive_path.h).
  */
 #include <stddef.h>
 
 #include "drive/drive_path.h"
 
-#ifndef DRIVE_ASM /* MSP430: msp430/path.S, the same steps */
 /* The start of leg @p leg: the initial vector or the previous primary point. */
 static const drive_pose_t *leg_start(const drive_path_t *path, uint8_t leg)
 {
     return leg == 0 ? &path->start : &path->pts[leg - 1].pose;
 }
 
-drive_status_t drive_path_leg(drive_path_t *path, uint8_t leg, const drive_solution_t **sol)
+drive_status_t drive_path_leg(drive_path_t *path, uint8_t leg, const drive_leg_t **out)
 {
     if (path == NULL || leg >= path->n)
         return DRIVE_ERR_PARAM;
     if (path->cache_leg != (int16_t)leg) {
         path->cache_leg = -1;
         drive_status_t st =
-            drive_solve(leg_start(path, leg), &path->pts[leg].pose, path->cfg.nominal_radius,
-                        path->cfg.reverse, &path->cache, NULL);
+            drive_leg_solve(leg_start(path, leg), &path->pts[leg].pose, path->cfg.nominal_radius,
+                            path->cfg.reverse, &path->cache);
         if (st != DRIVE_OK)
             return st;
         path->cache_leg = (int16_t)leg;
     }
-    *sol = &path->cache;
+    *out = &path->cache;
     return DRIVE_OK;
 }
 
-/* Secondary point @p sub of the leg from @p from to @p pt (whose solution is cached) into
- * *out: at sub / nsub of the nominal solution, the primary point itself for sub == nsub. */
+/* Secondary points on the double arc @p sol: ceil(length / spacing), at least 1 (lengths and
+ * spacing > 0, their sums < 2^31). */
+static uint32_t points_on(const drive_solution_t *sol, fx_q16_t spacing)
+{
+    uint32_t len = (uint32_t)(sol->seg[0].length + sol->seg[1].length);
+    uint32_t n = (len + (uint32_t)spacing - 1u) / (uint32_t)spacing;
+    return n ? n : 1u;
+}
+
+/* Secondary point @p sub of the leg from @p from to @p pt (whose leg is cached) into *out:
+ * equally spaced along each double arc of the leg, the inserted pose of a split leg at the
+ * end of the first, the primary point itself for sub == nsub. */
 static void secondary(const drive_path_t *path, const drive_pose_t *from,
                       const drive_path_point_t *pt, uint8_t sub, drive_pose_t *out)
 {
-    const drive_segment_t *g = path->cache.seg;
+    const drive_leg_t *leg = &path->cache;
     if (sub >= pt->nsub) {
         *out = pt->pose;
         return;
     }
-    int32_t frac = 0; /* sub / nsub, Q30 */
-    (void)fx_div_shift(sub, pt->nsub, 30, &frac);
+    const drive_solution_t *sol = &leg->sol[0];
+    uint8_t n = pt->nsub;
+    if (leg->parts == 2) {
+        uint8_t n0 = (uint8_t)points_on(sol, path->cfg.spacing);
+        if (sub >= n0) { /* on the second double arc, from the inserted pose */
+            from = &leg->via;
+            sol = &leg->sol[1];
+            sub -= n0;
+            n -= n0;
+        } else {
+            n = n0;
+        }
+    }
+    const drive_segment_t *g = sol->seg;
+    int32_t frac = 0; /* sub / n, Q30 */
+    (void)fx_div_shift(sub, n, 30, &frac);
     fx_q16_t t = fx_mul_q30(g[0].length + g[1].length, frac);
     drive_pose_t p = *from;
     if (t > g->length) { /* past the first segment */
@@ -54,11 +77,11 @@ static void secondary(const drive_path_t *path, const drive_pose_t *from,
 drive_status_t drive_path_target(drive_path_t *path, drive_path_cursor_t cur, drive_pose_t *pose,
                                  fx_q16_t *speed)
 {
-    const drive_solution_t *sol;
+    const drive_leg_t *leg;
     if (path == NULL || !path->ready || cur.leg >= path->n || cur.sub == 0 ||
         cur.sub > path->pts[cur.leg].nsub)
         return DRIVE_ERR_PARAM;
-    drive_status_t st = drive_path_leg(path, cur.leg, &sol);
+    drive_status_t st = drive_path_leg(path, cur.leg, &leg);
     if (st != DRIVE_OK)
         return st;
     const drive_path_point_t *pt = &path->pts[cur.leg];
@@ -127,17 +150,17 @@ drive_status_t drive_path_prepare(drive_path_t *path, const drive_pose_t *start,
         drive_status_t st = drive_speed_counts(pt->speed, cfg->reverse, board, &counts);
         if (st == DRIVE_OK && counts == 0)
             st = DRIVE_ERR_PARAM; /* a speed that rounds to a stop */
-        const drive_solution_t *sol;
+        const drive_leg_t *nominal;
         if (st == DRIVE_OK)
-            st = drive_path_leg(path, leg, &sol);
+            st = drive_path_leg(path, leg, &nominal);
         if (st != DRIVE_OK)
             return reject(path, leg, 0, st);
-        /* nsub = ceil(length / spacing), at least 1 (lengths and spacing > 0, sums < 2^31) */
-        uint32_t len = (uint32_t)(sol->seg[0].length + sol->seg[1].length);
-        uint32_t nsub = (len + (uint32_t)cfg->spacing - 1u) / (uint32_t)cfg->spacing;
+        uint32_t nsub = points_on(&nominal->sol[0], cfg->spacing);
+        if (nominal->parts == 2)
+            nsub += points_on(&nominal->sol[1], cfg->spacing);
         if (nsub > 255u)
             return reject(path, leg, 0, DRIVE_ERR_PATH);
-        pt->nsub = (uint8_t)(nsub ? nsub : 1u);
+        pt->nsub = (uint8_t)nsub;
         /* Every piece between secondary points, as the vehicle will drive it. */
         drive_pose_t a = *from, b;
         for (uint8_t sub = 1; sub <= pt->nsub; sub++) {
@@ -156,4 +179,3 @@ drive_status_t drive_path_prepare(drive_path_t *path, const drive_pose_t *start,
     path->bad_why = DRIVE_OK;
     return DRIVE_OK;
 }
-#endif

@@ -1,82 +1,43 @@
 /*
- * seq.c - the travel state table (drive_seq.h) and the delta-S pulse counter.
+ * seq.c - the travel state table (drive_seq.h).
  */
 #include <stddef.h>
 
 #include "drive/drive_seq.h"
-#include "hal/edge.h"
-#include "hal/irq.h"
+#include "drive_math.h"
 
-#include "drive_internal.h"
-#include "seq_table.h"
+/* Guards: conditions a row needs besides its state and event (bit numbers of a mask). */
+#define G_ANY          0
+#define G_FULL         1  /* START: full travel, path ready                         */
+#define G_SIMPLIFIED   2  /* START: simplified travel, path ready                   */
+#define G_NOT_READY    3  /* START: the path is not ready                           */
+#define G_ARRIVED      4  /* pose/fix: the last point is reached, nothing to drive  */
+#define G_SOLVED_LAST  5  /* pose/fix: a double arc to the last point is ready      */
+#define G_SOLVED       6  /* pose/fix: a double arc to a point before it is ready   */
+#define G_FAILED       7  /* pose/fix: no double arc (or command) to the target     */
+#define G_PULSE_MORE   8  /* delta-S: more pulses of the loaded double arc to come  */
+#define G_PULSE_FINAL  9  /* delta-S: the last pulse of the loaded double arc       */
+#define G_FINAL_LAST   10 /* delta-S: ... and it was driving to the last point      */
+#define G_FINAL_PLAST  11 /* delta-S: final pulse; the pending double arc is last   */
+#define G_PENDING_LAST 12 /* timer: the pending double arc goes to the last point   */
+#define G_FIX_RETRY    13 /* fix failed: still within the tolerated failures        */
+#define G_FIX_GIVE_UP  14 /* fix failed: too many in a row                          */
 
-#ifdef DRIVE_ASM /* msp430/seq.S works with these numbers */
-#include "msp430/layout.h"
-#include "solve_frame.h"
-_Static_assert(offsetof(drive_pose_t, heading) == POSE_HEADING &&
-                   offsetof(drive_board_t, min_radius) == BOARD_MIN_R &&
-                   offsetof(drive_path_t, pts) == PATH_PTS && offsetof(drive_path_t, n) == PATH_N &&
-                   offsetof(drive_path_t, start) == PATH_START &&
-                   offsetof(drive_path_t, cfg.nominal_radius) == PATH_NOMINAL &&
-                   offsetof(drive_path_t, cfg.reverse) == PATH_REVERSE &&
-                   offsetof(drive_path_t, board) == PATH_BOARD &&
-                   offsetof(drive_path_t, ready) == PATH_READY &&
-                   offsetof(drive_path_t, bad_leg) == PATH_BAD_LEG &&
-                   offsetof(drive_path_t, bad_sub) == PATH_BAD_SUB &&
-                   offsetof(drive_path_t, bad_why) == PATH_BAD_WHY &&
-                   offsetof(drive_path_t, cache_leg) == PATH_CACHE_LEG &&
-                   offsetof(drive_path_t, cache) == PATH_CACHE &&
-                   offsetof(drive_path_t, cache.seg[0].length) == PATH_CACHE + 6 &&
-                   sizeof(drive_path_point_t) == 18 && offsetof(drive_path_point_t, speed) == 12 &&
-                   offsetof(drive_path_point_t, nsub) == 16 && sizeof(drive_path_config_t) == 10 &&
-                   offsetof(drive_path_config_t, spacing) == 4 &&
-                   offsetof(drive_path_config_t, reverse) == 8 &&
-                   offsetof(drive_cmd_t, pulses) == CMD_PULSES && sizeof(drive_cmd_t) == CMD_SIZE,
-               "layout.h: poses, paths, commands");
-_Static_assert(offsetof(drive_seq_t, cfg.mode) == SEQ_MODE &&
-                   offsetof(drive_seq_t, cfg.load_ms) == SEQ_LOAD_MS &&
-                   offsetof(drive_seq_t, cfg.settle_ms) == SEQ_SETTLE_MS &&
-                   offsetof(drive_seq_t, cfg.stop_speed) == SEQ_STOP_SPD &&
-                   offsetof(drive_seq_t, cfg.advance) == SEQ_ADVANCE &&
-                   offsetof(drive_seq_t, cfg.max_fix_failures) == SEQ_MAX_FIX &&
-                   offsetof(drive_seq_t, path) == SEQ_PATH &&
-                   offsetof(drive_seq_t, state) == SEQ_STATE &&
-                   offsetof(drive_seq_t, target) == SEQ_TARGET &&
-                   offsetof(drive_seq_t, loaded) == SEQ_LOADED &&
-                   offsetof(drive_seq_t, pending) == SEQ_PENDING &&
-                   offsetof(drive_seq_t, pending_last) == SEQ_PEND_LAST &&
-                   offsetof(drive_seq_t, loaded_last) == SEQ_LOAD_LAST &&
-                   offsetof(drive_seq_t, pulses_seen) == SEQ_SEEN &&
-                   offsetof(drive_seq_t, fix_failures) == SEQ_FIXFAIL &&
-                   offsetof(drive_seq_t, solve_status) == SEQ_STATUS &&
-                   offsetof(drive_seq_t, ignored) == SEQ_IGNORED &&
-                   offsetof(drive_seq_t, underruns) == SEQ_UNDERRUNS &&
-                   offsetof(drive_seq_t, loads) == SEQ_LOADS,
-               "layout.h: drive_seq_t");
-_Static_assert(offsetof(drive_seq_out_t, actions) == OUT_ACTIONS &&
-                   offsetof(drive_seq_out_t, cmd) == OUT_CMD &&
-                   offsetof(drive_seq_out_t, speed) == OUT_SPEED &&
-                   offsetof(drive_seq_out_t, timer_ms) == OUT_TIMER &&
-                   offsetof(drive_seq_out_t, pose_ms) == OUT_POSE_MS &&
-                   offsetof(drive_seq_out_t, fault) == OUT_FAULT &&
-                   offsetof(drive_seq_out_t, status) == OUT_STATUS &&
-                   sizeof(drive_seq_out_t) == OUT_SIZE &&
-                   offsetof(drive_seq_event_t, pose) == EV_POSE &&
-                   sizeof(drive_seq_row_t) == ROW_SIZE,
-               "layout.h: events, outputs, rows");
-_Static_assert(ST_F_START == DRIVE_ST_F_START && ST_F_PREDICT == DRIVE_ST_F_PREDICT &&
-                   ST_S_FIX == DRIVE_ST_S_FIX && ST_ANY == DRIVE_ST_ANY &&
-                   EVT_FIX_READY == DRIVE_EVT_FIX_READY && EVT_FIX_FAILED == DRIVE_EVT_FIX_FAILED &&
-                   EVT_POSE == DRIVE_EVT_POSE && EVT_DELTA_S == DRIVE_EVT_DELTA_S &&
-                   MODE_FULL == DRIVE_MODE_FULL && FAULT_NOT_READY == DRIVE_FAULT_NOT_READY &&
-                   FAULT_SOLVE == DRIVE_FAULT_SOLVE && FAULT_FIXES == DRIVE_FAULT_FIXES,
-               "layout.h: states, events, faults");
-_Static_assert(ACT_REQUEST_POSE == DRIVE_ACT_REQUEST_POSE && ACT_LOAD == DRIVE_ACT_LOAD &&
-                   ACT_SET_SPEED == DRIVE_ACT_SET_SPEED && ACT_TIMER == DRIVE_ACT_TIMER &&
-                   ACT_FAULT == DRIVE_ACT_FAULT && DRIVE_ERR_TOO_CLOSE_N == DRIVE_ERR_TOO_CLOSE &&
-                   DRIVE_ERR_BEHIND_N == DRIVE_ERR_BEHIND && DRIVE_ERR_PATH_N == DRIVE_ERR_PATH,
-               "layout.h: actions");
-#endif
+/* Internal actions, translated by the step (above the public DRIVE_ACT_* bits). */
+#define X_TIMER_SETTLE 0x1000 /* DRIVE_ACT_TIMER with settle_ms   */
+#define X_TIMER_LOAD   0x2000 /* DRIVE_ACT_TIMER with load_ms     */
+#define X_POSE_PREDICT 0x4000 /* DRIVE_ACT_REQUEST_POSE at load_ms */
+#define X_NEXT_TARGET  0x8000 /* advance to the next path point    */
+#define X_UNDERRUN     0x0800 /* count a double arc that ran out   */
+#define PUBLIC_ACTIONS 0x07FF
+
+#define SAME 0xFE /* next state: unchanged */
+
+/* Outcome of picking a target and solving toward it. */
+#define PICK_NONE    0
+#define PICK_ARRIVED 1
+#define PICK_SOLVED  2
+#define PICK_FAILED  3
 
 #define ROW(st, ev, g, nx, act)                                                                    \
     {                                                                                              \
@@ -84,7 +45,7 @@ _Static_assert(ACT_REQUEST_POSE == DRIVE_ACT_REQUEST_POSE && ACT_LOAD == DRIVE_A
     }
 
 /* clang-format off */
-const drive_seq_row_t drive_seq_rows[DRIVE_SEQ_ROWS] = {
+static const drive_seq_row_t drive_seq_rows[] = {
     /* start */
     ROW(DRIVE_ST_IDLE,         DRIVE_EVT_START,      G_NOT_READY,    DRIVE_ST_FAULT,        DRIVE_ACT_FAULT),
     ROW(DRIVE_ST_IDLE,         DRIVE_EVT_START,      G_FULL,         DRIVE_ST_F_START,      DRIVE_ACT_REQUEST_POSE | DRIVE_ACT_INDEX_ON),
@@ -138,10 +99,11 @@ const drive_seq_row_t drive_seq_rows[DRIVE_SEQ_ROWS] = {
     ROW(DRIVE_ST_ANY,          DRIVE_EVT_STOP,       G_ANY,          DRIVE_ST_DONE,         DRIVE_ACT_STOP | DRIVE_ACT_DONE),
 };
 /* clang-format on */
+#define DRIVE_SEQ_ROWS (sizeof drive_seq_rows / sizeof drive_seq_rows[0])
 
 const drive_seq_row_t *drive_seq_table(uint16_t *n)
 {
-    *n = (uint16_t)(DRIVE_SEQ_ROWS);
+    *n = (uint16_t)DRIVE_SEQ_ROWS;
     return drive_seq_rows;
 }
 
@@ -174,24 +136,47 @@ void drive_seq_init(drive_seq_t *seq, drive_path_t *path, const drive_seq_config
     seq->target = drive_path_first(path);
 }
 
-#ifndef DRIVE_ASM /* MSP430: msp430/seq.S, the same steps */
 /* Distance from @p pose to @p target along the target's direction of travel, Q16 m. */
 static int32_t along(const drive_pose_t *pose, const drive_pose_t *target, bool reverse)
 {
-    int32_t d[2] = {target->x - pose->x, target->y - pose->y}, r[2];
-    drive_rot(r, d, target->heading + (reverse ? FX_ANGLE_HALF : 0u));
-    return r[0];
+    int32_t u, v;
+    drive_to_frame(target->x - pose->x, target->y - pose->y,
+                   target->heading + (reverse ? FX_ANGLE_HALF : 0u), &u, &v);
+    return u;
+}
+
+/* Solve from @p pose toward the secondary point @p cur and build its command into
+ * seq->pending (the status in seq->solve_status too); *reached: nothing left to drive there
+ * (too close, behind, or arcs too short for a pulse). */
+static drive_status_t solve_toward(drive_seq_t *seq, const drive_pose_t *pose,
+                                   drive_path_cursor_t cur, bool *reached)
+{
+    drive_path_t *path = seq->path;
+    drive_pose_t tp;
+    fx_q16_t speed;
+    drive_solution_t sol;
+    drive_status_t st = drive_path_target(path, cur, &tp, &speed);
+    if (st == DRIVE_OK)
+        st = drive_solve(pose, &tp, path->board->min_radius, path->cfg.reverse, &sol, NULL);
+    if (st == DRIVE_OK)
+        st = drive_cmd_build(&sol, path->board, speed, path->cfg.reverse, &seq->pending);
+    seq->solve_status = st;
+    *reached = st == DRIVE_ERR_TOO_CLOSE || st == DRIVE_ERR_BEHIND ||
+               (st == DRIVE_OK && seq->pending.pulses == 0);
+    return st;
 }
 
 /*
  * From @p pose: skip targets nearer than cfg.advance along their direction (full travel),
  * solve toward the target, and on failure (or nothing left to drive) move on to the next
- * point; the last point reached with nothing to drive means arrived.
+ * point; the last point reached with nothing to drive means arrived. When the target after a
+ * skipped one cannot be driven to in one double arc (in a tight turn its front-wheel length
+ * can exceed the drive board's byte), the skipped one is driven to instead.
  */
 static uint8_t pick(drive_seq_t *seq, const drive_pose_t *pose)
 {
     drive_path_t *path = seq->path;
-    bool rev = path->cfg.reverse;
+    drive_path_cursor_t skipped = {0, 0}; /* sub 0: none */
     for (uint8_t tries = 0; tries < 4u; tries++) {
         drive_pose_t tp;
         fx_q16_t speed;
@@ -200,21 +185,24 @@ static uint8_t pick(drive_seq_t *seq, const drive_pose_t *pose)
             seq->solve_status = st;
             return PICK_FAILED;
         }
-        bool last = drive_path_is_last(path, seq->target);
-        if (last || seq->cfg.mode != DRIVE_MODE_FULL || along(pose, &tp, rev) >= seq->cfg.advance) {
-            drive_solution_t sol;
-            st = drive_solve(pose, &tp, path->board->min_radius, rev, &sol, NULL);
-            if (st == DRIVE_OK)
-                st = drive_cmd_build(&sol, path->board, speed, rev, &seq->pending);
-            seq->solve_status = st;
-            bool reached = st == DRIVE_ERR_TOO_CLOSE || st == DRIVE_ERR_BEHIND ||
-                           (st == DRIVE_OK && seq->pending.pulses == 0);
-            if (st == DRIVE_OK && !reached) {
-                seq->pending_last = last;
+        bool last = drive_path_is_last(path, seq->target), reached;
+        if (!last && seq->cfg.mode == DRIVE_MODE_FULL &&
+            along(pose, &tp, path->cfg.reverse) < seq->cfg.advance) {
+            skipped = seq->target;
+        } else if (solve_toward(seq, pose, seq->target, &reached) == DRIVE_OK && !reached) {
+            seq->pending_last = last;
+            return PICK_SOLVED;
+        } else if (!reached && skipped.sub != 0) {
+            drive_status_t why = seq->solve_status;
+            seq->target = skipped;
+            if (solve_toward(seq, pose, skipped, &reached) == DRIVE_OK && !reached) {
+                seq->pending_last = false;
                 return PICK_SOLVED;
             }
-            if (last)
-                return reached ? PICK_ARRIVED : PICK_FAILED;
+            seq->solve_status = why;
+            return PICK_FAILED;
+        } else if (last) {
+            return reached ? PICK_ARRIVED : PICK_FAILED;
         }
         seq->target = drive_path_next(path, seq->target);
     }
@@ -309,29 +297,4 @@ void drive_seq_step(drive_seq_t *seq, const drive_seq_event_t *ev, drive_seq_out
     out->actions = (uint16_t)(act & PUBLIC_ACTIONS);
     if (row->next != SAME)
         seq->state = (drive_state_t)row->next;
-}
-#endif
-
-/* ------------------------------------------------------------------ delta-S pulse (D1) */
-
-void drive_ds_handler(void *arg)
-{
-    drive_ds_t *ds = arg;
-    if (ds->count < UINT16_MAX)
-        ds->count++;
-}
-
-int drive_ds_init(drive_ds_t *ds)
-{
-    ds->count = 0;
-    return hal_edge_init(HAL_EDGE_DELTA_S, HAL_EDGE_RISING, drive_ds_handler, ds);
-}
-
-uint16_t drive_ds_take(drive_ds_t *ds)
-{
-    hal_critical_enter();
-    uint16_t n = ds->count;
-    ds->count = 0;
-    hal_critical_exit();
-    return n;
 }

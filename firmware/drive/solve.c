@@ -1,9 +1,9 @@
 /*
- * solve.c - the double-arc solver (drive.h; derivations in docs/drive.md).
+ * solve.c - the double-arc solver (drive.h; derivations in docs/drive.md, section 2).
  *
  * The problem is solved in the frame of the mean heading u = A rotated by eta = (B - A) / 2,
  * where the target E = (p, q) (p along u, q to the left of u). In that frame every case has
- * a closed form (docs/drive.md):
+ * a closed form:
  *  - arc + straight (cases 4, 5): straight length l = |q| / sin eta, arc chord along u of
  *    length Lc = p - l cos eta, radius Lc / (2 sin eta), sweep 2 eta;
  *  - double arc of equal radii (cases 1, 2, 3): curvature k = 2 X / |E|^2 with
@@ -15,32 +15,42 @@
  * curvatures come out in Q4.28 /m. The scale is carried as sh = 8 - k: L24 = Q16 * 2^sh.
  * A mirror image (heading change to the right) is solved as its reflection (q -> -q) and the
  * turns are mirrored back; reverse travel negates A and B and mirrors the turns.
- *
- * The formulas are programs of drive_internal.h's interpreter on the frame of solve_frame.h
- * (flash: 4 bytes per fx call instead of about 28); the decisions between them are C here and
- * MSP430 assembly on the target (msp430/solve.S, step for step the same; the vector program
- * proves the two bit-identical).
  */
 #include <stddef.h>
 
 #include "drive/drive.h"
-#include "drive_internal.h"
-#include "solve_frame.h"
+#include "drive_math.h"
 
-_Static_assert(DRIVE_MIN_RADIUS_MIN_Q16 == DRIVE_MIN_RADIUS_MIN &&
-                   DRIVE_MIN_RADIUS_MAX_Q16 == DRIVE_MIN_RADIUS_MAX &&
-                   DRIVE_MAX_DIST_Q16 == DRIVE_MAX_DIST,
-               "solve_frame.h: the limits differ from drive.h's");
-_Static_assert(DRIVE_ERR_PARAM_N == DRIVE_ERR_PARAM &&
-                   DRIVE_ERR_TOO_CLOSE_N == DRIVE_ERR_TOO_CLOSE &&
-                   DRIVE_ERR_TOO_FAR_N == DRIVE_ERR_TOO_FAR &&
-                   DRIVE_ERR_BEHIND_N == DRIVE_ERR_BEHIND &&
-                   DRIVE_ERR_HEADING_N == DRIVE_ERR_HEADING &&
-                   DRIVE_ERR_RADIUS_N == DRIVE_ERR_RADIUS && DRIVE_ERR_SWEEP_N == DRIVE_ERR_SWEEP &&
-                   DRIVE_ERR_RANGE_N == DRIVE_ERR_RANGE,
-               "solve_frame.h: the status codes differ from drive.h's");
-_Static_assert(SV_KC + 1 == SV_ARCQ && SV_ARCQ + 1 == SV_DL && SV_K0 + 3 == SV_K1,
-               "solve_frame.h: a segment's slots must follow each other");
+/* Straight case (the seed's THRESH test): a heading change below 2^12 binary-angle LSB
+ * (6e-6 rad, 3.4e-4 degrees) and a lateral offset of at most one Q16 LSB (15 um): the two
+ * straight halves then land within 0.4 mm at 64 m. */
+#define STRAIGHT_ANGLE 4096
+/* Half-sweeps (binary angles) that choose how the arc lengths are computed (double arc). */
+#define TAU_TINY       20506958  /* 0.03 rad */
+#define TAU_SMALL      136713055 /* 0.2 rad */
+
+#define PI_4_Q30 843314857l /* pi / 4, Q30 */
+#define TINY_Q30 431210l    /* pi^2 / 24576, Q30: the arc factor of binary angles scaled by 32 */
+
+/* Series coefficients (drive_series()): x / sin x and 1 / cos x for |x| <= 0.2 rad. */
+static const int32_t x_over_sin[3] = {178956971l, 20878313l, 2201455l}; /* 1/6, 7/360, 31/15120 */
+static const int32_t secant[3] = {536870912l, 223696213l, 90969793l};   /* 1/2, 5/24, 61/720 */
+
+/* The canonical problem: heading change 2 eta >= 0 to the left, lengths in L24. */
+typedef struct {
+    uint8_t sh;             /* the scale: L24 = Q16 * 2^sh                           */
+    int32_t p, q;           /* the target E in the frame of the mean heading u        */
+    int32_t eta;            /* half the heading change, binary angle, 0..quarter / 2  */
+    int32_t dl;             /* the heading change B - A, binary angle                 */
+    fx_q30_t s, c;          /* sin eta, cos eta                                       */
+    int32_t aq;             /* |q|                                                    */
+    int32_t pc, qs;         /* p cos eta, q sin eta                                   */
+    int32_t pp;             /* P = A . D = p cos eta - q sin eta                      */
+    int32_t e2;             /* |E|^2, Q24 of (2^k m)^2                                */
+    int32_t sp, cq;         /* p sin eta, |q| cos eta                                 */
+    int32_t a5;             /* p sin eta - |q| cos eta (T = A x D when q < 0)         */
+    drive_segment_t seg[2]; /* the answer, turning to the left                        */
+} canon_t;
 
 const char *drive_status_text(drive_status_t st)
 {
@@ -65,100 +75,12 @@ const char *drive_status_text(drive_status_t st)
         return "value out of the drive board's 8-bit range";
     case DRIVE_ERR_PATH:
         return "path not acceptable";
+    case DRIVE_ERR_TURN:
+        return "turn over 90 degrees: no corner of the nominal radius fits between the poses "
+               "(the target must lie inside the turn; a U-turn needs two radii across)";
     }
     return "unknown status";
 }
-
-/* clang-format off */
-/* The programs (drive_internal.h) on the frame of solve_frame.h; also run by msp430/solve.S. */
-
-/* The canonical problem's parameters (P, Q and ETA set). */
-const uint8_t drive_p_canon[] = {
-    DRIVE_SINCOS(SV_S, SV_ETA),
-    DRIVE_ABS(SV_AQ, SV_Q),
-    DRIVE_MUL(SV_PC, SV_P, SV_C),     DRIVE_MUL(SV_QS, SV_Q, SV_S),   DRIVE_SUB(SV_PP, SV_PC, SV_QS),
-    DRIVE_SHL(SV_T0, SV_P, 3),        DRIVE_SHL(SV_T1, SV_Q, 3),      /* |E|^2 */
-    DRIVE_MUL(SV_T0, SV_T0, SV_T0),   DRIVE_MUL(SV_T1, SV_T1, SV_T1), DRIVE_ADD(SV_E2, SV_T0, SV_T1),
-    DRIVE_MUL(SV_SP, SV_P, SV_S),     DRIVE_MUL(SV_CQ, SV_AQ, SV_C),  DRIVE_SUB(SV_A5, SV_SP, SV_CQ),
-    DRIVE_END};
-
-/* Cases 4, 5, eta < 0.2 rad (L = |q| / sin eta set): the arc from its chord, x / sin x as a
- * series. */
-const uint8_t drive_p_line_small[] = {
-    DRIVE_MULK(SV_E30, SV_ETA, DRIVE_K_PI_2),
-    DRIVE_MUL(SV_T0, SV_L, SV_C),     DRIVE_SUB(SV_LC, SV_P, SV_T0),
-    DRIVE_POLY(SV_T1, SV_E30, DRIVE_K_XOS), DRIVE_MUL(SV_ARC, SV_LC, SV_T1),
-    DRIVE_END};
-
-/* Cases 4, 5, eta >= 0.2 rad (INVS set): l = 4 |q| inv_s, arc = 2 eta r. */
-const uint8_t drive_p_line_big[] = {
-    DRIVE_MULK(SV_E30, SV_ETA, DRIVE_K_PI_2),
-    DRIVE_SHL(SV_T0, SV_AQ, 2),       DRIVE_MUL(SV_L, SV_T0, SV_INVS),
-    DRIVE_MUL(SV_T0, SV_L, SV_C),     DRIVE_SUB(SV_LC, SV_P, SV_T0),
-    DRIVE_SHL(SV_T0, SV_LC, 1),       DRIVE_MUL(SV_T0, SV_T0, SV_INVS),
-    DRIVE_SHL(SV_T1, SV_E30, 1),      DRIVE_MUL(SV_ARC, SV_T0, SV_T1),
-    DRIVE_END};
-
-/* Double arc: W = hypot(|q|, p sin eta) as a projection on its own direction (cheaper than
- * the 64-bit square root; exact but for the rounding of the two products), X. */
-const uint8_t drive_p_x[] = {
-    DRIVE_ATAN2(SV_Z, SV_SP, SV_AQ),  DRIVE_ROT(SV_W, SV_AQ, SV_Z),   DRIVE_ADD(SV_X, SV_W, SV_CQ),
-    DRIVE_END};
-
-/* Double arc: junction and half-sweeps (RS = sigma rho set). */
-const uint8_t drive_p_junction[] = {
-    DRIVE_SHL(SV_T0, SV_RS, 1),       DRIVE_ADD(SV_JX2, SV_P, SV_T0), DRIVE_SUB(SV_KX2, SV_P, SV_T0),
-    DRIVE_ATAN2(SV_G, SV_Q, SV_JX2),  DRIVE_ADD(SV_TAU0, SV_G, SV_ETA), DRIVE_NEG(SV_TAU1, SV_G),
-    DRIVE_END};
-
-/* Double arc: the segments (KC with the first turn's sign set), the lengths still L24. */
-const uint8_t drive_p_da_tail[] = {
-    DRIVE_SHL(SV_K0, SV_KC, 0),       DRIVE_NEG(SV_K1, SV_KC),
-    DRIVE_SHL(SV_W0, SV_TAU0, 1),     DRIVE_SUB(SV_W1, SV_DL, SV_W0),
-    DRIVE_END};
-
-/* Straight case: the two halves of P, L24. */
-const uint8_t drive_p_halves[] = {
-    DRIVE_HALF(SV_T0, SV_PP),         DRIVE_SUB(SV_T1, SV_PP, SV_T0),
-    DRIVE_END};
-
-/* Arc lengths, |tau| < 0.03 rad: chord * sec(chord angle) * tau / sin(tau) with the factor
- * from the squares of the binary angles scaled by 32 (a' = (32 tau)^2 / 2^30, tau^2 =
- * a' pi^2 / 4096 in Q30): 1 + g^2/2 + tau^2/6 = 1 + (a' + 3 b') pi^2 / 24576; the fourth-order
- * terms stay below 3e-7. Arc 1 runs from O to J (chord angle -tau1, half-sweep tau0), arc 2
- * from J to E (chord angle tau0, half-sweep tau1). chord * (1 + f) is computed as
- * chord + chord * f: the same rounding, as f >= 0. */
-const uint8_t drive_p_len_tiny[] = {
-    DRIVE_SHL(SV_T0, SV_TAU0, 5),     DRIVE_MUL(SV_A0, SV_T0, SV_T0),
-    DRIVE_SHL(SV_T0, SV_TAU1, 5),     DRIVE_MUL(SV_A1, SV_T0, SV_T0),
-    DRIVE_ADD(SV_T0, SV_A1, SV_A1),   DRIVE_ADD(SV_T0, SV_T0, SV_A1), DRIVE_ADD(SV_T0, SV_T0, SV_A0),
-    DRIVE_MULK(SV_T0, SV_T0, DRIVE_K_TINY),
-    DRIVE_HALF(SV_T2, SV_JX2),        DRIVE_MUL(SV_LEN0, SV_T2, SV_T0), DRIVE_ADD(SV_LEN0, SV_LEN0, SV_T2),
-    DRIVE_ADD(SV_T0, SV_A0, SV_A0),   DRIVE_ADD(SV_T0, SV_T0, SV_A0), DRIVE_ADD(SV_T0, SV_T0, SV_A1),
-    DRIVE_MULK(SV_T0, SV_T0, DRIVE_K_TINY),
-    DRIVE_HALF(SV_T2, SV_KX2),        DRIVE_MUL(SV_LEN1, SV_T2, SV_T0), DRIVE_ADD(SV_LEN1, SV_LEN1, SV_T2),
-    DRIVE_END};
-
-/* Arc lengths, long legs with a large radius and |tau| < 0.2 rad: the same with the sixth-
- * order series of sec and x / sin x. */
-const uint8_t drive_p_len_small[] = {
-    DRIVE_MULK(SV_T0, SV_TAU0, DRIVE_K_PI_2), DRIVE_MULK(SV_T1, SV_TAU1, DRIVE_K_PI_2),
-    DRIVE_HALF(SV_T2, SV_JX2),        DRIVE_POLY(SV_T3, SV_T1, DRIVE_K_SEC), DRIVE_MUL(SV_T2, SV_T2, SV_T3),
-    DRIVE_POLY(SV_T3, SV_T0, DRIVE_K_XOS),    DRIVE_MUL(SV_LEN0, SV_T2, SV_T3),
-    DRIVE_HALF(SV_T2, SV_KX2),        DRIVE_POLY(SV_T3, SV_T0, DRIVE_K_SEC), DRIVE_MUL(SV_T2, SV_T2, SV_T3),
-    DRIVE_POLY(SV_T3, SV_T1, DRIVE_K_XOS),    DRIVE_MUL(SV_LEN1, SV_T2, SV_T3),
-    DRIVE_END};
-
-/* Arc lengths from the radius (r <= |E| / (2 sin 0.03) < 95 * 2^k m here): 2 |tau| r =
- * |tau (binary)| pi r / 2^30; rp = pi r / 4 (L24), s = fx_mul_q30(rp, |tau|) * 4. */
-const uint8_t drive_p_len_radius[] = {
-    DRIVE_SHL(SV_T0, SV_R20, 4),      DRIVE_MULK(SV_T0, SV_T0, DRIVE_K_PI_4),
-    DRIVE_ABS(SV_T1, SV_TAU0),        DRIVE_MUL(SV_T1, SV_T0, SV_T1), DRIVE_SHL(SV_LEN0, SV_T1, 2),
-    DRIVE_ABS(SV_T1, SV_TAU1),        DRIVE_MUL(SV_T1, SV_T0, SV_T1), DRIVE_SHL(SV_LEN1, SV_T1, 2),
-    DRIVE_END};
-/* clang-format on */
-
-#ifndef DRIVE_ASM /* MSP430: msp430/solve.S, the same steps */
 
 /* L24 -> Q16: round(x / 2^sh) for x >= 0. */
 static int32_t unscale(int32_t x, uint8_t sh)
@@ -166,89 +88,150 @@ static int32_t unscale(int32_t x, uint8_t sh)
     return (x + ((int32_t)1 << (sh - 1))) >> sh;
 }
 
+/* The canonical problem's parameters from p, q, eta. */
+static void parameters(canon_t *k)
+{
+    fx_sincos((fx_angle_t)k->eta, &k->s, &k->c);
+    k->aq = (int32_t)drive_abs32(k->q);
+    k->pc = fx_mul_q30(k->p, k->c);
+    k->qs = fx_mul_q30(k->q, k->s);
+    k->pp = k->pc - k->qs;
+    /* |E|^2: (8p)^2 / 2^30 = p^2 / 2^24 (|8p| < 2^30, as |p| < 6 * 2^24) */
+    k->e2 = fx_mul_q30(k->p * 8, k->p * 8) + fx_mul_q30(k->q * 8, k->q * 8);
+    k->sp = fx_mul_q30(k->p, k->s);
+    k->cq = fx_mul_q30(k->aq, k->c);
+    k->a5 = k->sp - k->cq;
+}
+
 /* Cases 4 and 5: an arc and a straight, when the arc's radius (as driven) is >= rmin.
  * Straight l = |q| / sin(eta); the arc's chord Lc = p - l cos(eta) lies along u. The straight
  * next to the arc can be long: the arc's heading change is made exact in the units it is
  * driven in (length rounded up to Q16, curvature = sweep / length, never above the true one,
- * and that curvature checked against the minimum radius). Sets the canonical result. */
-static bool line(int32_t *v, uint8_t sh, fx_q16_t rmin)
+ * and that curvature checked against the minimum radius). Sets k->seg. */
+static bool arc_and_straight(canon_t *k, fx_q16_t rmin)
 {
-    if (v[SV_ETA] < TAU_SMALL) {
-        if (!fx_div_shift(v[SV_AQ], v[SV_S], 30, &v[SV_L]))
+    int32_t eta30 = fx_mul_q30(k->eta, DRIVE_PI_2_Q30); /* eta, radians Q30 */
+    int32_t l, lc, arc;
+    if (k->eta < TAU_SMALL) {
+        /* l = |q| / sin eta; arc = Lc (eta / sin eta) as a series */
+        if (!fx_div_shift(k->aq, k->s, 30, &l))
             return false;
-        drive_vm_run(v, drive_p_line_small);
+        lc = k->p - fx_mul_q30(l, k->c);
+        arc = fx_mul_q30(lc, drive_series(eta30, x_over_sin));
     } else {
-        (void)fx_div_shift(FX_Q30_ONE, v[SV_S], 28, &v[SV_INVS]); /* <= 5.1 */
-        drive_vm_run(v, drive_p_line_big);
+        /* 1 / sin eta (Q4.28, <= 5.1); l = |q| / sin eta; arc = 2 eta r = 2 eta Lc / (2 sin eta) */
+        int32_t inv_s;
+        (void)fx_div_shift(FX_Q30_ONE, k->s, 28, &inv_s);
+        l = fx_mul_q30(k->aq * 4, inv_s);
+        lc = k->p - fx_mul_q30(l, k->c);
+        arc = fx_mul_q30(fx_mul_q30(lc * 2, inv_s), eta30 * 2);
     }
-    if (v[SV_LC] <= 0 || v[SV_ARC] <= 0)
+    if (lc <= 0 || arc <= 0)
         return false;
-    v[SV_ARCQ] = (v[SV_ARC] + ((int32_t)1 << sh) - 1) >> sh; /* Q16, rounded up */
-    if (!fx_div_shift(v[SV_E30], v[SV_ARCQ], 15, &v[SV_KC]) ||
-        fx_mul_q16(v[SV_KC], rmin) > DRIVE_CURV_ONE)
+    drive_segment_t a;
+    a.length = (arc + ((int32_t)1 << k->sh) - 1) >> k->sh; /* Q16, rounded up */
+    a.sweep = (fx_angle_t)k->dl;
+    if (!fx_div_shift(eta30, a.length, 15, &a.curvature) ||
+        fx_mul_q16(a.curvature, rmin) > DRIVE_CURV_ONE)
         return false;
-    /* The arc (KC, ARCQ, DL) first (case 4) or second (case 5), the straight the other. */
-    int32_t *arc = &v[v[SV_Q] >= 0 ? SV_K0 : SV_K1], *str = &v[v[SV_Q] >= 0 ? SV_K1 : SV_K0];
-    for (uint8_t i = 0; i < 3u; i++)
-        arc[i] = v[SV_KC + i];
-    str[0] = str[2] = 0;
-    str[1] = unscale(v[SV_L], sh);
+    /* The arc first (case 4, q >= 0) or second (case 5), the straight the other. */
+    drive_segment_t str = {0, unscale(l, k->sh), 0};
+    k->seg[0] = k->q >= 0 ? a : str;
+    k->seg[1] = k->q >= 0 ? str : a;
     return true;
+}
+
+/* The two arc lengths of a double arc (L24) from the half-sweeps tau0 (O to J) and tau1 (J
+ * to E), the doubled junction's x (jx2 = p + 2 sigma rho, kx2 = p - 2 sigma rho) and the
+ * radius r20 (L20). From the radius, s = 2 |tau| r, unless the radius is large: an error d in
+ * tau (fx_atan2: 1.3e-6 rad) costs 2 r d, so below |tau| = 0.03 rad (r > 16 |E|: at most
+ * 190 m for legs up to 8 m) and, for longer legs (k >= 2), for radii over 256 m below
+ * 0.2 rad, they come from the chords: chord * sec(chord angle) * tau / sin(tau). Arc 1 runs
+ * from O to J (chord angle -tau1, half-sweep tau0), arc 2 from J to E (chord angle tau0,
+ * half-sweep tau1). */
+static void arc_lengths(const canon_t *k, int32_t tau0, int32_t tau1, int32_t jx2, int32_t kx2,
+                        int32_t r20, int32_t len[2])
+{
+    uint32_t t0 = drive_abs32(tau0), t1 = drive_abs32(tau1), big = t0 > t1 ? t0 : t1;
+    if (big < (uint32_t)TAU_TINY) {
+        /* With a' = (32 tau)^2 / 2^30 (tau^2 = a' pi^2 / 4096 in Q30) the factor is
+         * 1 + g^2/2 + tau^2/6 = 1 + (a' + 3 b') pi^2 / 24576, fourth-order terms below 3e-7.
+         * chord * (1 + f) is computed as chord + chord * f: the same rounding, as f >= 0. */
+        int32_t a0 = fx_mul_q30(tau0 * 32, tau0 * 32), a1 = fx_mul_q30(tau1 * 32, tau1 * 32);
+        int32_t f0 = fx_mul_q30(a0 + 3 * a1, TINY_Q30), f1 = fx_mul_q30(3 * a0 + a1, TINY_Q30);
+        len[0] = jx2 / 2 + fx_mul_q30(jx2 / 2, f0);
+        len[1] = kx2 / 2 + fx_mul_q30(kx2 / 2, f1);
+    } else if (k->sh <= 6 && big < (uint32_t)TAU_SMALL && r20 >= ((int32_t)1 << (20 + k->sh))) {
+        /* Long legs with a large radius: the same with sixth-order series. */
+        int32_t x0 = fx_mul_q30(tau0, DRIVE_PI_2_Q30), x1 = fx_mul_q30(tau1, DRIVE_PI_2_Q30);
+        len[0] =
+            fx_mul_q30(fx_mul_q30(jx2 / 2, drive_series(x1, secant)), drive_series(x0, x_over_sin));
+        len[1] =
+            fx_mul_q30(fx_mul_q30(kx2 / 2, drive_series(x0, secant)), drive_series(x1, x_over_sin));
+    } else {
+        /* 2 |tau| r = |tau (binary)| pi r / 2^30 with r <= |E| / (2 sin 0.03) < 95 * 2^k m:
+         * rp = pi r / 4 (L24, < 2^31), s = fx_mul_q30(rp, |tau|) * 4. */
+        int32_t rp = fx_mul_q30(r20 * 16, PI_4_Q30);
+        len[0] = fx_mul_q30(rp, (int32_t)t0) * 4;
+        len[1] = fx_mul_q30(rp, (int32_t)t1) * 4;
+    }
 }
 
 /* Cases 1, 2 and 3: a double arc of equal radii, first turn sigma = sign(q).
  * X = sqrt(q^2 + (p sin eta)^2) + |q| cos eta, curvature 2 X / |E|^2, radius r = |E|^2 / (2 X),
  * rho = r sin(eta), junction 2J = (p + 2 sigma rho, q), half-sweeps gamma + eta and -gamma
- * with gamma the angle of J. Sets the canonical result. */
-static drive_status_t double_arc(int32_t *v, uint8_t sh, fx_q16_t rmin, int32_t *needed)
+ * with gamma the angle of J. Sets k->seg. */
+static drive_status_t double_arc(canon_t *k, fx_q16_t rmin, int32_t *needed)
 {
-    drive_vm_run(v, drive_p_x);
-    bool fits = fx_div_shift(v[SV_X], v[SV_E2], (uint8_t)(21 + sh), &v[SV_KC]);
-    if (!fits || fx_mul_q16(v[SV_KC], rmin) > DRIVE_CURV_ONE) {
+    /* W = hypot(|q|, p sin eta) as a projection on its own direction (cheaper than the 64-bit
+     * square root; exact but for the rounding of the two products). */
+    fx_angle_t z = fx_atan2(k->sp, k->aq);
+    fx_q30_t sz, cz;
+    fx_sincos(z, &sz, &cz);
+    int32_t x = fx_mul_q30(k->aq, cz) + fx_mul_q30(k->sp, sz) + k->cq;
+    int32_t curv;
+    bool fits = fx_div_shift(x, k->e2, (uint8_t)(21 + k->sh), &curv);
+    if (!fits || fx_mul_q16(curv, rmin) > DRIVE_CURV_ONE) {
         if (needed != NULL)
-            *needed = fits ? v[SV_KC] : INT32_MAX;
+            *needed = fits ? curv : INT32_MAX;
         return DRIVE_ERR_RADIUS;
     }
-    /* The radius (L20: fits below 2048 * 2^k m), rho = r sin eta (L24) in RS. */
-    v[SV_RS] = 0;
-    if (!fx_div_shift(v[SV_E2], v[SV_X], 19, &v[SV_R20])) {
-        v[SV_R20] = INT32_MAX; /* as large as it gets, for the choice of lengths below */
-        (void)fx_div_shift(fx_mul_q30(v[SV_E2], v[SV_S]), v[SV_X], 23, &v[SV_RS]);
-    } else if (v[SV_R20] < (1l << 27)) {
-        v[SV_RS] = fx_mul_q30(v[SV_R20] * 16, v[SV_S]);
+    /* The radius (L20: fits below 2048 * 2^k m), rho = r sin eta (L24). */
+    int32_t r20, rho = 0;
+    if (!fx_div_shift(k->e2, x, 19, &r20)) {
+        r20 = INT32_MAX; /* as large as it gets, for the choice of lengths */
+        (void)fx_div_shift(fx_mul_q30(k->e2, k->s), x, 23, &rho);
+    } else if (r20 < (1l << 27)) {
+        rho = fx_mul_q30(r20 * 16, k->s);
     } else {
-        v[SV_RS] = fx_mul_q30(v[SV_R20], v[SV_S]) * 16;
+        rho = fx_mul_q30(r20, k->s) * 16;
     }
     /* rho <= p/2 whenever |q| sin(eta) <= p cos(eta) (always for sigma > 0, as P > 0): J
      * cannot pass E (sigma > 0) or fall behind O (sigma < 0). When q and p sin(eta) are a few
      * LSB, rho is known only roughly and may overshoot; moving J along u keeps it on the locus
      * of junctions to within (q / |E|) |d rho| < 1 LSB, so the clamp costs nothing and keeps
      * both chords forward. */
-    if ((v[SV_Q] >= 0 || v[SV_PC] + v[SV_QS] >= 0) && v[SV_RS] > v[SV_P] / 2)
-        v[SV_RS] = v[SV_P] / 2;
-    if (v[SV_Q] < 0)
-        v[SV_RS] = -v[SV_RS]; /* sigma rho */
-    drive_vm_run(v, drive_p_junction);
-    if (v[SV_Q] < 0 && v[SV_TAU0] > 0)
+    if ((k->q >= 0 || k->pc + k->qs >= 0) && rho > k->p / 2)
+        rho = k->p / 2;
+    if (k->q < 0)
+        rho = -rho; /* sigma rho */
+    int32_t jx2 = k->p + 2 * rho, kx2 = k->p - 2 * rho;
+    fx_angle_t gamma = fx_atan2(k->q, jx2);
+    int32_t tau0 = (int32_t)(gamma + (fx_angle_t)k->eta), tau1 = (int32_t)(0u - gamma);
+    if (k->q < 0 && tau0 > 0)
         return DRIVE_ERR_SWEEP;
-    uint32_t t0 = drive_abs32(v[SV_TAU0]), t1 = drive_abs32(v[SV_TAU1]), big = t0 > t1 ? t0 : t1;
-    /* Lengths. From the radius, s = 2 |tau| r, unless the radius is large: an error d in tau
-     * (fx_atan2: 1.3e-6 rad) costs 2 r d, so below |tau| = 0.03 rad (r > 16 |E|: at most
-     * 190 m for legs up to 8 m) and, for longer legs (k >= 2), for radii over 256 m below
-     * 0.2 rad, they come from the chords. */
-    const uint8_t *len = drive_p_len_radius;
-    if (big < (uint32_t)TAU_TINY)
-        len = drive_p_len_tiny;
-    else if (sh <= 6 && big < (uint32_t)TAU_SMALL && v[SV_R20] >= ((int32_t)1 << (20 + sh)))
-        len = drive_p_len_small;
-    drive_vm_run(v, len);
-    if (v[SV_LEN0] < 0 || v[SV_LEN1] < 0)
+    int32_t len[2];
+    arc_lengths(k, tau0, tau1, jx2, kx2, r20, len);
+    if (len[0] < 0 || len[1] < 0)
         return DRIVE_ERR_SWEEP;
-    if (v[SV_Q] < 0)
-        v[SV_KC] = -v[SV_KC];
-    drive_vm_run(v, drive_p_da_tail);
-    v[SV_L0] = unscale(v[SV_LEN0], sh);
-    v[SV_L1] = unscale(v[SV_LEN1], sh);
+    if (k->q < 0)
+        curv = -curv;
+    k->seg[0].curvature = curv;
+    k->seg[0].length = unscale(len[0], k->sh);
+    k->seg[0].sweep = (fx_angle_t)tau0 * 2u;
+    k->seg[1].curvature = -curv;
+    k->seg[1].length = unscale(len[1], k->sh);
+    k->seg[1].sweep = (fx_angle_t)k->dl - k->seg[0].sweep;
     return DRIVE_OK;
 }
 
@@ -272,141 +255,66 @@ drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_
     uint32_t mx = drive_abs32(dx), my = drive_abs32(dy), m = mx > my ? mx : my;
     if (m > (uint32_t)DRIVE_MAX_DIST)
         return DRIVE_ERR_TOO_FAR;
-    uint8_t sh = 13; /* 8 - k: L24 = Q16 * 2^sh */
+    canon_t k;
+    k.sh = 13; /* 8 - k */
     for (uint32_t lim = (uint32_t)1 << 13; m > lim; lim <<= 1)
-        sh--;
+        k.sh--;
 
     /* E in the u frame: p along u, q to its left. */
-    int32_t v[SV_NSLOTS];
-    v[SV_DX] = (int32_t)((uint32_t)dx << sh);
-    v[SV_DY] = (int32_t)((uint32_t)dy << sh);
-    v[SV_DL] = dl;
-    v[SV_ETA] = dl / 2;
-    drive_rot(&v[SV_P], &v[SV_DX],
-              from->heading + (reverse ? FX_ANGLE_HALF : 0u) + (fx_angle_t)v[SV_ETA]);
+    k.dl = dl;
+    k.eta = dl / 2;
+    drive_to_frame((int32_t)((uint32_t)dx << k.sh), (int32_t)((uint32_t)dy << k.sh),
+                   from->heading + (reverse ? FX_ANGLE_HALF : 0u) + (fx_angle_t)k.eta, &k.p, &k.q);
 
     /* Mirror image: solve a heading change to the left (or none, target on the left). */
-    bool mirror = v[SV_ETA] < 0 || (v[SV_ETA] == 0 && v[SV_Q] < 0);
+    bool mirror = k.eta < 0 || (k.eta == 0 && k.q < 0);
     if (mirror) {
-        v[SV_ETA] = -v[SV_ETA];
-        v[SV_Q] = -v[SV_Q];
-        v[SV_DL] = -dl;
+        k.eta = -k.eta;
+        k.q = -k.q;
+        k.dl = -dl;
     }
-    drive_vm_run(v, drive_p_canon);
-    if (v[SV_PP] <= 0)
+    parameters(&k);
+    if (k.pp <= 0)
         return DRIVE_ERR_BEHIND;
-    if (sh == 4 && v[SV_E2] > (1l << 28))
+    if (k.sh == 4 && k.e2 > (1l << 28))
         return DRIVE_ERR_TOO_FAR; /* |D| > 64 m */
-    if (sh == 13 && v[SV_E2] < (1l << 22))
+    if (k.sh == 13 && k.e2 < (1l << 22))
         return DRIVE_ERR_TOO_CLOSE; /* |D| < 1/64 m */
 
-    drive_case_t kase;
-    if (dl < STRAIGHT_ANGLE && dl > -STRAIGHT_ANGLE && v[SV_AQ] <= ((int32_t)1 << sh)) {
-        /* Straight case: two halves along A. */
-        kase = DRIVE_CASE_STRAIGHT;
-        drive_vm_run(v, drive_p_halves);
-        v[SV_K0] = v[SV_W0] = v[SV_K1] = v[SV_W1] = 0;
-        v[SV_L0] = unscale(v[SV_T0], sh);
-        v[SV_L1] = unscale(v[SV_T1], sh);
+    if (dl < STRAIGHT_ANGLE && dl > -STRAIGHT_ANGLE && k.aq <= ((int32_t)1 << k.sh)) {
+        /* Straight case: two halves of P along A. */
+        out->kase = DRIVE_CASE_STRAIGHT;
+        k.seg[0] = (drive_segment_t){0, unscale(k.pp / 2, k.sh), 0};
+        k.seg[1] = (drive_segment_t){0, unscale(k.pp - k.pp / 2, k.sh), 0};
     } else {
         /* A5 = p sin(eta) - |q| cos(eta) = Lc sin(eta) > 0 when an arc and a straight fit
          * (rotation and translation the same way, eta > beta), and then the arc's radius
          * Lc / (2 sin eta) >= rmin when A5 >= 2 sin^2(eta) rmin: a cheap filter before the
-         * exact test in line() (the seed's order: case 4/5 first, then its fallback, the
-         * double arc). rs = rmin sin(eta) in L24. */
+         * exact test in arc_and_straight() (the seed's order: case 4/5 first, then its
+         * fallback, the double arc). rs = rmin sin(eta) in L24. */
         int32_t rs;
-        if (v[SV_A5] > 0 && v[SV_S] > 0 &&
-            fx_mul_shift(min_radius, v[SV_S], (uint8_t)(30 - sh), &rs) && rs < INT32_MAX / 2 &&
-            v[SV_A5] >= fx_mul_q30(rs * 2, v[SV_S]) && line(v, sh, min_radius)) {
-            kase = v[SV_Q] >= 0 ? DRIVE_CASE_4 : DRIVE_CASE_5;
+        if (k.a5 > 0 && k.s > 0 && fx_mul_shift(min_radius, k.s, (uint8_t)(30 - k.sh), &rs) &&
+            rs < INT32_MAX / 2 && k.a5 >= fx_mul_q30(rs * 2, k.s) &&
+            arc_and_straight(&k, min_radius)) {
+            out->kase = k.q >= 0 ? DRIVE_CASE_4 : DRIVE_CASE_5;
         } else {
-            drive_status_t st = double_arc(v, sh, min_radius, needed);
+            drive_status_t st = double_arc(&k, min_radius, needed);
             if (st != DRIVE_OK)
                 return st;
             /* For q < 0, p sin(eta) - |q| cos(eta) is T = A x D: >= 0 same side (case 2). */
-            kase = v[SV_Q] >= 0 ? DRIVE_CASE_1 : (v[SV_A5] >= 0 ? DRIVE_CASE_2 : DRIVE_CASE_3);
+            out->kase = k.q >= 0 ? DRIVE_CASE_1 : (k.a5 >= 0 ? DRIVE_CASE_2 : DRIVE_CASE_3);
         }
     }
 
     /* Back to the real world: mirror, reverse. The sweeps are heading changes of the vehicle
      * (equal to those of the direction of travel); the curvature is the steering's, so
      * reverse travel mirrors it. */
-    if (mirror) {
-        v[SV_W0] = (int32_t)(0u - (uint32_t)v[SV_W0]);
-        v[SV_W1] = (int32_t)(0u - (uint32_t)v[SV_W1]);
-    }
-    if (mirror != reverse) {
-        v[SV_K0] = -v[SV_K0];
-        v[SV_K1] = -v[SV_K1];
-    }
-    out->kase = kase;
     for (uint8_t i = 0; i < 2u; i++) {
-        out->seg[i].curvature = v[SV_K0 + 3 * i];
-        out->seg[i].length = v[SV_L0 + 3 * i];
-        out->seg[i].sweep = (fx_angle_t)v[SV_W0 + 3 * i];
+        out->seg[i] = k.seg[i];
+        if (mirror)
+            out->seg[i].sweep = 0u - out->seg[i].sweep;
+        if (mirror != reverse)
+            out->seg[i].curvature = -out->seg[i].curvature;
     }
     return DRIVE_OK;
 }
-#endif
-
-fx_q16_t drive_radius_of(int32_t curvature)
-{
-    if (curvature == 0)
-        return 0;
-    uint32_t a = drive_abs32(curvature);
-    int32_t r; /* 2^28 / k metres = 2^44 / k in Q16 */
-    if (!fx_recip((int32_t)a, 44, &r))
-        r = INT32_MAX;
-    return curvature < 0 ? -r : r;
-}
-
-/* clang-format off */
-/* drive_pose_advance()'s programs. The heading change and its half (D28, H28: radians Q28) as
- * binary angles: r * 8 / pi = 2 r + r (8 / pi - 2), error below 1.5 LSB, wrapping. */
-const uint8_t drive_p_pa_angles[] = {
-    DRIVE_HALF(PV_H28, PV_D28),
-    DRIVE_MULK(PV_T, PV_H28, DRIVE_K_RAD), DRIVE_SHL(PV_X, PV_H28, 1), DRIVE_ADD(PV_HALF, PV_X, PV_T),
-    DRIVE_MULK(PV_T, PV_D28, DRIVE_K_RAD), DRIVE_SHL(PV_X, PV_D28, 1), DRIVE_ADD(PV_DANG, PV_X, PV_T),
-    DRIVE_END};
-
-/* sin x / x of the half change, |x| < 0.2 rad, as a series. */
-const uint8_t drive_p_pa_sox[] = {
-    DRIVE_SHL(PV_X, PV_H28, 2),       DRIVE_POLY(PV_RATIO, PV_X, DRIVE_K_SOX),
-    DRIVE_END};
-
-/* The chord dist * ratio in the direction of travel + half the change. */
-const uint8_t drive_p_pa_chord[] = {
-    DRIVE_MUL(PV_CH, PV_DIST, PV_RATIO),
-    DRIVE_ADD(PV_ANG, PV_HEAD, PV_HALF), DRIVE_NEG(PV_ANG, PV_ANG), DRIVE_ROT(PV_XY, PV_CH, PV_ANG),
-    DRIVE_END};
-/* clang-format on */
-
-#ifndef DRIVE_ASM /* MSP430: msp430/solve.S, the same steps */
-drive_pose_t drive_pose_advance(const drive_pose_t *pose, int32_t curvature, fx_q16_t dist,
-                                bool reverse)
-{
-    drive_pose_t r = *pose;
-    if (dist <= 0)
-        return r;
-    int32_t v[PV_NSLOTS];
-    v[PV_DIST] = dist;
-    v[PV_ZERO] = 0;
-    v[PV_HEAD] = (int32_t)(pose->heading + (reverse ? FX_ANGLE_HALF : 0u));
-    /* Heading change delta = dist * curvature (negated when reversing), radians Q28. */
-    if (!fx_mul_shift(dist, curvature, 16, &v[PV_D28]))
-        v[PV_D28] = curvature >= 0 ? INT32_MAX : -INT32_MAX;
-    if (reverse)
-        v[PV_D28] = -v[PV_D28];
-    drive_vm_run(v, drive_p_pa_angles);
-    /* Chord: dist * sin(delta/2) / (delta/2), along the direction of travel + delta/2. */
-    if (drive_abs32(v[PV_H28]) < (uint32_t)HALF_CHANGE_SERIES)
-        drive_vm_run(v, drive_p_pa_sox);
-    else /* sin x / x in Q30: negative beyond half a turn (the chord points back) */
-        (void)fx_div_shift(fx_sin((fx_angle_t)v[PV_HALF]), v[PV_H28], 28, &v[PV_RATIO]);
-    drive_vm_run(v, drive_p_pa_chord);
-    r.x += v[PV_XY];
-    r.y += v[PV_XY1];
-    r.heading += (fx_angle_t)v[PV_DANG];
-    return r;
-}
-#endif

@@ -20,19 +20,16 @@
  * angle rounded to 16 bits (0.5), the centre of a pulse from two edges quantised to counts
  * (0.7), and spare.
  *
- * Cost on the MSP430: the per-beacon work (expected angle, range bound, window) and the
- * window scans are the assembly kernels optical_first_scan / optical_expect_scan and
- * optical_eval (fastmath.h), and so
- * are the glue's loops over the sightings (glue.h: defined in C below, msp430/optical_glue.S);
- * the precise fixed-point work is left to the selected triplet (triangulate.c).
- * docs/optical.md lists the measured cycles.
+ * Cost: the per-beacon work (expected angle, range bound, window) and the window scans are
+ * the kernels optical_scan / optical_expect_scan and optical_eval (fastmath.h); the
+ * precise fixed-point work is left to the selected triplet (triangulate.c). docs/optical.md
+ * lists the measured cycles.
  */
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
 #include "optical/fastmath.h"
-#include "optical/glue.h"
 #include "optical/optical.h"
 
 #define NONE    OPTICAL_NONE
@@ -180,17 +177,28 @@ int8_t optical_rev_order(const optical_rev_t *rev, uint16_t counts_per_turn,
     return (int8_t)n;
 }
 
-/* ------------------------------------------------------------------ glue kernels */
+/* ------------------------------------------------------------------ the work area */
 
-#ifndef OPTICAL_ASM
-bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
-                   const optical_pose_t *approx, optical_width_t *wd)
+/*
+ * The argument check and the work area and O5 arguments from the inputs: false (nothing
+ * written) when @p map is NULL, map->n lies outside [3, OPTICAL_MAX_BEACONS] or approx's x or
+ * y outside (-OPTICAL_COORD_LIMIT, OPTICAL_COORD_LIMIT); else true and: b, nb from @p map;
+ * x, y and head = a16(heading) from @p approx; amax8 = eps8 = min(m8 + 2, 0xFFFF) with m8 =
+ * min(ceil(window_pos / 2^8), 0xFFFF) (2^-8 m), lever8 = 0 (as standing); @p wd: dk = (D
+ * 10430 mod 2^32) >> 8, x, y as approx, eps8 = m8, tol8 = min(dist_tol >> 8, 0xFFFF), rel16 =
+ * min(dist_rel, 0xFFFF), flat.
+ */
+static bool setup(const optical_map_t *map, const optical_config_t *cfg,
+                  const optical_pose_t *approx, optical_width_t *wd)
 {
     if (map == NULL || map->n < 3 || map->n > OPTICAL_MAX_BEACONS ||
         !coords_ok(approx->x, approx->y))
         return false;
     W.b = map->b;
     W.nb = map->n;
+    W.b8 = map->b8;
+    W.ox = map->ox;
+    W.oy = map->oy;
     W.x = wd->x = approx->x;
     W.y = wd->y = approx->y;
     W.head = a16(approx->heading);
@@ -208,7 +216,9 @@ bool optical_setup(const optical_map_t *map, const optical_config_t *cfg,
     return true;
 }
 
-void optical_fix_init(optical_fix_t *out)
+/* The result before any check: nothing identified, no widening (pose, quality and status
+ * are written once the outcome is known). */
+static void fix_init(optical_fix_t *out)
 {
     for (uint8_t i = 0; i < OPTICAL_MAX_SIGHTINGS; i++)
         out->ident[i] = -1;
@@ -216,7 +226,22 @@ void optical_fix_init(optical_fix_t *out)
     out->widened = 0;
 }
 
-uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin)
+/* The bucket index of the sorted th[0..n): bstart[b] = the first j with th[j] >> 12 >= b, 0
+ * when there is none (b = 0..15). */
+static void buckets(void)
+{
+    uint8_t b = 0;
+    for (uint8_t j = 0; j < W.n; j++) /* the buckets up to th[j]'s start at j */
+        for (uint8_t bj = (uint8_t)(W.th[j] >> 12); b <= bj; b++)
+            W.bstart[b] = j;
+    for (; b < 16; b++)
+        W.bstart[b] = 0;
+}
+
+/* The standing preparation (no latched poses): the sightings @p s by rounded 16-bit angle
+ * into th[], ascending (insertion: equal angles keep their input order), ord[j] the input
+ * index of th[j]; the bucket index; O4's marks for @p wmin. Returns the sightings kept. */
+static uint8_t sort_standing(const optical_sighting_t *s, uint16_t wmin)
 {
     for (uint8_t i = 0; i < W.n; i++) {
         uint16_t t = a16(s[i].angle);
@@ -229,21 +254,18 @@ uint8_t optical_sort(const optical_sighting_t *s, uint16_t wmin)
         W.th[j] = t;
         W.ord[j] = i;
     }
-    optical_buckets();
+    buckets();
     return optical_drop(s, wmin);
 }
 
-void optical_buckets(void)
-{
-    uint8_t b = 0;
-    for (uint8_t j = 0; j < W.n; j++) /* the buckets up to th[j]'s start at j */
-        for (uint8_t bj = (uint8_t)(W.th[j] >> 12); b <= bj; b++)
-            W.bstart[b] = j;
-    for (; b < 16; b++)
-        W.bstart[b] = 0;
-}
-
-int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, int16_t *lohi)
+/*
+ * The both-ways uniqueness: every sorted sighting j whose match k = sm[j] is a beacon is kept
+ * when bm[k] = j and its width fits (O5, asked once per (j, k): wchk[j] caches k, bit 7 set
+ * for a misfit); otherwise sm[j] becomes NONE. With @p lohi non-NULL, every kept match
+ * narrows the heading-offset interval [lohi[0], lohi[1]] (2^-16 turn) to its offset +- its
+ * position part. Returns the kept.
+ */
+static int8_t unique(const optical_width_t *wd, const optical_sighting_t *s, int16_t *lohi)
 {
     int8_t found = 0;
     for (uint8_t j = 0; j < W.n; j++) {
@@ -251,7 +273,6 @@ int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, in
         if (k >= DROPPED)
             continue;
         if (W.u.id.bm[k] == j) {
-            /* O5, once per (sighting, beacon): bit 7 of wchk marks a misfit. */
             uint8_t c = W.wchk[j];
             if ((c & 0x7Fu) != k) {
                 c = k;
@@ -276,22 +297,12 @@ int8_t optical_unique(const optical_width_t *wd, const optical_sighting_t *s, in
     return found;
 }
 
-void optical_gather(const optical_sighting_t *s, int8_t *ident)
+/* O6's plausibility of the fix @p p against the approximate pose @p ap: OPTICAL_E_JUMP beyond
+ * cfg->jump_max (|dx| + |dy| <= jump_max bounds the distance without the root), else
+ * OPTICAL_E_TURN beyond cfg->turn_max, else OPTICAL_OK. */
+static int8_t jump_check(const optical_pose_t *p, const optical_pose_t *ap,
+                         const optical_config_t *cfg)
 {
-    uint8_t m = 0;
-    for (uint8_t j = 0; j < W.n; j++) {
-        if (W.sm[j] >= DROPPED)
-            continue;
-        ident[W.ord[j]] = (int8_t)W.sm[j];
-        W.u.sv.ang[m] = s[W.ord[j]].angle;
-        W.pos[m++] = j;
-    }
-    W.m = m;
-}
-
-int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap, const optical_config_t *cfg)
-{
-    /* (|jx| + |jy| <= jump_max bounds the distance without the root) */
     int32_t dx = p->x - ap->x, dy = p->y - ap->y;
     uint32_t jx = umag(dx), jy = umag(dy), jm = (uint32_t)cfg->jump_max;
     if ((jx > jm || jy > jm - jx) && fx_hypot(dx, dy) > jm)
@@ -301,7 +312,10 @@ int8_t optical_jump(const optical_pose_t *p, const optical_pose_t *ap, const opt
     return OPTICAL_OK;
 }
 
-int8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol)
+/* O6's residuals: of the identified other than the triplet @p t3, the first CHECK_MAX, each
+ * beacon's bearing from the fix @p p against its sighting (reference frame, u.sv.ang);
+ * OPTICAL_E_DISAGREE at the first beyond @p tol (2^-16 turn), else OPTICAL_OK. */
+static int8_t resid_check(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol)
 {
     uint16_t h16 = a16(p->heading);
     uint8_t left = CHECK_MAX;
@@ -317,7 +331,6 @@ int8_t optical_resid(const optical_pose_t *p, const uint8_t t3[3], uint16_t tol)
     }
     return OPTICAL_OK;
 }
-#endif
 
 /* ------------------------------------------------------------------ identification */
 
@@ -355,7 +368,7 @@ __attribute__((noinline)) static bool overlaps(uint8_t k, uint16_t half)
 }
 
 /*
- * The seed's overlapping-window rule before the both-ways uniqueness (optical_unique): a
+ * The seed's overlapping-window rule before the both-ways uniqueness (unique()): a
  * unique match whose window meets another beacon's is dropped (W.sm = NONE), neither
  * width-checked nor counted.
  */
@@ -405,7 +418,7 @@ static int8_t guess(ctx_t *x, uint8_t nc)
     if (best_n < 3)
         return 0;
     optical_eval(best_h, best_e);
-    return optical_unique(&x->wd, x->s, NULL);
+    return unique(&x->wd, x->s, NULL);
 }
 
 /* The half-width of the first pass's windows (optical_fix scans them). */
@@ -448,7 +461,7 @@ static int8_t identify(ctx_t *x, uint16_t h0, uint8_t *mode, uint8_t *widened)
          * the offsets every kept match allows. */
         if (cfg->reject_overlap)
             drop_overlapping((uint16_t)((d >> 1) + (d & 1u)));
-        found = optical_unique(&x->wd, x->s, lohi);
+        found = unique(&x->wd, x->s, lohi);
         int16_t nlo = lohi[0], nhi = lohi[1];
         if (nlo > nhi)
             return -1;
@@ -481,7 +494,7 @@ static int8_t identify(ctx_t *x, uint16_t h0, uint8_t *mode, uint8_t *widened)
         uint16_t half = (uint16_t)((uint32_t)(whi - wlo + 1) >> 1);
         optical_expect_scan(mid, half);
         drop_overlapping(half);
-        found = optical_unique(&x->wd, x->s, NULL);
+        found = unique(&x->wd, x->s, NULL);
         *widened = w;
         if (found >= 3) {
             *mode = IDENT_WIDENED;
@@ -532,11 +545,20 @@ __attribute__((noinline)) static void rotate(const ctx_t *x)
         W.u.sv.ang[i] += lat[W.ord[W.pos[i]]].heading - x->ap->heading;
 }
 
-/* The identified (W.sm) into W.pos / W.m and the result's ident, and their reference-frame
- * angles (standing: the sightings' own). */
+/* The identified (sm[j] a beacon), in sorted order, into pos[0..m), their beacons into the
+ * result's ident (input order) and their reference-frame angles into u.sv.ang[0..m)
+ * (standing: the sightings' own). */
 static void gather(const ctx_t *x)
 {
-    optical_gather(x->s, x->ident);
+    uint8_t m = 0;
+    for (uint8_t j = 0; j < W.n; j++) {
+        if (W.sm[j] >= DROPPED)
+            continue;
+        x->ident[W.ord[j]] = (int8_t)W.sm[j];
+        W.u.sv.ang[m] = x->s[W.ord[j]].angle;
+        W.pos[m++] = j;
+    }
+    W.m = m;
     if (x->latched != NULL)
         rotate(x);
 }
@@ -621,7 +643,7 @@ static int8_t solve(const ctx_t *x, uint8_t passes, uint8_t t[3], optical_tri_t 
 
 /* O11: the sightings into the vehicle frame of the reference instant, sorted by angle, with
  * their parallax levers, lever8 and amax8 (standing: none, and W.c / W.lev are not read;
- * lever8 = 0 and amax8 = eps8 as optical_setup left them), and O4's marks for the range
+ * lever8 = 0 and amax8 = eps8 as setup() left them), and O4's marks for the range
  * T = cfg->range (threshold()); the sightings kept, or -1 when a latched pose lies beyond the
  * coordinate limit. */
 static int8_t prepare(ctx_t *x)
@@ -632,7 +654,7 @@ static int8_t prepare(ctx_t *x)
     uint8_t n = W.n, kept;
     uint32_t wmin = optical_wmin(x->wd.dk, (uint32_t)x->cfg->range >> 8);
     if (lat == NULL) {
-        kept = optical_sort(si, (uint16_t)wmin); /* and the buckets */
+        kept = sort_standing(si, (uint16_t)wmin); /* and the buckets */
         if (wmin > 0xFFFFu)
             kept = optical_drop(si, wmin); /* (none kept) */
     } else {
@@ -670,7 +692,7 @@ static int8_t prepare(ctx_t *x)
             W.th[j] = t;
             W.ord[j] = i;
         }
-        optical_buckets();
+        buckets();
         kept = optical_drop(x->s, wmin);
         W.lever8 = lever8;
         W.amax8 = sat16((uint32_t)W.eps8 + lever8);
@@ -701,7 +723,7 @@ static fx_q16_t threshold(const ctx_t *x, uint8_t kept)
  * moving, their angles in W.u.sv.ang corrected for the parallax first: the fix's last use). */
 static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3])
 {
-    int8_t st = optical_jump(p, x->ap, x->cfg);
+    int8_t st = jump_check(p, x->ap, x->cfg);
     if (st != OPTICAL_OK)
         return st;
     if (x->latched != NULL) {
@@ -717,20 +739,17 @@ static int8_t check(const ctx_t *x, const optical_pose_t *p, const uint8_t t3[3]
             }
         }
     }
-    return optical_resid(p, t3, (uint16_t)(a16(x->cfg->resid_max) + 3u));
+    return resid_check(p, t3, (uint16_t)(a16(x->cfg->resid_max) + 3u));
 }
 
 int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
                    const optical_pose_t *approx, const optical_sighting_t *s, uint8_t n,
                    const optical_pose_t *latched, optical_fix_t *out)
 {
-    optical_fix_init(out);
+    fix_init(out);
     ctx_t x;
-    if (n > OPTICAL_MAX_SIGHTINGS || !optical_setup(map, cfg, approx, &x.wd))
+    if (n > OPTICAL_MAX_SIGHTINGS || !setup(map, cfg, approx, &x.wd))
         return fail(out, approx, OPTICAL_E_ARG);
-    W.b8 = map->b8;
-    W.ox = map->ox;
-    W.oy = map->oy;
     x.map = map;
     x.cfg = cfg;
     x.ap = approx;
@@ -746,7 +765,7 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
      * and the first identification pass (O3). */
     W.gate8 = sat15(((uint32_t)threshold(&x, (uint8_t)kept) + (uint32_t)cfg->window_pos) >> 8);
     uint16_t h0 = half0(cfg);
-    if (optical_first_scan(0, h0)) /* (O4 left every mark NONE or DROPPED) */
+    if (optical_scan(0, h0)) /* (O4 left every mark NONE or DROPPED) */
         return fail(out, approx, OPTICAL_E_ARG);
     if (n < 3)
         return fail(out, approx, OPTICAL_E_FEW);
@@ -781,9 +800,9 @@ int8_t optical_fix(const optical_map_t *map, const optical_config_t *cfg,
         for (uint8_t j = 0; j < n; j++)
             W.wchk[j] = 0x7Fu;
         optical_expect_scan(0, rmax);
-        optical_fix_init(out); /* (none identified: gather wrote ident) */
+        fix_init(out); /* (none identified: gather wrote ident) */
         out->widened = widened;
-        if (optical_unique(&x.wd, x.s, NULL) < 5)
+        if (unique(&x.wd, x.s, NULL) < 5)
             return fail(out, approx, OPTICAL_E_UNCONFIRMED);
         gather(&x);
         st = solve(&x, passes, t3, &tri);

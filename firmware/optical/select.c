@@ -11,13 +11,9 @@
  * leaves Dif[k-1] = Dif[k+1] to neither branch (the listing's ELSE drops k+1, as here); the
  * listing's first pass reads AG(N+1) beyond the array. Ties between gaps: the first smallest.
  * Three or fewer: 0, 1, 2. The gaps are differences modulo a turn (angles in any order).
- *
- * On the MSP430 this is msp430/optical_sel.S (OPTICAL_ASM): the same rule on a linked ring,
- * the same results (tests/vectors/optical_vectors.c compares both on random and tied sets).
  */
 #include "optical/optical.h"
 
-#ifndef OPTICAL_ASM
 void optical_select(const fx_angle_t *angle, uint8_t n, uint8_t keep[3])
 {
     if (n <= 3) {
@@ -72,4 +68,3 @@ void optical_select(const fx_angle_t *angle, uint8_t n, uint8_t keep[3])
     keep[1] = id[1];
     keep[2] = id[2];
 }
-#endif

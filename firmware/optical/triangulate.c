@@ -16,10 +16,7 @@
  * Fixed point: the offsets scaled by 2^sigma (largest component in [2^28, 2^29): "lambda"
  * units), sin/cos Q1.30, products of balanced 16-bit halves summed in the multiplier, one
  * reciprocal. The arithmetic is the kernels optical_tri_core() and optical_tri_quality()
- * (fastmath.h: assembly on the MSP430). On the MSP430 optical_triangulate itself is assembly
- * too (msp430/optical_tri.S, OPTICAL_ASM), the same steps as the C below: the sine and cosine
- * of each angle from one evaluation of fx's table (fx_sin's and fx_cos's values bit for bit),
- * handed to optical_tri_core in its own form, as are the offsets.
+ * (fastmath.h; tri_k.c, msp430/optical_tri.S: docs/kernels.md).
  */
 #include <stdbool.h>
 
@@ -28,8 +25,6 @@
 
 /* The work memory (optical_fix's, in a part that is free while it triangulates). */
 #define T (optical_work.u.sv)
-
-#ifndef OPTICAL_ASM
 
 int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3], uint32_t quality_max,
                            optical_tri_t *out)
@@ -103,4 +98,3 @@ int8_t optical_tri_take(const optical_xy_t *map, const uint8_t t[3], uint32_t qu
     }
     return optical_triangulate(T.b, th, quality_max, out);
 }
-#endif

@@ -18,6 +18,10 @@ const char *hal_fault_name(uint16_t code)
         return "firmware invariant violated";
     case HAL_FAULT_DIV_ZERO:
         return "division by zero";
+    case HAL_FAULT_CLOCK_UNCALIBRATED:
+        return "DCO calibration data erased";
+    case HAL_FAULT_SUPPLY_LOW:
+        return "supply too low for a calibrated clock";
     default:
         return "unknown";
     }

@@ -69,14 +69,19 @@ CY_ISR(HAL_VEC_TIMERA0, hal_isr_timera0)
     chans[HAL_CAPTURE_INDEX].cb(chans[HAL_CAPTURE_INDEX].arg, count, 1);
 }
 
+/*
+ * COV is cleared with one read-modify-write of the register (bic), never by writing back a
+ * copy read earlier: a capture between that read and the write would set CCIFG, and the copy
+ * would clear it (the edge lost).
+ */
 CY_ISR(HAL_VEC_TIMERA1, hal_isr_timera1)
 {
-    if (TAIV != 2) /* reading TAIV clears the flag it reports; only CCR1 is enabled */
+    if (TAIV != TAIV_TACCR1) /* reading TAIV clears the flag it reports; only CCR1 is on */
         return;
     uint16_t count = TACCR1;
     uint16_t ctl = TACCTL1;
     if (ctl & COV) {
-        TACCTL1 = (uint16_t)(ctl & ~COV);
+        TACCTL1 &= (uint16_t)~COV;
         chans[HAL_CAPTURE_BEACON].overflows++;
     }
     chans[HAL_CAPTURE_BEACON].cb(chans[HAL_CAPTURE_BEACON].arg, count, (ctl & CCI) ? 1u : 0u);

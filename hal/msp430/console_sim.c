@@ -1,6 +1,6 @@
 /*
  * console_sim.c - hal/console.h for test images: the mspdebug simulator's console device
- * (`simio add console`) prints every byte written to address 0x00FF.
+ * (`simio add console`) prints every byte written to address 0x00FF at once.
  */
 #include "hal/console.h"
 
@@ -25,7 +25,5 @@ void hal_console_write(const char *s, size_t n)
         SIM_CONSOLE = (uint8_t)*s++;
 }
 
-uint16_t hal_console_dropped(void)
-{
-    return 0;
-}
+/* The device prints each byte as it is written: nothing is ever pending. */
+void hal_console_flush(void) {}

@@ -1,24 +1,24 @@
 /*
- * console_uart.c - hal/console.h for board images: USCI_A0 as a UART on P3.4 (TXD),
- * 115200 baud 8N1 from SMCLK = 16 MHz (UCBR = 138, UCBRS = 7: 0.08 % error). Never blocks:
- * when the transmit buffer is still full the byte is dropped and counted, so diagnostics can
- * never stall an interrupt-driven board.
+ * console_uart.c - hal/console.h for board images: USCI_A0 as a UART on P3.4 (TXD), 115200
+ * baud 8N1 from SMCLK with the divisors of the clock hal_cpu_init() chose (16 MHz: UCBR = 138,
+ * UCBRS = 7; 12 MHz: 104, 1; SLAU144's baud-rate table). Each byte waits for the transmit
+ * buffer (UCA0TXIFG), so none is lost; hal_console_flush() waits for the shift register too
+ * (UCBUSY clear), so that hal_fault() can stop the clocks after the whole message left.
  */
 #include "hal/console.h"
 
+#include "cy_clock.h"
 #include "f2618.h"
 
 static uint8_t uart_ready;
-static uint16_t dropped;
 
 static void uart_init(void)
 {
-    UCA0CTL1 = UCSWRST;
     UCA0CTL1 = UCSWRST | UCSSEL_2;
-    UCA0BR0 = 138;
-    UCA0BR1 = 0;
-    UCA0MCTL = 7u << 1;
-    P3SEL |= 0x30u;
+    UCA0BR0 = cy_clock->br0;
+    UCA0BR1 = cy_clock->br1;
+    UCA0MCTL = cy_clock->mctl;
+    P3SEL |= 0x30u;      /* P3.4 TXD, P3.5 RXD (hal_cpu_init selected them already) */
     UCA0CTL1 = UCSSEL_2; /* out of reset: UCA0TXIFG is set, the buffer is free */
     uart_ready = 1;
 }
@@ -27,10 +27,9 @@ void hal_console_putc(char c)
 {
     if (!uart_ready)
         uart_init();
-    if (IFG2 & UCA0TXIFG)
-        UCA0TXBUF = (uint8_t)c;
-    else
-        dropped++;
+    while (!(IFG2 & UCA0TXIFG))
+        ;
+    UCA0TXBUF = (uint8_t)c;
 }
 
 void hal_console_puts(const char *s)
@@ -45,7 +44,12 @@ void hal_console_write(const char *s, size_t n)
         hal_console_putc(*s++);
 }
 
-uint16_t hal_console_dropped(void)
+void hal_console_flush(void)
 {
-    return dropped;
+    if (!uart_ready)
+        return;
+    while (!(IFG2 & UCA0TXIFG))
+        ;
+    while (UCA0STAT & UCBUSY)
+        ;
 }

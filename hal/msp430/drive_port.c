@@ -1,5 +1,5 @@
 /*
- * drive_port.c - hal/drive_port.h on ports 4 and 5 of the MSP430F249.
+ * drive_port.c - hal/drive_port.h on ports 4 and 5 of the MSP430F2618.
  *
  * P4.0..P4.7 carry the data byte, P5.0..P5.2 the register address, P5.3 is /WR (active
  * low). A bus cycle sets address and data with /WR high, pulls /WR low and releases it; the
@@ -21,6 +21,7 @@ void hal_drive_port_init(void)
     P5OUT = (uint8_t)((P5OUT & (uint8_t)~BUS_ADDR_MASK) | BUS_WR);
     P5SEL &= (uint8_t) ~(BUS_ADDR_MASK | BUS_WR);
     P5DIR |= (uint8_t)(BUS_ADDR_MASK | BUS_WR);
+    P4OUT = 0x00u; /* the latch before the direction: the bus never shows a stale byte */
     P4SEL = 0x00u;
     P4DIR = 0xFFu;
     hal_irq_restore(s);

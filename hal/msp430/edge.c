@@ -97,12 +97,14 @@ CY_ISR(HAL_VEC_PORT2, hal_isr_port2)
 }
 
 /*
- * The NMI: accepting it clears NMIIE (so it cannot nest into itself); the handler runs, then
- * NMIIE is set again for the next request.
+ * The NMI: its entry hal_isr_nmi (nmi.S, which also binds the vector) calls this with NMIIE
+ * cleared by the hardware and sets NMIIE again as its last instruction before RETI. NMIIFG stays
+ * set after acceptance until software clears it: first, so that a request arriving while the
+ * handler runs is kept for after it.
  */
-CY_ISR(HAL_VEC_NMI, hal_isr_nmi)
+void hal_isr_nmi_body(void);
+void hal_isr_nmi_body(void)
 {
     IFG1 &= (uint8_t)~NMIIFG;
     slots[HAL_EDGE_COORD_REQUEST].cb(slots[HAL_EDGE_COORD_REQUEST].arg);
-    IE1 |= NMIIE;
 }

@@ -1,5 +1,6 @@
 /*
- * fault.c - hal_fault() on the MSP430: record, report, stop.
+ * fault.c - hal_fault() on the MSP430: record, report, wait until the report has left the
+ * UART, stop (LPM4: every clock off).
  */
 #include "hal/fault.h"
 
@@ -22,5 +23,6 @@ void hal_fault(uint16_t code)
         code >>= 4;
     }
     hal_console_puts(text);
+    hal_console_flush();
     cy_halt();
 }

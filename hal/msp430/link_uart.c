@@ -1,27 +1,18 @@
 /*
- * link_uart.c - hal/link.h on USCI_A1 as a UART (P3.6 TXD, P3.7 RXD, 115200 8N1 from SMCLK):
+ * link_uart.c - hal/link.h on USCI_A1 as a UART (P3.6 TXD, P3.7 RXD, 115200 8N1 from SMCLK
+ * with the divisors of the clock hal_cpu_init() chose):
  * frames go out through a byte ring filled by hal_link_send() and drained by the transmit
  * interrupt; received bytes go through the shared framer (hal/common/link_framer.c) in the
  * receive interrupt, which calls the handler per good frame.
  */
 #include <stddef.h>
 
+#include "cy_clock.h"
 #include "f2618.h"
 #include "hal/irq.h"
 #include "hal/link.h"
 #include "hal/pinmap.h"
 #include "link_framer.h"
-
-#define UCA1CTL1  CY_REG8(0x00D1)
-#define UCA1BR0   CY_REG8(0x00D2)
-#define UCA1BR1   CY_REG8(0x00D3)
-#define UCA1MCTL  CY_REG8(0x00D4)
-#define UCA1RXBUF CY_REG8(0x00D6)
-#define UCA1TXBUF CY_REG8(0x00D7)
-#define UC1IE     CY_REG8(0x0006)
-#define UC1IFG    CY_REG8(0x0007)
-#define UCA1RXIE  0x01u
-#define UCA1TXIE  0x02u
 
 #define TX_RING 64u /* a power of two */
 
@@ -41,10 +32,10 @@ int hal_link_init(hal_link_rx_cb_t cb, void *arg)
     rx_arg = arg;
     link_framer_rx_init(&rx);
     UCA1CTL1 = UCSWRST | UCSSEL_2;
-    UCA1BR0 = 138; /* 16 MHz / 115200 = 138.9: UCBR = 138, UCBRS = 7 */
-    UCA1BR1 = 0;
-    UCA1MCTL = 7u << 1;
-    P3SEL |= 0xC0u;
+    UCA1BR0 = cy_clock->br0;
+    UCA1BR1 = cy_clock->br1;
+    UCA1MCTL = cy_clock->mctl;
+    P3SEL |= 0xC0u; /* P3.6 TXD, P3.7 RXD (hal_cpu_init selected them already) */
     UCA1CTL1 = UCSSEL_2;
     UC1IE |= UCA1RXIE;
     hal_irq_restore(s);

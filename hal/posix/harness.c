@@ -39,8 +39,7 @@ typedef struct {
 
 typedef struct {
     uint64_t t;
-    uint64_t seq;
-    uint64_t id;
+    uint64_t seq; /* the order of scheduling, and the event's id */
     posix_event_fn fn;
     void *ctx;
 } event_t;
@@ -325,37 +324,34 @@ static bool before(const event_t *a, const event_t *b)
     return a->t < b->t || (a->t == b->t && a->seq < b->seq);
 }
 
-static void heap_swap(size_t i, size_t j)
-{
-    event_t tmp = heap[i];
-    heap[i] = heap[j];
-    heap[j] = tmp;
-}
-
-static void sift_up(size_t i)
+/* Sift @p e up from the hole at @p i and store it where it belongs (moves, no swaps). */
+static void sift_up(size_t i, event_t e)
 {
     while (i > 0) {
         size_t p = (i - 1) / 2;
-        if (!before(&heap[i], &heap[p]))
+        if (!before(&e, &heap[p]))
             break;
-        heap_swap(i, p);
+        heap[i] = heap[p];
         i = p;
     }
+    heap[i] = e;
 }
 
-static void sift_down(size_t i)
+/* Sift @p e down from the hole at @p i and store it where it belongs. */
+static void sift_down(size_t i, event_t e)
 {
     for (;;) {
-        size_t l = 2 * i + 1, r = l + 1, m = i;
-        if (l < heap_n && before(&heap[l], &heap[m]))
-            m = l;
-        if (r < heap_n && before(&heap[r], &heap[m]))
-            m = r;
-        if (m == i)
-            return;
-        heap_swap(i, m);
+        size_t m = 2 * i + 1;
+        if (m >= heap_n)
+            break;
+        if (m + 1 < heap_n && before(&heap[m + 1], &heap[m]))
+            m++;
+        if (!before(&heap[m], &e))
+            break;
+        heap[i] = heap[m];
         i = m;
     }
+    heap[i] = e;
 }
 
 static void heap_remove(size_t i)
@@ -363,9 +359,11 @@ static void heap_remove(size_t i)
     heap_n--;
     if (i == heap_n)
         return;
-    heap[i] = heap[heap_n];
-    sift_down(i);
-    sift_up(i);
+    event_t last = heap[heap_n];
+    if (i > 0 && before(&last, &heap[(i - 1) / 2]))
+        sift_up(i, last);
+    else
+        sift_down(i, last);
 }
 
 uint64_t posix_now_ns(void)
@@ -378,21 +376,16 @@ uint64_t posix_schedule(uint64_t t_ns, posix_event_fn fn, void *ctx)
     if (fn == NULL || t_ns < now_ns || heap_n >= POSIX_MAX_EVENTS)
         return 0;
     uint64_t id = ++next_seq;
-    event_t *e = &heap[heap_n];
-    e->t = t_ns;
-    e->seq = id;
-    e->id = id;
-    e->fn = fn;
-    e->ctx = ctx;
+    event_t e = {.t = t_ns, .seq = id, .fn = fn, .ctx = ctx};
     heap_n++;
-    sift_up(heap_n - 1);
+    sift_up(heap_n - 1, e);
     return id;
 }
 
 bool posix_cancel(uint64_t id)
 {
     for (size_t i = 0; i < heap_n; i++) {
-        if (heap[i].id == id) {
+        if (heap[i].seq == id) {
             heap_remove(i);
             return true;
         }

@@ -51,9 +51,9 @@ void hal_console_write(const char *s, size_t n)
         hal_console_putc(s[i]);
 }
 
-uint16_t hal_console_dropped(void)
+void hal_console_flush(void)
 {
-    return 0;
+    fflush(stdout);
 }
 
 void hal_fault(uint16_t code)

@@ -28,8 +28,20 @@ void cy_println(void);
 void cy_check(int ok, const char *what);
 /** Number of failed checks so far. */
 uint16_t cy_failures(void);
-/** Print the verdict sentinel (CY-TEST-END PASS / FAIL n); the caller then returns. */
+/** Print the verdict sentinel (CY-TEST-END PASS / FAIL n); the caller then returns. In a
+ * kernel check image it first prints the kernels' cycle figures (cy_kernel_check_end). */
 void cy_test_end(void);
+
+/**
+ * 1 in a kernel check image (docs/kernels.md: every kernel call runs the assembly and its C
+ * twin and compares them), 0 in every other image and on the host. The cycle and stack figures
+ * such an image measures are not the program's own: cy_bench_report() and cy_stack_report()
+ * print nothing there, and a program asserts its cycle or stack bounds only when this is 0.
+ */
+int cy_kernel_check_mode(void);
+
+/** Called by cy_test_end(): prints the kernels' figures in a check image, nothing elsewhere. */
+void cy_kernel_check_end(void);
 
 /** The next word of Marsaglia's xorshift32 generator (13, 17, 5) kept in @p *state (seed it
  * non-zero): the same sequence on both worlds, for test vectors. */

@@ -43,6 +43,25 @@ class MergeCycles(unittest.TestCase):
                 names = [e["name"] for e in json.load(f)["entries"]]
             self.assertEqual(names, ["legacy", "new"])
 
+    def test_static_bounds_stay_when_the_image_reruns(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "cycles.json")
+            msp430sim.merge_cycles(path, [entry("isr_x", 100)], None, source="img")
+            with open(path) as f:
+                rep = json.load(f)
+            rep["entries"][0]["static_cycles_max"] = 120
+            with open(path, "w") as f:
+                json.dump(rep, f)
+            msp430sim.merge_cycles(path, [entry("isr_x", 90)], None, source="img")
+            with open(path) as f:
+                e = json.load(f)["entries"][0]
+            self.assertEqual((e["cycles_max"], e["static_cycles_max"]), (90, 120))
+            # an entry the image stops printing keeps only its static bound
+            msp430sim.merge_cycles(path, [entry("isr_y", 5)], None, source="img")
+            with open(path) as f:
+                got = {e["name"]: e for e in json.load(f)["entries"]}
+            self.assertEqual(got["isr_x"], {"name": "isr_x", "static_cycles_max": 120})
+
 
 if __name__ == "__main__":
     unittest.main()

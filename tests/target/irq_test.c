@@ -1,8 +1,11 @@
 /*
  * irq_test.c - interrupts raised by the simulator reach their ISR shim and the portable
  * handler behind it: a port-2 edge (P2.7, HAL_EDGE_TEST), the goniometer captures on Timer_A
- * (index on CCR0, beacon edges on CCR1), priorities when several are pending, and the
- * critical-section API holding interrupts back until the outermost exit.
+ * (index on CCR0, beacon edges on CCR1, a capture overflow cleared without losing the next
+ * capture), priorities when several are pending, the critical-section API holding
+ * interrupts back until the outermost exit, and the NMI with the chip's NMIIE semantics
+ * (tools/msp430sim.py emulates them): a second request while its handler runs is taken only
+ * after the handler, on top of the first request's 4-byte frame.
  */
 #include <stdint.h>
 
@@ -40,11 +43,25 @@ static void on_test(void *arg)
 }
 
 static volatile uint16_t nmi_count;
+static volatile uint8_t nmi_depth, nmi_depth_max, nmi_request_inside;
+static volatile uint16_t nmi_sp[2];
+
+static void sim(const char *cmd);
 
 static void on_nmi(void *arg)
 {
     cy_check(arg == &marker, "NMI handler gets its argument");
+    if (++nmi_depth > nmi_depth_max)
+        nmi_depth_max = nmi_depth;
+    if (nmi_count < 2u)
+        nmi_sp[nmi_count] = cy_sp();
     nmi_count++;
+    if (nmi_request_inside) {
+        nmi_request_inside = 0;
+        sim("wdt nmi 1"); /* a second request (falling edge) while this one is served */
+        sim("wdt nmi 0");
+    }
+    nmi_depth--;
 }
 
 static void on_capture(void *arg, uint16_t count, uint8_t rising)
@@ -100,6 +117,27 @@ int main(void)
     cy_check(beacon_count == 2 && last_beacon == 2050 && last_rising == 0, "beacon falling edge");
     sim("ta set 0 0");
 
+    /*
+     * 2b. A capture overflow (two edges before the handler) is counted and COV cleared; a
+     * third edge landing right after the handler read TACCTL1 (the runner applies it after
+     * that read) keeps its CCIFG: the handler runs again for it.
+     */
+    uint16_t beacons = beacon_count;
+    hal_irq_state_t st = hal_irq_disable();
+    TAR = 3000;
+    sim("ta set 1 1");
+    TAR = 3010;
+    sim("ta set 1 0");
+    cy_print("@sim-on-read 0x0164 ta set 1 1\n");
+    cy_target_sync();
+    hal_irq_restore(st);
+    cy_check(hal_capture_overflows(HAL_CAPTURE_BEACON) == 1u, "the capture overflow is counted");
+    cy_check(beacon_count == beacons + 2u,
+             "an edge between the handler's read of TACCTL1 and its COV clear is not lost");
+    cy_check(last_rising == 1u, "the kept edge is the rising one");
+    sim("ta set 1 0");
+    cy_check(beacon_count == beacons + 3u, "captures go on after the overflow");
+
     /* 3. Pending together: TIMERA0 (vector 7) before PORT2 (vector 2). */
     order_n = 0;
     hal_critical_enter();
@@ -139,6 +177,22 @@ int main(void)
     sim("wdt nmi 0");
     cy_check(nmi_count == 2, "NMI re-armed after its handler");
     hal_critical_exit();
+    sim("wdt nmi 1");
+
+    /*
+     * 5b. A request while the NMI handler runs: the chip cleared NMIIE on entry, so it does
+     * not nest into the handler; the entry sets NMIIE again as its last instruction before
+     * RETI and the second request is taken there, with nothing of the first left on the
+     * stack but its PC and SR (4 bytes).
+     */
+    nmi_count = 0;
+    nmi_depth_max = 0;
+    nmi_request_inside = 1;
+    sim("wdt nmi 0");
+    cy_check(nmi_count == 2u, "the request that came during the handler is served after it");
+    cy_check(nmi_depth_max == 1u, "the NMI does not nest into its own handler");
+    cy_check((uint16_t)(nmi_sp[0] - nmi_sp[1]) == 4u,
+             "the second NMI runs on top of the first one's PC and SR only");
     sim("wdt nmi 1");
 
     /* 6. The 1 ms clock: Timer_B CCR0 every 16,000 cycles of SMCLK. */

@@ -256,5 +256,56 @@ class Errors(unittest.TestCase):
         self.assertEqual(sb.Bounds(img).of("f")[0], 2)
 
 
+class NmiRearm(unittest.TestCase):
+    """The NMI handler may set NMIIE again only as its last instruction before RETI
+    (SLAU144); a second request then nests on the first one's 4 bytes, counted once."""
+
+    RESET_AND_ISR = """
+00001000 <reset>:
+    1000:      	mov	#2560, r1
+    1004:      	sub	#10, r1
+    1008:      	jmp	$+0
+
+00001100 <isr>:
+    1100:      	sub	#6, r1
+    1104:      	add	#6, r1
+    1108:      	reti
+"""
+
+    def nmi(self, body):
+        text = self.RESET_AND_ISR + "\n00001200 <nmi>:\n" + body
+        return sb.report(image(text), {sb.RESET_VECTOR: "reset", 18: "isr", sb.NMI_VECTOR: "nmi"},
+                         1000, None)
+
+    def test_rearmed_last_counts_one_nested_nmi(self):
+        # reset 10 + isr (4 + 6) + nmi (4 + 4) + the first NMI's 4 bytes under a second one
+        r = self.nmi("""    1200:      	push	r12
+    1202:      	push	r13
+    1204:      	pop	r13
+    1206:      	pop	r12
+    1208:      	bis.b	#16, &0
+    120e:      	reti
+""")
+        self.assertEqual(r["errors"], [])
+        self.assertEqual(r["nmi_nested"], 4)
+        self.assertEqual(r["worst"], 10 + 10 + 8 + 4)
+
+    def test_rearmed_before_the_pops_is_an_error(self):
+        r = self.nmi("""    1200:      	push	r12
+    1202:      	bis.b	#16, &0
+    1208:      	pop	r12
+    120a:      	reti
+""")
+        self.assertEqual(len(r["errors"]), 1)
+        self.assertIn("nested NMIs are not bounded", r["errors"][0])
+        self.assertIsNone(r["worst"])
+
+    def test_not_rearmed_adds_nothing(self):
+        r = self.nmi("""    1200:      	bic.b	#16, &2
+    1206:      	reti
+""")
+        self.assertEqual((r["errors"], r["nmi_nested"], r["worst"]), ([], 0, 10 + 10 + 4))
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

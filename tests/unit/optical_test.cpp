@@ -736,7 +736,7 @@ TEST(ExpectScan, WindowsBoundTheArcsineTightly)
                 windows, levers, worst_ratio);
 }
 
-// optical_fix's first scan (optical_first_scan) leaves the marks alone: right after
+// optical_fix's first scan (optical_scan) leaves the marks alone: right after
 // optical_drop, which sets every one to NONE or DROPPED, it must give what optical_expect_scan
 // gives from any stale marks; and its pairs are exactly those within the windows (brute force
 // over every sighting and beacon, standing).
@@ -784,7 +784,7 @@ TEST(ExpectScan, FirstScanAfterTheDropNeedsNoClearing)
         int16_t mid = (t & 1) ? (int16_t)(rng() % 1201u - 600) : 0;
         uint16_t half = (uint16_t)(rng() % ((t & 7) == 7 ? 0x7000u : 1200u));
         before = w;
-        ASSERT_EQ(optical_first_scan(mid, half), 0);
+        ASSERT_EQ(optical_scan(mid, half), 0);
         first = w;
         if (w.nc != 0xFF) {
             std::set<std::pair<int, int>> got, want;
@@ -823,7 +823,7 @@ TEST(ExpectScan, FirstScanAfterTheDropNeedsNoClearing)
         for (int c = 0; w.nc != 0xFF && c < 2 * w.nc; c++)
             ASSERT_EQ(w.u.id.cand[c], first.u.id.cand[c]);
     }
-    std::printf("optical_first_scan: 3000 scenes, %ld pairs, the same as optical_expect_scan "
+    std::printf("optical_scan: 3000 scenes, %ld pairs, the same as optical_expect_scan "
                 "from stale marks and as the windows by brute force\n",
                 pairs);
 }

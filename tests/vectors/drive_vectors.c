@@ -1,10 +1,13 @@
 /*
  * drive_vectors.c - firmware/drive on both worlds: the same inputs through the solver, the
- * drive-board command builder, both port encoders, the decoder, path preparation and the
- * travel state table, one line per result (hex), compared line by line between the host
- * build and the MSP430 image (bit-identical). On the target the solver is timed:
- * "@cycles doublearc max mean n" (the solve alone) and "@cycles doublearc_cmd" (solve plus
- * steering angles and drive-board bytes) for build/msp430/cycles.json.
+ * nominal legs with turns over 90 degrees split, the drive-board command builder, both port
+ * encoders, the decoder, path preparation and the travel state table, one line per result
+ * (hex), compared line by line between the host build and the MSP430 image (bit-identical). On the
+ * target the solver and the command builder are timed for build/msp430/cycles.json: "doublearc"
+ * (the solve alone, in the issue's domain and near straight; SPEC's floor of 20,000 cycles is
+ * checked here), "doublearc_wide" (legs up to 70 m, refusals), "drive_cmd" (steering angles and
+ * drive-board bytes) and "drive_leg_split" (a turn over 90 degrees: the inserted pose and two
+ * solves).
  *
  * Inputs: pseudo-random configurations of the issue's test domain (target ahead, heading
  * change under 90 degrees, 0.3 - 5 m, minimum radius 0.25 - 1 m, forward and reverse;
@@ -27,6 +30,7 @@
 #define WIDE_N   100u
 #define ANY_N    600u
 #define POSE_N   300u
+#define LEG_N    200u
 
 static uint32_t rng = 0x2545F491u;
 
@@ -41,6 +45,24 @@ static uint32_t rnd_span(uint32_t span)
     return (uint32_t)(((uint64_t)rnd32() * span) >> 32);
 }
 
+/* A draw from rnd_span(span) shifted right by a random 0..mask bits (spread over orders of
+ * magnitude). The draws of every helper here are sequenced, so that any compiler draws the
+ * same numbers in the same order (C leaves the order of operands unspecified). */
+static uint32_t rnd_spread(uint32_t span, uint32_t mask)
+{
+    uint32_t v = rnd_span(span);
+    return v >> (rnd32() & mask);
+}
+
+/* A signed 32-bit draw shifted right (arithmetically) by @p base + a random 0..mask bits, at
+ * most 31. */
+static int32_t rnd_signed_spread(uint32_t base, uint32_t mask)
+{
+    int32_t v = (int32_t)rnd32();
+    uint32_t n = base + (rnd32() & mask);
+    return v >> (n < 31u ? n : 31u);
+}
+
 static void out_hex(uint32_t v)
 {
     cy_print(" ");
@@ -50,6 +72,7 @@ static void out_hex(uint32_t v)
 static cy_bench_stat_t st_solve = {"doublearc", 0, 0, 0};
 static cy_bench_stat_t st_cmd = {"drive_cmd", 0, 0, 0};
 static cy_bench_stat_t st_wide = {"doublearc_wide", 0, 0, 0};
+static cy_bench_stat_t st_leg = {"drive_leg_split", 0, 0, 0};
 static cy_stack_stat_t sk_solve = {"doublearc", 0}, sk_cmd = {"drive_cmd", 0};
 static const drive_board_t board = DRIVE_BOARD_SEED;
 
@@ -169,9 +192,10 @@ static void solver_vectors(void)
     const uint32_t lat_span = (uint32_t)(0.1 * 65536), dth_span = (uint32_t)DEG(4.0);
     for (uint16_t i = 0; i < NEAR_N; i++) {
         uint32_t dist = (uint32_t)(0.3 * 65536) + rnd_span((uint32_t)(1.2 * 65536));
-        int32_t lat = (int32_t)(rnd_span(lat_span) >> (rnd32() & 15u)) - (int32_t)(lat_span >> 1);
+        int32_t lat = (int32_t)rnd_spread(lat_span, 15u) - (int32_t)(lat_span >> 1);
         int32_t bearing = (int32_t)fx_atan2(lat, (int32_t)dist);
-        int32_t dth = ((int32_t)rnd_span(dth_span) - DEG(2.0)) >> (rnd32() & 15u);
+        int32_t dth = (int32_t)rnd_span(dth_span) - DEG(2.0);
+        dth >>= rnd32() & 15u;
         fx_q16_t rmin = (fx_q16_t)((uint32_t)(0.25 * 65536) + rnd_span((uint32_t)(0.75 * 65536)));
         bool rev = (rnd32() & 3u) == 0;
         drive_pose_t f, t;
@@ -180,10 +204,10 @@ static void solver_vectors(void)
     }
     /* Wider: any bearing and heading change, 1 cm - 70 m, radii 0.1 - 120 m. */
     for (uint16_t i = 0; i < WIDE_N; i++) {
-        uint32_t dist = rnd_span(70ul << 16) >> (rnd32() & 7u);
+        uint32_t dist = rnd_spread(70ul << 16, 7u);
         int32_t bearing = (int32_t)rnd32();
-        int32_t dth = (int32_t)rnd32() >> (rnd32() & 3u);
-        fx_q16_t rmin = (fx_q16_t)(rnd_span(120ul << 16) >> (rnd32() & 7u));
+        int32_t dth = rnd_signed_spread(0, 3u);
+        fx_q16_t rmin = (fx_q16_t)rnd_spread(120ul << 16, 7u);
         bool rev = (rnd32() & 1u) != 0;
         drive_pose_t f, t;
         make_config(dist, bearing, dth, rev, &f, &t);
@@ -268,9 +292,9 @@ static void solver_anywhere(void)
     for (uint16_t i = 0; i < sizeof rare / sizeof rare[0]; i++)
         print_solution("rare", &rare[i].f, &rare[i].t, rare[i].rmin, rare[i].rev != 0, NULL);
     for (uint16_t i = 0; i < ANY_N; i++) {
-        uint32_t dist = rnd_span(100ul << 16) >> (rnd32() & 15u);
+        uint32_t dist = rnd_spread(100ul << 16, 15u);
         int32_t bearing = (int32_t)rnd32();
-        int32_t dth = (int32_t)rnd32() >> (rnd32() & 7u);
+        int32_t dth = rnd_signed_spread(0, 7u);
         if (i % 4u == 1u) { /* near straight */
             bearing >>= 8u + (rnd32() & 15u);
             dth >>= 8u + (rnd32() & 15u);
@@ -278,7 +302,7 @@ static void solver_anywhere(void)
             bearing >>= 2;
             dth >>= 2;
         }
-        fx_q16_t rmin = (fx_q16_t)(rnd_span(200ul << 16) >> (rnd32() & 11u)) + 7000;
+        fx_q16_t rmin = (fx_q16_t)rnd_spread(200ul << 16, 11u) + 7000;
         bool rev = (rnd32() & 1u) != 0;
         drive_pose_t f, t;
         make_config(dist, bearing, dth, rev, &f, &t);
@@ -296,9 +320,12 @@ static void solver_anywhere(void)
 static void pose_vectors(void)
 {
     for (uint16_t i = 0; i < POSE_N; i++) {
-        drive_pose_t p = {(int32_t)rnd32() >> 4, (int32_t)rnd32() >> 4, rnd32()};
-        int32_t k = (int32_t)rnd32() >> (2u + (rnd32() & 31u));
-        fx_q16_t dist = (fx_q16_t)(rnd_span(10ul << 16) >> (rnd32() & 7u));
+        drive_pose_t p;
+        p.x = (int32_t)rnd32() >> 4;
+        p.y = (int32_t)rnd32() >> 4;
+        p.heading = rnd32();
+        int32_t k = rnd_signed_spread(2u, 31u);
+        fx_q16_t dist = (fx_q16_t)rnd_spread(10ul << 16, 7u);
         if (i % 16u == 3u)
             dist = -dist;
         else if (i % 16u == 7u)
@@ -316,6 +343,90 @@ static void pose_vectors(void)
         out_hex((uint32_t)r.y);
         out_hex(r.heading);
         cy_println();
+    }
+}
+
+static void print_leg(const char *tag, const drive_pose_t *f, const drive_pose_t *t,
+                      fx_q16_t radius, bool rev, cy_bench_stat_t *timed)
+{
+    drive_leg_t leg;
+    drive_status_t st;
+    if (timed)
+        CY_BENCH(timed, st = drive_leg_solve(f, t, radius, rev, &leg));
+    else
+        st = drive_leg_solve(f, t, radius, rev, &leg);
+    cy_print(tag);
+    out_hex((uint32_t)f->x);
+    out_hex((uint32_t)f->y);
+    out_hex(f->heading);
+    out_hex((uint32_t)t->x);
+    out_hex((uint32_t)t->y);
+    out_hex(t->heading);
+    out_hex((uint32_t)radius);
+    cy_print(rev ? " r " : " f ");
+    cy_print_dec((int32_t)st);
+    if (st == DRIVE_OK) {
+        cy_print(" parts ");
+        cy_print_dec(leg.parts);
+        if (leg.parts == 2) {
+            out_hex((uint32_t)leg.via.x);
+            out_hex((uint32_t)leg.via.y);
+            out_hex(leg.via.heading);
+        }
+        for (uint8_t p = 0; p < leg.parts; p++) {
+            cy_print(" case ");
+            cy_print_dec((int32_t)leg.sol[p].kase);
+            for (uint8_t i = 0; i < 2u; i++) {
+                out_hex((uint32_t)leg.sol[p].seg[i].curvature);
+                out_hex((uint32_t)leg.sol[p].seg[i].length);
+                out_hex(leg.sol[p].seg[i].sweep);
+            }
+        }
+    }
+    cy_println();
+}
+
+/* Turns over 90 degrees (drive_leg_solve()): U-turns of exactly half a turn with the target
+ * on either side, ahead or behind, corners of 90 - 180 degrees anywhere within 0.3 - 20 m
+ * (split, or refused when no corner of the radius fits), forward and tail first; the split
+ * ones timed. */
+static void leg_vectors(void)
+{
+    for (uint16_t i = 0; i < LEG_N; i++) {
+        uint32_t dist = (uint32_t)(0.3 * 65536) + rnd_span((uint32_t)(19.7 * 65536));
+        int32_t bearing = (int32_t)rnd32();
+        uint32_t turn = (uint32_t)DEG(90.01) + rnd_span((uint32_t)DEG(89.99));
+        int32_t dth = (rnd32() & 1u) ? (int32_t)turn : -(int32_t)turn;
+        if (i % 8u == 0u)
+            dth = (int32_t)FX_ANGLE_HALF; /* a half turn exactly */
+        fx_q16_t radius = (fx_q16_t)((uint32_t)(0.2 * 65536) + rnd_span((uint32_t)(2.0 * 65536)));
+        bool rev = (rnd32() & 3u) == 0;
+        drive_pose_t f, t;
+        make_config(dist, bearing, dth, rev, &f, &t);
+        print_leg("leg", &f, &t, radius, rev, &st_leg);
+    }
+    /* Exact ones: the aisle-end U-turn (2 m across, 2 m back), to the right, tail first,
+     * across less than two radii, a 120-degree corner, and 90 degrees (one double arc). */
+    static const struct {
+        int32_t x_mm, y_mm, th_mdeg, r_mm;
+        uint8_t rev;
+    } exact[] = {
+        {-2000, 2000, 180000, 500, 0}, {-2000, -2000, 180000, 500, 0},
+        {2000, 2000, 180000, 500, 1},  {-2000, 2000, 180000, 1010, 0},
+        {1366, 1500, 120000, 800, 0},  {1000, -1000, 120000, 300, 0},
+        {1000, 1000, 90000, 500, 0},   {0, 0, 180000, 500, 0},
+    };
+    for (uint16_t i = 0; i < sizeof exact / sizeof exact[0]; i++) {
+        drive_pose_t f = {0, 0, 0};
+        drive_pose_t t = {(fx_q16_t)(((int64_t)exact[i].x_mm * 65536) / 1000),
+                          (fx_q16_t)(((int64_t)exact[i].y_mm * 65536) / 1000),
+                          (fx_angle_t)(((int64_t)exact[i].th_mdeg * 11930465) / 1000)};
+        if (exact[i].th_mdeg == 180000)
+            t.heading = FX_ANGLE_HALF;
+        else if (exact[i].th_mdeg == 90000)
+            t.heading = FX_ANGLE_QUARTER;
+        print_leg("leg-exact", &f, &t, (fx_q16_t)(((int64_t)exact[i].r_mm << 16) / 1000),
+                  exact[i].rev != 0, NULL);
     }
 }
 
@@ -401,11 +512,12 @@ static void proto_vectors(void)
     for (uint8_t i = 0; i < w.n; i++)
         (void)drive_decoder_feed(&d, w.w[i].reg, w.w[i].value, &ev);
     for (uint16_t n = 0; n < 40u; n++) {
-        drive_cmd_t c = {{(uint8_t)rnd32(), (uint8_t)rnd32()},
-                         {(uint8_t)rnd32(), (uint8_t)rnd32()},
-                         (int8_t)rnd32(),
-                         2,
-                         {0, 0}};
+        drive_cmd_t c = {{0, 0}, {0, 0}, 0, 2, {0, 0}};
+        c.steer[0] = (uint8_t)rnd32();
+        c.steer[1] = (uint8_t)rnd32();
+        c.arc[0] = (uint8_t)rnd32();
+        c.arc[1] = (uint8_t)rnd32();
+        c.speed = (int8_t)rnd32();
         drive_ppi_load(&c, &w);
         print_wseq("ppi-load", &w);
         for (uint8_t i = 0; i < w.n; i++) {
@@ -626,7 +738,7 @@ static void path_refusals(const drive_pose_t *start, const drive_path_config_t *
         for (uint8_t i = 0; i < 6u; i++) {
             drive_pose_t tp = {0, 0, 0};
             fx_q16_t sp = 0;
-            const drive_solution_t *sol = NULL;
+            const drive_leg_t *leg = NULL;
             cy_print("cursor ");
             cy_print_dec(r);
             cy_print(" ");
@@ -636,9 +748,9 @@ static void path_refusals(const drive_pose_t *start, const drive_path_config_t *
             out_hex((uint32_t)tp.x);
             out_hex((uint32_t)sp);
             cy_print(" ");
-            cy_print_dec((int32_t)drive_path_leg(&path, curs[i].leg, &sol));
-            if (sol != NULL)
-                out_hex((uint32_t)sol->seg[0].length);
+            cy_print_dec((int32_t)drive_path_leg(&path, curs[i].leg, &leg));
+            if (leg != NULL)
+                out_hex((uint32_t)leg->sol[0].seg[0].length);
             if (curs[i].leg < 6u) {
                 drive_path_cursor_t nx = drive_path_next(&path, curs[i]);
                 cy_print(drive_path_is_last(&path, curs[i]) ? " last " : " more ");
@@ -686,6 +798,62 @@ static void seq_edges(drive_path_t *path, const drive_pose_t *start, const drive
             print_step(&seq, &out);
         }
     }
+}
+
+/* A path with turns over 90 degrees (the unit test's aisles: two U-turns, a 120-degree
+ * corner), prepared, every target printed, and driven through the state table. */
+static void aisle_vectors(void)
+{
+    static const int32_t mm[7][3] = {{6000, 0, 0},     {6000, 2400, 180}, {0, 2400, 180},
+                                     {0, 4800, 0},     {6000, 4800, 0},   {7500, 6500, 120},
+                                     {6500, 8232, 120}};
+    static drive_path_point_t aisle[7];
+    for (uint8_t i = 0; i < 7u; i++) {
+        aisle[i].pose.x = (fx_q16_t)(((int64_t)mm[i][0] << 16) / 1000);
+        aisle[i].pose.y = (fx_q16_t)(((int64_t)mm[i][1] << 16) / 1000);
+        aisle[i].pose.heading =
+            mm[i][2] == 180 ? FX_ANGLE_HALF : (fx_angle_t)(mm[i][2] * 11930465l);
+        aisle[i].speed = 32768;
+    }
+    drive_pose_t start = {0, 0, 0};
+    drive_path_config_t cfg = {39322 /* 0.6 m */, 52429 /* 0.8 m */, false};
+    drive_path_t path;
+    drive_status_t st = drive_path_prepare(&path, &start, aisle, 7, &cfg, &board);
+    cy_print("aisle ");
+    cy_print_dec((int32_t)st);
+    for (uint8_t i = 0; i < 7u; i++) {
+        cy_print(" ");
+        cy_print_dec(aisle[i].nsub);
+    }
+    cy_println();
+    for (drive_path_cursor_t c = drive_path_first(&path);; c = drive_path_next(&path, c)) {
+        drive_pose_t tp;
+        fx_q16_t sp;
+        st = drive_path_target(&path, c, &tp, &sp);
+        cy_print("aisle-target ");
+        cy_print_dec(c.leg);
+        cy_print(" ");
+        cy_print_dec(c.sub);
+        cy_print(" ");
+        cy_print_dec((int32_t)st);
+        out_hex((uint32_t)tp.x);
+        out_hex((uint32_t)tp.y);
+        out_hex(tp.heading);
+        cy_println();
+        if (drive_path_is_last(&path, c))
+            break;
+    }
+    seq_vectors(&path, &start);
+    /* Too narrow for its U-turns: refused at the first one. */
+    cfg.nominal_radius = 85197; /* 1.3 m */
+    st = drive_path_prepare(&path, &start, aisle, 7, &cfg, &board);
+    cy_print("aisle-narrow ");
+    cy_print_dec((int32_t)st);
+    cy_print(" ");
+    cy_print_dec(path.bad_leg);
+    cy_print(" ");
+    cy_print_dec((int32_t)path.bad_why);
+    cy_println();
 }
 
 static void path_vectors(void)
@@ -747,6 +915,7 @@ static void path_vectors(void)
     cfg.spacing = 1; /* out of range */
     (void)drive_path_prepare(&path, &bstart, pts, 6, &cfg, &board);
     seq_vectors(&path, &bstart);
+    aisle_vectors();
 }
 
 int main(void)
@@ -755,15 +924,17 @@ int main(void)
     solver_vectors();
     solver_anywhere();
     pose_vectors();
+    leg_vectors();
     cmd_edges();
     proto_vectors();
     path_vectors();
     cy_bench_report(&st_solve);
     cy_bench_report(&st_cmd);
     cy_bench_report(&st_wide);
+    cy_bench_report(&st_leg);
     cy_stack_report(&sk_solve);
     cy_stack_report(&sk_cmd);
-    cy_check(st_solve.max <= 10000u, "doublearc within 10,000 cycles (0 on the host)");
+    cy_check(st_solve.max <= 20000u, "doublearc within 20,000 cycles (0 on the host)");
     cy_test_end();
     return 0;
 }

@@ -1,33 +1,49 @@
 /*
- * optical_tri.S - MSP430 versions of the triangulation kernels optical_tri_core and
- * optical_tri_quality and of optical_triangulate / optical_tri_take (fastmath.c and
- * triangulate.c hold the portable C that defines the results; these perform the very same
- * integer steps, and tests/vectors/optical_vectors.c checks them bit for bit on both worlds).
- * Conventions as optical_fast.S. mspdebug's simulator charges the constant #1 (INC, DEC) like
- * a memory operand: counts step with #-1 (ADD, SUB) instead.
+ * optical_tri.S - the triangulation kernels optical_tri_core and optical_tri_quality
+ * (optical/fastmath.h) on the MSP430. tri_k.c is their C twin, the definition of every
+ * result; these perform the very same integer steps (docs/kernels.md: the fix floor needs
+ * them; the check images run both on every call). Conventions as optical_scan.S. mspdebug's
+ * simulator charges the constant #1 (INC, DEC) like a memory operand: counts step with #-1
+ * (ADD, SUB) instead.
  *
- * Products: dot() of fastmath.c, sums of x y / 2^32 with every operand split into balanced
+ * Products: dot() of tri_k.c, sums of x y / 2^32 with every operand split into balanced
  * halves x = h 2^16 + l (l the low word read as signed, h the high word plus bit 15 of l): the
  * products h h accumulated in one chain of the multiplier, h l + l h in another (the callers
  * keep both below 2^31), l l dropped, the second chain's high word added. The operands live in
- * a static frame (optical_work.u.sv.frame) as (h, l) pairs of 4 bytes; the dot routines take
- * pointers to two lists of pairs. The multiplier is used with interrupts enabled: no
- * interrupt handler of the main board touches it (tools/stack_bound.py --no-mpy-in-isr).
+ * the kernels' own static frame as (h, l) pairs of 4 bytes; the dot routines take pointers to
+ * two lists of pairs. The multiplier is used with interrupts enabled: no interrupt handler of
+ * the main board touches it (tools/stack_bound.py --no-mpy-in-isr). The offsets of
+ * optical_tsol_t and the status codes come from optical_offsets.h, generated from the C
+ * headers (msp430/optical_offsets.c).
  */
-#include "layout.h"
+#include "optical_offsets.h"
 
-/* the kernels' frame in optical_work.u.sv.frame (OW_FRAME_SIZE bytes) */
-    .set F_Z,   OW_FRAME+0          ; pairs -s2, c2, s2, s1, c1, -s1
-    .set F_B,   OW_FRAME+24         ; b1x, b1y, b3x, b3y (scaled)
-    .set F_W,   OW_FRAME+40         ; ax, cx, ay, cy
-    .set F_K,   OW_FRAME+64         ; 4 ax, 4 cx, 4 cy, -4 ay; later the offsets' bound
-    .set F_U,   OW_FRAME+80         ; u0, u1 (U^), k (K')
-    .set F_KN,  OW_FRAME+92         ; K''
-    .set F_R,   OW_FRAME+96         ; R'
-    .set F_T,   OW_FRAME+100        ; T'
-    .set F_V,   OW_FRAME+104        ; the offsets' pointer
-    .set F_SIG, OW_FRAME+106        ; sigma (word)
-    .set F_SH,  OW_FRAME+108        ; out until sigma is known; then 12 - f - g - t (word)
+/* The 16 x 16 hardware multiplier (MSP430F2618, SLAS541) */
+    .set MPY,    0x0130
+    .set MPYS,   0x0132
+    .set MACS,   0x0136
+    .set OP2,    0x0138
+    .set RESLO,  0x013a
+    .set RESHI,  0x013c
+    .set SUMEXT, 0x013e
+
+/* the kernels' frame, tri_frame below */
+    .set F_Z,   0                   ; pairs -s2, c2, s2, s1, c1, -s1
+    .set F_B,   24                  ; b1x, b1y, b3x, b3y (scaled)
+    .set F_W,   40                  ; ax, cx, ay, cy
+    .set F_K,   64                  ; 4 ax, 4 cx, 4 cy, -4 ay; later the offsets' bound
+    .set F_U,   80                  ; u0, u1 (U^), k (K')
+    .set F_KN,  92                  ; K''
+    .set F_R,   96                  ; R'
+    .set F_T,   100                 ; T'
+    .set F_V,   104                 ; the offsets' pointer
+    .set F_SIG, 106                 ; sigma (word)
+    .set F_SH,  108                 ; out until sigma is known; then 12 - f - g - t (word)
+
+    .section .bss.optical_tri_frame,"aw",@nobits
+    .balign 2
+tri_frame:
+    .skip   110
 
 /* R13:R12 -> the pair at address a: h = R13 + bit 15 of R12 (also left in R14), l = R12. */
     .macro  PUT a
@@ -111,47 +127,6 @@
     inv     \hi
     sub     #-1, \lo
     adc     \hi
-    .endm
-
-/*
- * sin_q1() of fx_trig.c, the table evaluation of fx_sin (firmware/fx/msp430/fx_trig.S's
- * SIN_BODY from xr on, bit for bit, on fx's tables): \hi:\lo = xr, the first-quadrant
- * argument plus 64 (at most 2^30 + 64) -> \hi:\lo = its sine, Q1.30, non-negative. Clobbers
- * R11, R14, R15. Assembled twice in sincos.
- */
-    .macro  SINQ lo, hi
-    rla     \lo                     ; xr << 1: i = high byte of \hi,
-    rlc     \hi                     ; u = low byte of \hi : high byte of \lo
-    swpb    \hi
-    mov.b   \hi, r14                ; i
-    xor     r14, \hi
-    swpb    \lo
-    mov.b   \lo, \lo
-    bis     \lo, \hi                ; u
-    rla     r14                     ; 2i
-    clr     r11
-    mov     fx_sin_corr(r14), &MPY  ; G[i] (2^16 - u)
-    sub     \hi, r11
-    mov     r11, &OP2
-    rla     r14                     ; 4i
-    mov     fx_sin_tab+4(r14), \lo  ; D = T[i+1] - T[i]
-    mov     fx_sin_tab+6(r14), r15
-    sub     fx_sin_tab(r14), \lo
-    subc    fx_sin_tab+2(r14), r15
-    mov     &RESHI, r11             ; + 2 ((G (2^16 - u)) >> 16), 17 bits
-    rla     r11
-    adc     r15
-    add     r11, \lo
-    adc     r15                     ; e = R15:R12
-    mov     \hi, &MPY               ; (e u) >> 16 = e_hi u + ((e_lo u) >> 16)
-    mov     \lo, &OP2
-    mov     &RESHI, \lo
-    mov     r15, &OP2
-    add     &RESLO, \lo
-    mov     &RESHI, \hi
-    adc     \hi
-    add     fx_sin_tab(r14), \lo    ; + T[i]
-    addc    fx_sin_tab+2(r14), \hi
     .endm
 
     .section .text.optical_tri_kernels,"ax",@progbits
@@ -277,20 +252,20 @@ optical_tri_core:
     ; the sines: Z = (-s2, c2, s2, s1, c1, -s1); c1, c2 also in W
     mov     @r8+, r12               ; s1
     mov     @r8+, r13
-    PUT     OW+F_Z+12
+    PUT     tri_frame+F_Z+12
     NEG
-    PUT     OW+F_Z+20
+    PUT     tri_frame+F_Z+20
     mov     @r8+, r12               ; c1
     mov     @r8+, r13
-    PUT     OW+F_Z+16
+    PUT     tri_frame+F_Z+16
     mov     @r8+, r12               ; s2
     mov     @r8+, r13
-    PUT     OW+F_Z+8
+    PUT     tri_frame+F_Z+8
     NEG
-    PUT     OW+F_Z
+    PUT     tri_frame+F_Z
     mov     @r8+, r12               ; c2
     mov     @r8+, r13
-    PUT     OW+F_Z+4
+    PUT     tri_frame+F_Z+4
     mov     r10, r12
     mov     r9, r14
     call    #tri_core_body
@@ -303,19 +278,17 @@ optical_tri_core:
     pop     r10
     ret
 
-/* The body, with the pairs Z in place: R4..R10 not kept (optical_triangulate calls its second
- * entry, tri_core_v, directly). The public entry has its own section: the board, which only
- * triangulates, links without it. */
+/* The body, with the pairs Z in place: R4..R10 not kept. */
     .section .text.optical_tri_kernels,"ax",@progbits
 arg:
-    mov     #1, r12                 ; OPTICAL_E_ARG
+    mov     #E_ARG, r12
     ret
 degenerate:
     mov     #E_DEGENERATE, r12
     ret
 tri_core_body:
-    mov     r14, &OW+F_SH           ; (out, for now: R9 counts sigma)
-    mov     r12, &OW+F_V
+    mov     r14, &tri_frame+F_SH           ; (out, for now: R9 counts sigma)
+    mov     r12, &tri_frame+F_V
     mov     r12, r11                ; v in registers
     mov     @r11+, r12
     mov     @r11+, r13
@@ -325,8 +298,6 @@ tri_core_body:
     mov     @r11+, r6
     mov     @r11+, r7
     mov     @r11, r10
-    ; (optical_triangulate's entry: v in R12..R15, R5, R6, R7, R10, F_V and F_SH set)
-tri_core_v:
     ; |v| or'ed (R11:R4): 2^27 or more OPTICAL_E_ARG
     clr     r4
     clr     r11
@@ -382,10 +353,10 @@ tri_core_v:
     sub     #-1, r9
 7:  cmp     #0x1000, r11
     jlo     6b
-    mov     r9, &OW+F_SIG
-    mov     &OW+F_SH, r9            ; out
+    mov     r9, &tri_frame+F_SIG
+    mov     &tri_frame+F_SH, r9            ; out
     ; v 2^sigma in place and as the pairs B
-    mov     &OW+F_V, r4
+    mov     &tri_frame+F_V, r4
     mov     r12, 0(r4)
     mov     r13, 2(r4)
     mov     r14, 4(r4)
@@ -394,59 +365,59 @@ tri_core_v:
     mov     r6, 10(r4)
     mov     r7, 12(r4)
     mov     r10, 14(r4)
-    PAIR    r12, r13, OW+F_B, r4
-    PAIR    r14, r15, OW+F_B+4, r4
-    PAIR    r5, r6, OW+F_B+8, r4
-    PAIR    r7, r10, OW+F_B+12, r4
+    PAIR    r12, r13, tri_frame+F_B, r4
+    PAIR    r14, r15, tri_frame+F_B+4, r4
+    PAIR    r5, r6, tri_frame+F_B+8, r4
+    PAIR    r7, r10, tri_frame+F_B+12, r4
     ; A = R(alpha1) b1 / 4, C = R(-alpha2) b3 / 4 into W and (times 4) K
-    mov     #OW+F_Z+16, r5          ; ax = (c1, -s1) b1
-    mov     #OW+F_B, r6
+    mov     #tri_frame+F_Z+16, r5          ; ax = (c1, -s1) b1
+    mov     #tri_frame+F_B, r6
     call    #dot2
-    PUT     OW+F_W
+    PUT     tri_frame+F_W
     rla     r12
     rlc     r13
     rla     r12
     rlc     r13
-    PUT     OW+F_K
-    mov     #OW+F_Z+12, r5          ; ay = (s1, c1) b1
+    PUT     tri_frame+F_K
+    mov     #tri_frame+F_Z+12, r5          ; ay = (s1, c1) b1
     call    #dot2
-    PUT     OW+F_W+8
+    PUT     tri_frame+F_W+8
     NEG
     rla     r12
     rlc     r13
     rla     r12
     rlc     r13
-    PUT     OW+F_K+12
-    mov     #OW+F_Z+4, r5           ; cx = (c2, s2) b3
-    mov     #OW+F_B+8, r6
+    PUT     tri_frame+F_K+12
+    mov     #tri_frame+F_Z+4, r5           ; cx = (c2, s2) b3
+    mov     #tri_frame+F_B+8, r6
     call    #dot2
-    PUT     OW+F_W+4
+    PUT     tri_frame+F_W+4
     rla     r12
     rlc     r13
     rla     r12
     rlc     r13
-    PUT     OW+F_K+4
-    mov     #OW+F_Z, r5             ; cy = (-s2, c2) b3
+    PUT     tri_frame+F_K+4
+    mov     #tri_frame+F_Z, r5             ; cy = (-s2, c2) b3
     call    #dot2
-    PUT     OW+F_W+12
+    PUT     tri_frame+F_W+12
     rla     r12
     rlc     r13
     rla     r12
     rlc     r13
-    PUT     OW+F_K+8
+    PUT     tri_frame+F_K+8
     ; 16 K = (4 ax, 4 cx) (4 cy, -4 ay) into out->l[1] (for now)
-    mov     #OW+F_K, r5
-    mov     #OW+F_K+8, r6
+    mov     #tri_frame+F_K, r5
+    mov     #tri_frame+F_K+8, r6
     call    #dot2
     mov     r12, TSOL_L+4(r9)
     mov     r13, TSOL_L+6(r9)
     ; V = (s2, s1) (ax, cx), (s2, s1) (ay, cy): R7:R4 and R6:R5
-    mov     #OW+F_Z+8, r5
-    mov     #OW+F_W, r6
+    mov     #tri_frame+F_Z+8, r5
+    mov     #tri_frame+F_W, r6
     call    #dot2
     mov     r12, r4
     mov     r13, r7
-    mov     #OW+F_W+8, r6
+    mov     #tri_frame+F_W+8, r6
     call    #dot2
     mov     r12, r5
     mov     r13, r6
@@ -494,8 +465,8 @@ tri_core_v:
     mov     r7, TSOL_W+2(r9)
     mov     r5, TSOL_W+4(r9)
     mov     r6, TSOL_W+6(r9)
-    PAIR    r4, r7, OW+F_U, r10
-    PAIR    r5, r6, OW+F_U+4, r10
+    PAIR    r4, r7, tri_frame+F_U, r10
+    PAIR    r5, r6, tri_frame+F_U+4, r10
     ; K' = 16 K 2^(e - 4) within [-2^28, 2^28) (else beacon 2 lies beyond 2^31 lambda): floor
     ; when e < 4, else doubled, refused as soon as bits 31 and 30 differ
     mov     TSOL_L+4(r9), r12
@@ -524,15 +495,15 @@ tri_core_v:
     mov     r13, r7                 ; its sign from here
     mov     r12, TSOL_L+4(r9)
     mov     r13, TSOL_L+6(r9)
-    PUT     OW+F_U+8
+    PUT     tri_frame+F_U+8
     bis     r12, r13
     tst     r13
     jz      inconsistent            ; K' = 0: the vehicle on beacon 2
     ; l1 = (ax, ay, c1) (U^, K'), l3 = (cx, cy, c2) (U^, K'): both with the sign of K';
     ; out->l[0] = 4 l1, out->l[2] = 4 l3
-    mov     #OW+F_W, r5
-    mov     #OW+F_U, r6
-    mov     #OW+F_Z+16, r4
+    mov     #tri_frame+F_W, r5
+    mov     #tri_frame+F_U, r6
+    mov     #tri_frame+F_Z+16, r4
     call    #dot3s
     LSIGN
     rla     r12
@@ -541,8 +512,8 @@ tri_core_v:
     rlc     r13
     mov     r12, TSOL_L(r9)
     mov     r13, TSOL_L+2(r9)
-    mov     #OW+F_W+4, r5
-    mov     #OW+F_Z+4, r4
+    mov     #tri_frame+F_W+4, r5
+    mov     #tri_frame+F_Z+4, r4
     call    #dot3s
     LSIGN
     rla     r12
@@ -551,7 +522,7 @@ tri_core_v:
     rlc     r13
     mov     r12, TSOL_L+8(r9)
     mov     r13, TSOL_L+10(r9)
-    ; Q = |U^|^2 / 2^32 in [2^22, 2^25); R' = 2^(52 + g) / Q (recip_q in fastmath.c)
+    ; Q = |U^|^2 / 2^32 in [2^22, 2^25); R' = 2^(52 + g) / Q (recip_q in tri_k.c)
     mov     r6, r5                  ; (R6 = the pairs U as both lists)
     call    #dot2
     ; Qn = Q 2^n in [2^31, 2^32) (R13:R12), g = 9 - n (R11): Q 2^8 (R10:R13:R12), then one
@@ -641,7 +612,7 @@ tri_core_v:
     sub     r11, r5
     mov     r12, TSOL_R(r9)
     mov     r13, TSOL_R+2(r9)
-    PUT     OW+F_R
+    PUT     tri_frame+F_R
     ; K'' = K' 2^f, |K''| in [2^29, 2^30): |K'| (nonzero, below 2^28) shifted, whole bytes
     ; below 2^21, four bits below 2^25, then bits, f counted off R5
     mov     TSOL_L+4(r9), r14
@@ -681,11 +652,11 @@ tri_core_v:
     tst     r7
     jge     7f
     NEG
-7:  PUT     OW+F_KN
+7:  PUT     tri_frame+F_KN
     ; T = K'' R' / 2^32, T' = T 2^t, |T'| in [2^29, 2^30)
-    mov     r5, &OW+F_SH
-    mov     #OW+F_KN, r5
-    mov     #OW+F_R, r6
+    mov     r5, &tri_frame+F_SH
+    mov     #tri_frame+F_KN, r5
+    mov     #tri_frame+F_R, r6
     call    #dot1
     mov     r13, r6                 ; (its sign)
     mov     r12, r14
@@ -719,32 +690,32 @@ tri_core_v:
     tst     r6
     jge     8f
     NEG
-8:  sub     r11, &OW+F_SH
-    PUT     OW+F_T
+8:  sub     r11, &tri_frame+F_SH
+    PUT     tri_frame+F_T
     ; the offsets' range (offset): d = d' 2^sh within [-2^31, 2^31) when the high word of d'
     ; (inverted when negative) lies below 2^(15 - sh) (sh <= 12); none for sh <= 0: 0xFFFF
     mov     #-1, r12
-    mov     &OW+F_SH, r11
+    mov     &tri_frame+F_SH, r11
     tst     r11
     jl      2f
     jz      2f
     rla     r11
     mov     tri_bound-2(r11), r12
-2:  mov     r12, &OW+F_K            ; (the products K are done with)
+2:  mov     r12, &tri_frame+F_K            ; (the products K are done with)
     ; d = T' U^ / 2^32 2^(12 - f - g - t): beacon 2 from the vehicle; the vehicle at -d
     ; relative to it, -d / 2^sigma rounded half up (Q16 m): both components by one shift
     ; by sigma - sh
-    mov     #OW+F_T, r5
-    mov     #OW+F_U, r6
+    mov     #tri_frame+F_T, r5
+    mov     #tri_frame+F_U, r6
     call    #offset
     jc      singular
     mov     r12, r10
     mov     r13, r11
-    mov     #OW+F_U+4, r6
+    mov     #tri_frame+F_U+4, r6
     call    #offset
     jc      singular
-    mov     &OW+F_SIG, r14
-    sub     &OW+F_SH, r14
+    mov     &tri_frame+F_SIG, r14
+    sub     &tri_frame+F_SH, r14
     jl      5f
     jz      6f
     add     #-1, r14
@@ -781,12 +752,12 @@ tri_core_v:
     NEG
     mov     r12, TSOL_W+4(r9)
     mov     r13, TSOL_W+6(r9)
-9:  sub     &OW+F_SIG, r8           ; x = e - g - sigma
+9:  sub     &tri_frame+F_SIG, r8           ; x = e - g - sigma
     mov.b   r8, TSOL_X(r9)
     clr     r12                     ; OPTICAL_OK
     ret
 inconsistent:
-    mov     #9, r12                 ; OPTICAL_E_INCONSISTENT
+    mov     #E_INCONSISTENT, r12
     ret
 singular:
     mov     #E_SINGULAR, r12
@@ -811,7 +782,7 @@ offset:
     tst     r14                     ; the bound in F_K (carry set when not)
     jge     1f
     inv     r14
-1:  cmp     &OW+F_K, r14
+1:  cmp     &tri_frame+F_K, r14
     jhs     4f
     NEG
     clrc
@@ -842,9 +813,7 @@ optical_tri_quality:
     pop     r10
     ret
 
-/* The body: R4..R10 not kept (optical_triangulate calls it directly; the entry in its own
- * section, as optical_tri_core's). */
-    .section .text.optical_tri_qbody,"ax",@progbits
+/* The body: R4..R10 not kept. */
 tri_quality_body:
     mov     r13, r9
     ; the chords b1, b3 / 2^15 (floor; the high word after one left shift)
@@ -1033,306 +1002,3 @@ sat:
     mov     #-1, r13
 q_out:
     ret
-
-/*
- * R13:R12 = alpha in (0, 2^31) -> R5:R4 = fx_sin(alpha), R13:R12 = fx_cos(alpha), bit for
- * bit. With x = alpha mod 2^30, P = sin_q1(x + 64) and Q = sin_q1(2^30 - x + 64): in the
- * first quadrant sin = P, cos = Q, in the second sin = Q, cos = -P. O8's alpha1 and alpha2
- * lie there: gaps between three distinct sightings that sum to a turn, neither the largest.
- * Clobbers R6, R7, R9, R11, R14, R15.
- */
-sincos:
-    mov     r13, r9                 ; bit 14: the second quadrant
-    and     #0x3fff, r13
-    add     #64, r12                ; P's xr
-    adc     r13
-    bit     #0x4000, r9
-    jnz     1f
-    mov     r12, r4                 ; first quadrant: the sine from P's, the cosine Q's
-    mov     r13, r5
-    mov     #0x0080, r12            ; Q's xr = 2^30 + 128 - P's
-    mov     #0x4000, r13
-    sub     r4, r12
-    subc    r5, r13
-    jmp     2f
-1:  mov     #0x0080, r4             ; second quadrant: the sine from Q's, the cosine P's
-    mov     #0x4000, r5
-    sub     r12, r4
-    subc    r13, r5
-2:  SINQ    r4, r5
-    SINQ    r12, r13
-    bit     #0x4000, r9
-    jz      3f
-    NEG
-3:  ret
-
-/*
- * int8_t optical_triangulate(const optical_xy_t b[3], const fx_angle_t theta[3],
- * uint32_t quality_max, optical_tri_t *out): R12 = b, R13 = theta, R15:R14 = quality_max,
- * out on the stack. The steps of triangulate.c: O8's ordering (d1 = theta1 - theta0,
- * d2 = theta2 - theta0, the triplet from the one after the largest gap), the sines and
- * cosines of alpha1, alpha2 (fx_sin's and fx_cos's values, sincos: straight into the core's
- * pairs), the offsets from beacon 2 (in the core's registers; u.sv.v gets them scaled),
- * optical_tri_core, optical_tri_quality, the position, O10's bearing (fx_atan2 of w) and the
- * quality limit. R4 = B2, R5 = B2's angle, R9 = out, R7:R6 = the quality; quality_max at
- * 0(R1).
- */
-    .set T_PB,  OW_FRAME            ; (in the kernels' frame until the sines go there) the
-    .set T_PT,  OW_FRAME+6          ; beacons' pointers in the given order, the angles' ones
-
-    .section .text.optical_triangulate,"ax",@progbits
-    .global optical_triangulate
-    .type optical_triangulate,@function
-optical_triangulate:
-    push    r10
-    push    r9
-    push    r8
-    push    r7
-    push    r6
-    push    r5
-    push    r4
-    push    r15
-    push    r14
-    mov     r12, &OW+T_PB           ; the beacons' and the angles' pointers
-    add     #XY_SIZE, r12
-    mov     r12, &OW+T_PB+2
-    add     #XY_SIZE, r12
-    mov     r12, &OW+T_PB+4
-    mov     r13, &OW+T_PT
-    add     #4, r13
-    mov     r13, &OW+T_PT+2
-    add     #4, r13
-    mov     r13, &OW+T_PT+4
-.Ltr_body:
-    mov     20(r1), r9              ; out
-    ; d1 = theta1 - theta0 (R11:R10), d2 = theta2 - theta0 (R15:R14)
-    mov     &OW+T_PT, r15
-    mov     @r15+, r6
-    mov     @r15, r7
-    mov     &OW+T_PT+2, r15
-    mov     @r15+, r10
-    mov     @r15, r11
-    sub     r6, r10
-    subc    r7, r11
-    mov     &OW+T_PT+4, r15
-    mov     @r15+, r14
-    mov     @r15, r15
-    sub     r6, r14
-    subc    r7, r15
-    mov     r10, r8                 ; d1 = 0, d2 = 0 or d1 = d2: OPTICAL_E_DEGENERATE
-    bis     r11, r8
-    jz      .Ltr_degen
-    mov     r14, r8
-    bis     r15, r8
-    jz      .Ltr_degen
-    cmp     r10, r14
-    jne     1f
-    cmp     r11, r15
-    jeq     .Ltr_degen
-1:  mov     #2, r8                  ; p (offset of its pointer), q = 6 - p
-    cmp     r11, r15                ; d1 > d2: swapped, p = 2
-    jlo     2f
-    jne     3f
-    cmp     r10, r14
-    jhs     3f
-2:  mov     r10, r6
-    mov     r11, r7
-    mov     r14, r10
-    mov     r15, r11
-    mov     r6, r14
-    mov     r7, r15
-    mov     #4, r8
-3:  clr     r6                      ; g0 = -d2 (R7:R6), gq = d2 - d1 (R5:R4)
-    clr     r7
-    sub     r14, r6
-    subc    r15, r7
-    mov     r14, r4
-    mov     r15, r5
-    sub     r10, r4
-    subc    r11, r5
-    mov     #6, r14                 ; q
-    sub     r8, r14
-    ; the cases: R15 = o1, R11 = o2, R14 = o3 (pointer offsets), alpha1 in R7:R6, alpha2 in
-    ; R8:R10 (fx_sin keeps them)
-    cmp     r11, r7                 ; g0 >= d1 ...
-    jlo     5f
-    jne     4f
-    cmp     r10, r6
-    jlo     5f
-4:  cmp     r5, r7                  ; ... and g0 >= gq: (0, p, q), alpha1 = d1, alpha2 = gq
-    jlo     5f
-    jne     6f
-    cmp     r4, r6
-    jlo     5f
-6:  mov     r10, r6
-    mov     r11, r7
-    mov     r4, r10
-    mov     r8, r11
-    mov     r5, r8
-    clr     r15
-    jmp     .Ltr_order
-5:  cmp     r5, r11                 ; d1 >= gq: (p, q, 0), alpha1 = gq, alpha2 = g0
-    jlo     7f
-    jne     8f
-    cmp     r4, r10
-    jlo     7f
-8:  mov     r8, r15
-    mov     r14, r11
-    clr     r14
-    mov     r6, r10
-    mov     r7, r8
-    mov     r4, r6
-    mov     r5, r7
-    jmp     .Ltr_order
-7:  mov     r14, r15                ; else (q, 0, p), alpha1 = g0, alpha2 = d1
-    mov     r8, r14
-    mov     r11, r8
-    clr     r11
-.Ltr_order:
-    mov     OW+T_PT(r11), r5        ; B2's angle
-    mov     OW+T_PB(r15), r15       ; B1, B2, B3
-    mov     OW+T_PB(r11), r4
-    mov     OW+T_PB(r14), r14
-    push    r9                      ; (the kernels' bodies keep no register)
-    push    r5
-    push    r4
-    push    r15
-    push    r14
-    ; fx_sin and fx_cos of alpha1, alpha2 straight into the kernels' pairs: Z = (-s2, c2,
-    ; s2, s1, c1, -s1) (the pointers there are read)
-    mov     r6, r12
-    mov     r7, r13
-    call    #sincos
-    PAIR    r4, r5, OW+F_Z+12, r14
-    PAIR    r12, r13, OW+F_Z+16, r14
-    NEGR    r4, r5
-    PAIR    r4, r5, OW+F_Z+20, r14
-    mov     r10, r12
-    mov     r8, r13
-    call    #sincos
-    PAIR    r4, r5, OW+F_Z+8, r14
-    PAIR    r12, r13, OW+F_Z+4, r14
-    NEGR    r4, r5
-    PAIR    r4, r5, OW+F_Z, r14
-    ; v = (B1 - B2, B3 - B2) in the core's registers (its work memory: u.sv.v, u.sv.ts)
-    pop     r11                     ; B3
-    pop     r8                      ; B1
-    mov     @r1, r4                 ; B2
-    mov     @r8+, r12
-    mov     @r8+, r13
-    sub     @r4, r12
-    subc    XY_X+2(r4), r13
-    mov     @r8+, r14
-    mov     @r8, r15
-    sub     XY_Y(r4), r14
-    subc    XY_Y+2(r4), r15
-    mov     @r11+, r5
-    mov     @r11+, r6
-    sub     @r4, r5
-    subc    XY_X+2(r4), r6
-    mov     @r11+, r7
-    mov     @r11, r10
-    sub     XY_Y(r4), r7
-    subc    XY_Y+2(r4), r10
-    mov     #OW+OW_SV_V, &OW+F_V
-    mov     #OW+OW_SV_TS, &OW+F_SH
-    call    #tri_core_v
-    tst     r12
-    jnz     .Ltr_pop
-    mov     #OW+OW_SV_V, r12
-    mov     #OW+OW_SV_TS, r13
-    call    #tri_quality_body
-    pop     r4
-    pop     r5
-    pop     r9
-    mov     r12, r6
-    mov     r13, r7
-    mov     r12, TRI_QUALITY(r9)
-    mov     r13, TRI_QUALITY+2(r9)
-    mov     @r4+, r12               ; the position: B2 + off
-    mov     @r4+, r13
-    add     &OW+OW_SV_TS+TSOL_OFF, r12
-    addc    &OW+OW_SV_TS+TSOL_OFF+2, r13
-    mov     r12, TRI_POSE+POSE_X(r9)
-    mov     r13, TRI_POSE+POSE_X+2(r9)
-    mov     @r4+, r12
-    mov     @r4, r13
-    add     &OW+OW_SV_TS+TSOL_OFF+4, r12
-    addc    &OW+OW_SV_TS+TSOL_OFF+6, r13
-    mov     r12, TRI_POSE+POSE_Y(r9)
-    mov     r13, TRI_POSE+POSE_Y+2(r9)
-    mov     &OW+OW_SV_TS+TSOL_W+4, r12 ; O10: atan2(w1, w0) - theta(B2)
-    mov     &OW+OW_SV_TS+TSOL_W+6, r13
-    mov     &OW+OW_SV_TS+TSOL_W, r14
-    mov     &OW+OW_SV_TS+TSOL_W+2, r15
-    call    #fx_atan2
-    sub     @r5+, r12
-    subc    @r5, r13
-    mov     r12, TRI_POSE+POSE_HEADING(r9)
-    mov     r13, TRI_POSE+POSE_HEADING+2(r9)
-    clr     r12                     ; quality > quality_max: OPTICAL_E_SINGULAR
-    cmp     r7, 2(r1)
-    jlo     .Ltr_sing
-    jne     .Ltr_ret
-    cmp     r6, 0(r1)
-    jhs     .Ltr_ret
-.Ltr_sing:
-    mov     #E_SINGULAR, r12
-    jmp     .Ltr_ret
-.Ltr_pop:
-    pop     r4
-    pop     r5
-    pop     r9
-    jmp     .Ltr_none
-.Ltr_degen:
-    mov     #E_DEGENERATE, r12
-.Ltr_none:
-    mov     #-1, TRI_QUALITY(r9)    ; quality: none
-    mov     #-1, TRI_QUALITY+2(r9)
-.Ltr_ret:
-    add     #4, r1
-    pop     r4
-    pop     r5
-    pop     r6
-    pop     r7
-    pop     r8
-    pop     r9
-    pop     r10
-    ret
-
-/*
- * int8_t optical_tri_take(const optical_xy_t *map, const uint8_t t[3], uint32_t quality_max,
- * optical_tri_t *out): R12 = map, R13 = t, R15:R14 = quality_max, out on the stack.
- * optical_triangulate's body on pointers to the identified triplet's beacons
- * (map[sm[pos[t[i]]]]) and angles (u.sv.ang[t[i]]), nothing copied.
- */
-    .global optical_tri_take
-    .type optical_tri_take,@function
-optical_tri_take:
-    push    r10
-    push    r9
-    push    r8
-    push    r7
-    push    r6
-    push    r5
-    push    r4
-    push    r15
-    push    r14
-    mov     #OW+T_PB, r15
-1:  mov.b   @r13+, r11              ; t[i]
-    mov     r11, r10
-    rla     r10
-    rla     r10
-    add     #OW+OW_ANG, r10
-    mov     r10, 6(r15)
-    mov.b   OW+OW_POS(r11), r11
-    mov.b   OW+OW_SM(r11), r11
-    rla     r11
-    rla     r11
-    rla     r11
-    add     r12, r11
-    mov     r11, 0(r15)
-    add     #2, r15
-    cmp     #OW+T_PT, r15
-    jne     1b
-    jmp     .Ltr_body

@@ -1,8 +1,9 @@
 /*
  * hal/clock.h - the board's millisecond clock (timeouts and settling times of the main loop).
  *
- * MSP430: Timer_B in continuous mode on SMCLK, CCR0 interrupts every 16,000 cycles (vector
- * 14, TIMERB0); the handler counts and tells the main loop (hal_cpu_wake). POSIX: the harness
+ * MSP430: Timer_B in continuous mode on SMCLK, CCR0 interrupts every millisecond of SMCLK
+ * (16,000 cycles at 16 MHz, 12,000 at 12 MHz: the clock hal_cpu_init() chose; vector 29,
+ * TIMERB0); the handler counts and tells the main loop (hal_cpu_wake). POSIX: the harness
  * raises the same vector every simulated millisecond on the board that started its clock.
  */
 #ifndef HAL_CLOCK_H

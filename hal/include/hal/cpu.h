@@ -10,13 +10,13 @@
 extern "C" {
 #endif
 
-/** CPU clock the firmware is timed for, Hz (MCLK = SMCLK on the MSP430 target). */
-#define HAL_CPU_HZ 16000000ul
-
 /**
- * Board bring-up: watchdog held, MCLK = SMCLK = 16 MHz from the calibrated DCO (when the
- * part carries calibration data; otherwise the reset DCO is left alone), all ports driven low
- * as outputs except the ones the peripheral drivers claim. Interrupts stay disabled.
+ * Board bring-up: watchdog held, every pin in its reset-safe state (outputs at their idle
+ * level, inputs left alone), MCLK = SMCLK from the calibrated DCO at the fastest frequency
+ * the supply allows: 16 MHz at VCC >= 3.35 V (the SVS's level), else 12 MHz at >= 2.8 V
+ * (docs/hardware.md). MSP430: stops with HAL_FAULT_CLOCK_UNCALIBRATED when the calibration
+ * data is erased, HAL_FAULT_SUPPLY_LOW below 2.8 V. The millisecond tick and the UART baud
+ * rates follow the chosen clock. Interrupts stay disabled.
  */
 void hal_cpu_init(void);
 

@@ -8,11 +8,12 @@
  * lights). The byte protocols on top (data inverted, strobe codes, DAC values) are portable
  * firmware (firmware/drive, drive/drive_port.h); this API only moves bytes.
  *
- * MSP430F249 (hal/msp430/drive_port.c): P4.0..P4.7 = data D0..D7, P5.0..P5.2 = address
- * A0..A2, P5.3 = /WR (active low; the 8255 and the latches take the data on its rising
- * edge). An external 74HC138 decodes A2 into the 8255's /CS (A2 = 0) and the DAC/latch
- * strobes (A2 = 1): the F249 has no DAC of its own. Host (hal/posix/drive_port.c): every
- * write is recorded with its board and simulated time (hal_posix/drive_port_posix.h).
+ * MSP430F2618 (hal/msp430/drive_port.c, docs/hardware.md): P4.0..P4.7 = data D0..D7,
+ * P5.0..P5.2 = address A0..A2, P5.3 = /WR (active low; the 8255 and the latches take the data
+ * on its rising edge). A 74HC138 on the drive board decodes A2 into the 8255's /CS (A2 = 0)
+ * and the strobes of the drive board's DAC and output latches (A2 = 1). Host
+ * (hal/posix/drive_port.c): every write is recorded with its board and simulated time
+ * (hal_posix/drive_port_posix.h).
  */
 #ifndef HAL_DRIVE_PORT_H
 #define HAL_DRIVE_PORT_H

@@ -23,6 +23,8 @@ enum hal_fault_code {
     HAL_FAULT_UNEXPECTED_IRQ = 0x0104,     /**< an interrupt without a handler fired */
     HAL_FAULT_ASSERT = 0x0201,             /**< a firmware invariant does not hold */
     HAL_FAULT_DIV_ZERO = 0x0301,           /**< reserved for callers that trap division by 0 */
+    HAL_FAULT_CLOCK_UNCALIBRATED = 0x0302, /**< MSP430: the DCO calibration data is erased */
+    HAL_FAULT_SUPPLY_LOW = 0x0303,         /**< MSP430: the supply allows no calibrated clock */
 };
 
 /** Stop for good with @p code (one of enum hal_fault_code). Never returns. */

@@ -11,8 +11,10 @@
 #ifndef HAL_PINMAP_H
 #define HAL_PINMAP_H
 
+#ifndef __ASSEMBLER__
 #include "hal/capture.h"
 #include "hal/edge.h"
+#endif
 
 /** Vector numbers of the MSP430F2618 (word at 0xFFC0 + 2N; a higher N is served first). */
 #define HAL_VEC_LINK_TX 16 /* 0xFFE0 USCIAB1TX */
@@ -34,6 +36,7 @@
 #define HAL_CAN0_INT_PIN  2
 #define HAL_CAN0_VECTOR   HAL_VEC_PORT2
 
+#ifndef __ASSEMBLER__
 /** Port (1 or 2) of each edge line; 0 for the NMI pin. */
 #define HAL_EDGE_PORT_OF(line)                                                                     \
     ((line) == HAL_EDGE_COORD_REQUEST                        ? 0                                   \
@@ -59,5 +62,6 @@ static inline unsigned hal_capture_vector(hal_capture_channel_t ch)
 {
     return ch == HAL_CAPTURE_INDEX ? HAL_VEC_TIMERA0 : HAL_VEC_TIMERA1;
 }
+#endif
 
 #endif

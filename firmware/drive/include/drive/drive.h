@@ -86,7 +86,8 @@ typedef enum {
     DRIVE_ERR_RADIUS,    /**< every path of the cases needs a radius below the minimum    */
     DRIVE_ERR_SWEEP,     /**< the double arc would turn a full circle or more             */
     DRIVE_ERR_RANGE,     /**< a drive-board byte cannot hold the value (drive_cmd.h)      */
-    DRIVE_ERR_PATH       /**< path preparation: see drive_path.h                         */
+    DRIVE_ERR_PATH,      /**< path preparation: see drive_path.h                         */
+    DRIVE_ERR_TURN       /**< a turn over 90 degrees has no corner of the radius (drive_path.h) */
 } drive_status_t;
 
 /** Short English reason for a status ("ok" for DRIVE_OK). */
@@ -97,14 +98,14 @@ const char *drive_status_text(drive_status_t st);
  * @p min_radius: metres Q16 in [DRIVE_MIN_RADIUS_MIN, DRIVE_MIN_RADIUS_MAX].
  * @p reverse: the vehicle drives tail first (both poses keep the vehicle's heading).
  * On DRIVE_OK, @p out holds the case and the segments: following them from @p from ends at
- * @p to within 0.05 mm and 0.003 degrees in the issue's domain (0.3 - 5 m; within 0.3 mm and
- * 0.005 degrees up to 64 m; tests/unit/drive_test.cpp), every arc's radius is >= @p
+ * @p to within 0.05 mm and 0.005 degrees in the issue's domain (0.3 - 5 m; within 0.5 mm and
+ * 0.01 degrees up to 64 m; tests/unit/drive_test.cpp checks both), every arc's radius is >= @p
  * min_radius (exactly: curvature * min_radius <= 1 in the fixed-point values returned).
  * Otherwise the status says why and @p out is unspecified; on DRIVE_ERR_RADIUS, @p needed (if
  * not NULL) receives the curvature the double arc would need (Q4.28; INT32_MAX when over 8 /m),
  * so that callers can report the radius. Reentrant; no state.
- * Cost on the MSP430: about 9,400 cycles at most, measured over the vector set (cycles.json
- * "doublearc", and "doublearc_wide" for legs up to 64 m; docs/drive.md).
+ * Cost on the MSP430: within 20,000 cycles (SPEC's floor), checked by the vector program;
+ * measured in cycles.json as "doublearc" (and "doublearc_wide" for legs up to 64 m).
  */
 drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_q16_t min_radius,
                            bool reverse, drive_solution_t *out, int32_t *needed);
@@ -112,7 +113,7 @@ drive_status_t drive_solve(const drive_pose_t *from, const drive_pose_t *to, fx_
 /**
  * Advance @p pose by @p dist metres (Q16, >= 0) along a segment of curvature @p curvature
  * (Q4.28, vehicle frame), driving tail first when @p reverse; |dist * curvature| < 8 rad
- * (any arc of the solver). Error within 1e-5 m and 2e-6 rad over 5 m (tests/unit). Used to
+ * (any arc of the solver). Error within 0.05 mm and 5e-6 rad over 5 m (tests/unit). Used to
  * sample the nominal path and to predict where a loaded arc leads.
  */
 drive_pose_t drive_pose_advance(const drive_pose_t *pose, int32_t curvature, fx_q16_t dist,

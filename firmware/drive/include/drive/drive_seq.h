@@ -106,8 +106,10 @@ typedef struct {
     uint16_t settle_ms;  /**< full: servo settling after a load (seed: dt2)           */
     fx_q16_t stop_speed; /**< full: speed on the last arc of the stopping routine     */
     /** full: move to the next target when the one ahead is nearer than this along its
-     * direction (metres Q16). Double arcs then span up to spacing + advance, which must stay
-     * within the drive board's 8-bit arc length (1.47 m of front wheel). */
+     * direction (metres Q16). Double arcs then span up to spacing + advance; where that
+     * exceeds the drive board's 8-bit arc length (1.47 m of front wheel, reached sooner in
+     * tight turns, where the front wheel runs farther than the rear axle), the nearer target
+     * is driven to instead. */
     fx_q16_t advance;
     uint8_t max_fix_failures; /**< consecutive failed fixes tolerated                       */
 } drive_seq_config_t;

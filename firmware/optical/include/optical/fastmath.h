@@ -1,12 +1,13 @@
 /*
- * optical/fastmath.h - the kernels the optical fix spends its time in. On the MSP430 they are
- * assembly (firmware/optical/msp430/); fastmath.c holds the portable C that defines every
- * result, and the assembly performs the very same integer steps (tests/vectors/
- * optical_vectors.c prints them on both worlds: bit-identical).
+ * optical/fastmath.h - the arithmetic the optical fix spends its time in: the work area, the
+ * identification's primitives (ident.c) and the kernels (docs/kernels.md): optical_scan
+ * (scan_k.c; msp430/optical_scan.S on the target) and optical_tri_core / optical_tri_quality
+ * (tri_k.c; msp430/optical_tri.S). A kernel's C twin defines every result; its assembly
+ * performs the very same integer steps (the check images compare both on every call).
  *
  * These are the internals of optical_fix() and optical_triangulate(), public only so that the
- * vector program can check them one by one; the work arrays they fill are described in
- * fix.c and triangulate.c.
+ * tests can check them one by one; the work arrays they fill are described in fix.c and
+ * triangulate.c.
  */
 #ifndef OPTICAL_FASTMATH_H
 #define OPTICAL_FASTMATH_H
@@ -30,6 +31,21 @@ extern "C" {
  * interpolated table in 2^-18 turn.
  */
 uint16_t optical_angle16(int32_t dx, int32_t dy);
+
+/** The parts of optical_octant()'s arithmetic that optical_scan reuses for its windows. */
+typedef struct {
+    uint16_t r; /**< 2^30 / u (interpolated) */
+    uint16_t i; /**< floor(64 v / u), 0..63 */
+} optical_angle_parts_t;
+
+/**
+ * optical_angle16's arctangent of one octant: @p u in [2^15, 2^16), @p v <= u (the larger and
+ * the smaller magnitude, scaled alike), unfolded by @p flags (1 swapped, 2 dx < 0, 4 dy < 0);
+ * 2^-16 turn. The ratio through the interpolated reciprocal r = 2^30 / u (optical_recip_tab,
+ * optical_recip_d_tab), q = min(v r / 2^14, 0xFFFF), the arctangent from optical_atan_tab
+ * interpolated at q (i = q >> 10, fraction q << 6); @p p receives r and i.
+ */
+uint16_t optical_octant(uint16_t u, uint16_t v, uint8_t flags, optical_angle_parts_t *p);
 
 /** round(2^30 / (2^15 + 512 i)), i = 0..64 (optical_angle16's reciprocal). */
 extern const uint16_t optical_recip_tab[65];
@@ -107,28 +123,26 @@ typedef struct {
             fx_angle_t ang[OPTICAL_MAX_SIGHTINGS]; /**< the identified, reference frame */
             optical_xy_t b[3];                     /**< the triplet being solved */
             optical_tri_t tri;                     /**< a candidate triplet's solution */
-            uint16_t frame[55]; /**< MSP430: the triangulation kernels' work frame */
-            int32_t v[4];       /**< optical_triangulate: the offsets (optical_tri_core) */
-            int32_t sc[4];      /**< its sines and cosines (C only: the MSP430's go straight
-                                   into the frame) */
-            optical_tsol_t ts;  /**< its solution */
+            int32_t v[4];      /**< optical_triangulate: the offsets (optical_tri_core) */
+            int32_t sc[4];     /**< its sines and cosines */
+            optical_tsol_t ts; /**< its solution */
         } sv;
     } u;
     const optical_xy8_t *b8; /**< the compiled map (optical_map_t.b8), nb beacons */
     fx_q16_t ox, oy;         /**< its origin */
 } optical_work_t;
 
-/** The work area (fastmath.c). */
+/** The work area (ident.c). */
 extern optical_work_t optical_work;
 
 /**
  * Expected angle and window of every map beacon from (x, y, head) (O2), and the candidate
  * pairs within the windows centred on heading offset @p mid (2^-16 turn) of half-width @p half
- * (optical_eval's test; the pairs in scan order, sightings from the bucket of each window's
+ * (optical_pair's test; the pairs in scan order, sightings from the bucket of each window's
  * start). Per beacon, with (x8, y8) = b8[k] - p8 its offset in 2^-8 m, p8 = floor(((x, y) -
  * (ox, oy)) / 2^8) the position in the compiled map (a magnitude beyond gate8: e = 0, gated
- * out): psi = the angle of (x8, y8) - head, with the
- * octant's arctangent of optical_angle16 (r its 2^30 / u, u = m8 2^l in [2^15, 2^16), m8 the
+ * out): psi = the angle of (x8, y8) - head, with optical_octant() (r its 2^30 / u, u = m8 2^l
+ * in [2^15, 2^16), m8 the
  * larger magnitude, i = floor(64 t), t = smaller / larger). The window, when m8 >= 77 and
  * m8 > amax8 (else g = 0xFFFF, e = 0x7FFF + margin): h = floor(r optical_ct_tab[i] / 2^16)
  * (asin's factor k = 2/3 in the table), when m8 < 2 amax8 (k = 1) h + floor(h / 2) + 2;
@@ -138,24 +152,29 @@ extern optical_work_t optical_work;
  * amax8, r8 = |(x8, y8)| (docs/optical.md "O2-O5" derives it; tests/unit/optical_test.cpp
  * checks it). Both floorings leave each coordinate of the offset within one unit of 2^-8 m
  * of the exact one (the vector within sqrt 2 units): the caller adds 2 to eps8. Clears bm and
- * sm (except DROPPED) and marks every pair as optical_eval. Returns 1 when the position lies
- * beyond the compiled map's reach (p8 outside [-2^15, 2^15): nothing scanned), else 0.
+ * nc and marks every pair as optical_pair(), sm as they are: every sm[j] NONE or DROPPED
+ * (as optical_drop() leaves them; else optical_expect_scan()). Returns 1 when the position
+ * lies beyond the compiled map's reach (p8 outside [-2^15, 2^15): nothing scanned), else 0.
+ * The kernel of the identification (scan_k.c; msp430/optical_scan.S).
  */
+uint8_t optical_scan(int16_t mid, uint16_t half);
+
+/** optical_scan() after clearing the marks sm[j] (except DROPPED) to NONE: for marks in any
+ * state. */
 uint8_t optical_expect_scan(int16_t mid, uint16_t half);
 
 /**
- * optical_expect_scan() without clearing sm first: for marks as O4 leaves them (optical_drop()
- * or glue.h's optical_sort(): every sm[j] NONE or DROPPED), where the results are the same
- * (optical_fix's first scan).
+ * Pair (sighting @p j, beacon @p k) within the windows centred on heading offset @p mid of
+ * half-width @p half (2^-16 turn): |th[j] - psi[k] - mid| <= half + w, w = e[k] standing
+ * (lever8 = 0 or lev[j] = 0), else optical_win(min(eps8 + lev[j], 0xFFFF), g[k]) + margin;
+ * then marked: sm[j], bm[k] get the partner (or MULTI when they had one), we[j] = w. Returns
+ * whether it is. half + w must stay below 2^16.
  */
-uint8_t optical_first_scan(int16_t mid, uint16_t half);
+bool optical_pair(uint8_t j, uint8_t k, int16_t mid, uint16_t half);
 
 /**
- * The stored candidate pairs within the windows (mid, half): pair (j, k) when
- * |th[j] - psi[k] - mid| <= half + w, w = e[k] standing (lever8 = 0 or lev[j] = 0), else
- * optical_win(min(eps8 + lev[j], 0xFFFF), g[k]) + margin; marked: sm[j], bm[k] get the partner
- * (or MULTI when they had one), we[j] = w (the pairs taken from the last to the first). Clears
- * bm and sm (except DROPPED) first. half + w must stay below 2^16; nc not 0xFF.
+ * The stored candidate pairs within the windows (mid, half), by optical_pair() (the pairs
+ * taken from the last to the first). Clears bm and sm (except DROPPED) first. nc not 0xFF.
  */
 void optical_eval(int16_t mid, uint16_t half);
 
@@ -176,7 +195,7 @@ uint8_t optical_drop(const optical_sighting_t *s, uint32_t wmin);
 /** Window part min(ceil(l g / 256), 0x7FFF) of lever l (2^-8 m); 0x7FFF when g = 0xFFFF. */
 uint16_t optical_win(uint16_t l, uint16_t g);
 
-/** ceil(2^16 (2/3) / sqrt(1 + (i / 64)^2)), i = 0..63 (optical_expect_scan's range bound with
+/** ceil(2^16 (2/3) / sqrt(1 + (i / 64)^2)), i = 0..63 (optical_scan's range bound with
  * asin's factor 2/3). */
 extern const uint16_t optical_ct_tab[64];
 
@@ -213,8 +232,8 @@ extern const uint16_t optical_sqrt_tab[25];
 
 /**
  * optical_triangulate() of the identified triplet at positions @p t[3] of fix.c's identified
- * set: the beacons map[sm[pos[t[i]]]] and the angles u.sv.ang[t[i]] of the work area (the C
- * copies them into u.sv.b; the MSP430 reads them in place).
+ * set: the beacons map[sm[pos[t[i]]]] and the angles u.sv.ang[t[i]] of the work area (copied
+ * into u.sv.b).
  */
 int8_t optical_tri_take(const optical_xy_t *map, const uint8_t t[3], uint32_t quality_max,
                         optical_tri_t *out);

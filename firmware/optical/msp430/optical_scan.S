@@ -1,23 +1,39 @@
 /*
- * optical_fast.S - MSP430 versions of the identification kernels of firmware/optical:
- * optical_angle16, optical_expect_scan (optical_first_scan), optical_eval, optical_drop,
- * optical_width_ok (fastmath.c holds the portable C that defines the results; these perform
- * the very same integer steps, and tests/vectors/optical_vectors.c checks them bit for bit on
- * both worlds).
+ * optical_scan.S - optical_scan (optical/fastmath.h) on the MSP430: the expected angle and
+ * window of every map beacon and the candidate pairs within the windows, the identification's
+ * inner loop (O2-O3). scan_k.c is its C twin, the definition of every result; this performs
+ * the very same integer steps (docs/kernels.md: the fix floor needs it; the check images run
+ * both on every call).
  *
  * Registers as clang emits calls (TI EABI): arguments in R12..R15 (32-bit ones in pairs, R12
  * the low word), results in R12; R11..R15 may be clobbered, R4..R10 are preserved. The
- * 16 x 16 hardware multiplier (layout.h: MPY, OP2, RESLO, RESHI) is used with interrupts
- * enabled: these kernels run on the main board only, where no interrupt handler touches the
- * multiplier (tools/stack_bound.py --no-mpy-in-isr checks the image; docs/optical.md).
+ * 16 x 16 hardware multiplier (MPY, OP2, RESLO, RESHI) is used with interrupts enabled: the
+ * kernel runs on the main board only, where no interrupt handler touches the multiplier
+ * (tools/stack_bound.py --no-mpy-in-isr checks the image; docs/optical.md).
  * Cycle counts are mspdebug's: it charges the constant-generator immediates #1, #2, #4, #8 and
  * #-1 like memory operands (see firmware/fx/msp430/fx_trig.S).
- * Structure offsets and sizes, match codes and the multiplier's registers come from layout.h
- * (checked against the C in fastmath.c).
+ * Structure offsets and sizes, match codes and the margin come from optical_offsets.h,
+ * generated from the C headers (msp430/optical_offsets.c); the element sizes the loops step
+ * by are checked below.
  */
-#include "layout.h"
+#include "optical_offsets.h"
 
-/* The current window centre and half-width (optical_expect_scan, optical_eval). */
+#define OW optical_work             /* the work area (optical/fastmath.h) */
+
+/* The 16 x 16 hardware multiplier (MSP430F2618, SLAS541) */
+    .set MPY,   0x0130
+    .set OP2,   0x0138
+    .set RESLO, 0x013a
+    .set RESHI, 0x013c
+
+    .if OW_TH_ELEM != 2 || OW_PSI_ELEM != 2 || OW_SM_ELEM != 1 || OW_BM_ELEM != 1
+    .error "optical_scan.S steps through th, lev, we, psi, e, g by words, sm, bm, cand by bytes"
+    .endif
+    .if XY8_X != 0 || XY8_Y != 2 || XY8_SIZE != 4 || OW_BSTART_N != 16
+    .error "optical_scan.S reads b8[k] as (x, y) words and 16 buckets"
+    .endif
+
+/* The current window centre and half-width. */
     .section .bss.optical_scan_args,"aw",@nobits
     .balign 2
 sc_mid:  .skip 2
@@ -43,117 +59,11 @@ oct_b:
     mov.b   OW+OW_BSTART(r14), r14
 .endm
 
-    .section .text.optical_octant,"ax",@progbits
-/*
- * optical_angle16's octant (octant() in fastmath.c): R12 = u in [2^15, 2^16), R14 = v <= u,
- * R11 = flags (2 swapped, 4 dx < 0, 8 dy < 0) -> R12 = the angle (2^-16 turn). Clobbers R13
- * (r = 2^30 / u), R14 (2i, i <= 63), R15. The ratio's product v r holds q = (v r) >> 14 as its
- * bits 14..29: i = q >> 10 is RESHI's high byte, the fraction q << 6 RESHI's low byte and
- * RESLO's top two bits. (optical_first_scan's loop has its own copy, es_octant, which also
- * forms the window factor h from r.)
- */
-a16_octant:
-    mov     r12, r13                ; u mod 2^9 times the step 2^7: the step times u << 7
-    and     #0x01ff, r13
-    mov     r13, &MPY
-    mov     r12, r15                ; 2 (u >> 9): the tables - 128 based
-    swpb    r15
-    and     #0x00fe, r15
-    mov     optical_recip_d_tab-128(r15), &OP2 ; (RT[i] - RT[i+1]) 2^7
-    mov     optical_recip_tab-128(r15), r13
-    sub     &RESHI, r13             ; r = RT[i] - RESHI
-    mov     r14, &MPY               ; q = (v r) >> 14, saturated
-    mov     r13, &OP2
-    mov     &RESHI, r12
-    cmp     #0x4000, r12
-    jhs     a16_osat
-    mov     &RESLO, r15
-    swpb    r12                     ; 2 (q >> 10)
-    mov.b   r12, r14
-    rla     r14
-    and     #0xff00, r12            ; f = q << 6
-    swpb    r15
-    and     #0x00c0, r15
-    bis     r15, r12
-a16_o1:
-    mov     r12, &MPY
-    mov     optical_atan_tab(r14), r12
-    mov     optical_atan_tab+2(r14), r15
-    sub     r12, r15                ; AT[i+1] - AT[i]
-    mov     r15, &OP2
-    add     &RESHI, r12             ; a = AT[i] + RESHI, 2^-18 turn (the table holds + 2: a >> 2
-    rrc     r12                     ; rounds; a <= 32770, C = 0)
-    rra     r12
-    xor     oct_m(r11), r12         ; unfold
-    add     oct_b(r11), r12
-    ret
-a16_osat:
-    mov     #0xffc0, r12
-    mov     #126, r14
-    jmp     a16_o1
-
-/* uint16_t optical_angle16(int32_t dx, int32_t dy): R13:R12 = dx, R15:R14 = dy -> R12. */
-    .section .text.optical_angle16,"ax",@progbits
-    .global optical_angle16
-    .type optical_angle16,@function
-optical_angle16:
-    clr     r11                     ; magnitudes, flags
-    tst     r13
-    jge     1f
-    inv     r12
-    inv     r13
-    sub     #-1, r12                ; (+1, carry as add)
-    adc     r13
-    bis     #4, r11
-1:  tst     r15
-    jge     2f
-    inv     r14
-    inv     r15
-    sub     #-1, r14
-    adc     r15
-    bis     #8, r11
-2:  cmp     r13, r15                ; ay > ax: swap
-    jlo     4f
-    jne     3f
-    cmp     r14, r12
-    jhs     4f
-3:  xor     r12, r14
-    xor     r14, r12
-    xor     r12, r14
-    xor     r13, r15
-    xor     r15, r13
-    xor     r13, r15
-    bis     #2, r11
-4:  tst     r13                     ; both to [2^15, 2^16): right, a bit at a time until
-    jz      20f                     ; ax's high word is 0
-    jge     11f
-    clrc                            ; (ax = 2^31, ay up to that: logical)
-    rrc     r13
-    rrc     r12
-    clrc
-    rrc     r15
-    rrc     r14
-11: rra     r13
-    rrc     r12
-    rra     r15
-    rrc     r14
-    tst     r13
-    jnz     11b
-    jmp     a16_octant
-20: tst     r12                     ; ax < 2^16 (ay too): left, a bit at a time
-    jz      9f
-    jn      a16_octant
-21: rla     r14
-    rla     r12
-    jn      a16_octant
-    jmp     21b
-9:  ret
-
 /*
  * Window part with margin: R13 = lever l (2^-8 m), R11 = g -> R15 = min(ceil(l g / 256),
  * 0x7fff) + MARGIN (0x7fff + MARGIN for g = 0xffff). Clobbers R13.
  */
-    .section .text.optical_win6,"ax",@progbits
+    .section .text.optical_scan,"ax",@progbits
 win6:
     mov     #0x7fff+MARGIN, r15
     cmp     #-1, r11
@@ -176,10 +86,9 @@ win6:
 2:  ret
 
 /*
- * Marks (test() in fastmath.c): R12 = sighting j, R13 = 2j, R4 = 2 beacon k, R15 = w: sm[j],
+ * Marks (optical_pair() in ident.c): R12 = sighting j, R13 = 2j, R4 = 2 beacon k, R15 = w: sm[j],
  * bm[k] get the partner (or MULTI), we[j] = w. Clobbers R9 (= k).
  */
-    .section .text.optical_mark,"ax",@progbits
 mark:
     mov     r15, OW+OW_WE(r13)
     mov     r4, r9
@@ -197,7 +106,7 @@ mark:
     ret
 
 /*
- * Keep the pair (j, k) (optical_expect_scan): R12 = j, R4 = 2k, R8 = 2 nc (0x1fe: more than
+ * Keep the pair (j, k): R12 = j, R4 = 2k, R8 = 2 nc (0x1fe: more than
  * MAX_CAND pairs, none kept any more). Clobbers R9.
  */
 keep:
@@ -213,10 +122,9 @@ keep:
     ret
 
 /*
- * Pair test (test() in fastmath.c): R12 = j, R13 = 2j, R4 = 2k -> carry set when the pair
+ * Pair test (optical_pair() in ident.c): R12 = j, R13 = 2j, R4 = 2k -> carry set when the pair
  * lies within the windows (sc_mid, sc_half) (then marked). Clobbers R9, R11, R14, R15.
  */
-    .section .text.optical_pair,"ax",@progbits
 pair_test:
     mov     OW+OW_E(r4), r15        ; w = e[k], or the lever's window
     tst     &OW+OW_LEVER8
@@ -249,41 +157,6 @@ pair_test:
 4:  clrc
     ret
 
-/* Clear the marks: bm (clear_marks only) and sm (except DROPPED) to NONE. Clobbers R11, R14,
- * R15 (R12, R13: optical_expect_scan's arguments, kept). */
-    .section .text.optical_clear,"ax",@progbits
-clear_marks:
-    mov.b   &OW+OW_NB, r14
-    clr     r15
-1:  mov     #-1, OW+OW_BM(r15)      ; four at a time (the array has room for 32)
-    mov     #-1, OW+OW_BM+2(r15)
-    add     #4, r15
-    cmp     r14, r15
-    jlo     1b
-clear_sm:
-    mov.b   &OW+OW_N, r14
-    tst     r14
-    jz      3f
-    mov     #OW+OW_SM, r15
-    mov     #MATCH_DROPPED, r11
-2:  cmp.b   @r15+, r11
-    jeq     4f
-    mov.b   #MATCH_NONE, -1(r15)
-4:  add     #-1, r14
-    jnz     2b
-3:  ret
-
-/*
- * uint8_t optical_expect_scan(int16_t mid, uint16_t half): the marks sm cleared (except
- * DROPPED), then optical_first_scan (a tail call).
- */
-    .section .text.optical_expect_scan,"ax",@progbits
-    .global optical_expect_scan
-    .type optical_expect_scan,@function
-optical_expect_scan:
-    call    #clear_sm
-    jmp     optical_first_scan
-
 /* R15:R14 -> R14 = floor(R15:R14 / 2^8), R15 = 0 when within [-2^23, 2^23), else not 0. */
 es_to8:
     add     #0x0080, r15            ; the high word + 128 below 2^8
@@ -298,7 +171,7 @@ es_to8:
 1:  ret
 
 /*
- * uint8_t optical_first_scan(int16_t mid, uint16_t half): R12 = mid, R13 = half -> R12 = 0,
+ * uint8_t optical_scan(int16_t mid, uint16_t half): R12 = mid, R13 = half -> R12 = 0,
  * or 1 when the position lies beyond the compiled map's reach (then nothing is touched). The
  * marks sm as optical_drop leaves them (NONE or DROPPED): not cleared.
  * R4 = 2k, R5 = &b8[k], R6 = px, R7 = k, R8 = 2 nc; per beacon R9 = m8, R10 = eps8 shifted
@@ -313,9 +186,9 @@ es_to8:
  * The multiplier is used with interrupts enabled: no interrupt handler of the main board
  * touches it (tools/stack_bound.py --no-mpy-in-isr checks the image).
  */
-    .global optical_first_scan
-    .type optical_first_scan,@function
-optical_first_scan:
+    .global optical_scan
+    .type optical_scan,@function
+optical_scan:
     mov     &OW+OW_X, r14           ; px = floor((x - ox) / 2^8) into R11, then py into R14
     mov     &OW+OW_X+2, r15
     sub     &OW+OW_OX, r14
@@ -454,7 +327,7 @@ es_beacon:
     rla     r14
     rla     r10
 7:
-es_octant:                          ; the octant's arctangent as a16_octant, and h
+es_octant:                          ; the octant's arctangent as optical_octant (ident.c), and h
     mov     r12, r13                ; r = RT[i] - ((u mod 2^9) (RT[i] - RT[i+1]) 2^7) >> 16
     and     #0x01ff, r13
     mov     r13, &MPY
@@ -719,319 +592,4 @@ es_all2:
     dec     r14
     jnz     35b
     jmp     es_next
-
-/*
- * void optical_eval(int16_t mid, uint16_t half): R12 = mid, R13 = half. Standing: the pair
- * (j, k) is in when |th[j] - psi[k] - mid| <= half + e[k]; moving: pair_test. The pairs from
- * the last to the first (the marks come out the same: a second match is MULTI either way, and
- * we[j] is read only where a sighting has one match).
- */
-    .section .text.optical_eval,"ax",@progbits
-    .global optical_eval
-    .type optical_eval,@function
-optical_eval:
-    push    r10
-    push    r9
-    push    r8
-    push    r6
-    push    r4
-    mov     r12, &sc_mid
-    mov     r13, &sc_half
-    mov     r12, r10                ; R10 = mid, R8 = half
-    mov     r13, r8
-    call    #clear_marks
-    mov.b   &OW+OW_NC, r6           ; R6 = 2c, counted down to 0
-    add     r6, r6
-    jz      4f
-    tst     &OW+OW_LEVER8
-    jnz     3f
-1:  mov.b   OW+OW_CAND-2(r6), r12   ; standing: j, k (from the last pair)
-    mov.b   OW+OW_CAND-1(r6), r4
-    add     r4, r4
-    mov     r12, r13
-    add     r13, r13
-    mov     OW+OW_TH(r13), r11      ; |th[j] - psi[k] - mid| <= half + e[k]
-    sub     OW+OW_PSI(r4), r11
-    sub     r10, r11
-    tst     r11
-    jge     2f
-    inv     r11
-    sub     #-1, r11
-2:  mov     OW+OW_E(r4), r15
-    mov     r8, r14
-    add     r15, r14
-    cmp     r11, r14
-    jlo     5f
-    call    #mark
-5:  decd    r6
-    jnz     1b
-4:  pop     r4
-    pop     r6
-    pop     r8
-    pop     r9
-    pop     r10
-    ret
-3:  mov.b   OW+OW_CAND-2(r6), r12   ; moving: pair_test
-    mov.b   OW+OW_CAND-1(r6), r4
-    add     r4, r4
-    mov     r12, r13
-    add     r13, r13
-    call    #pair_test
-    decd    r6
-    jnz     3b
-    jmp     4b
-
-/*
- * uint32_t optical_wmin(uint32_t dk, uint32_t t8): R13:R12 = dk, R15:R14 = t8 -> R13:R12
- * (fastmath.c). A restoring division when t8 and the quotient fit 16 bits (the quotient's bits
- * into R12, the remainder in R13, R15 the steps, R11 = -1): 8 steps when dk >> 8 < t8 (the
- * quotient's upper byte 0: dk << 8 to start from), else 16; otherwise the library's.
- */
-    .section .text.optical_wmin,"ax",@progbits
-    .global optical_wmin
-    .type optical_wmin,@function
-optical_wmin:
-    tst     r15
-    jnz     5f
-    tst     r14
-    jz      6f
-    cmp     r14, r13                ; dk >= t8 2^16: the library's
-    jhs     5f
-    mov     #16, r15
-    cmp     #0x0100, r13            ; dk >> 8 below t8: start from dk << 8
-    jhs     7f
-    mov     r13, r11
-    swpb    r11
-    mov     r12, r13
-    swpb    r13
-    mov.b   r13, r13
-    bis     r11, r13
-    cmp     r14, r13
-    jhs     4f
-    swpb    r12
-    and     #0xff00, r12
-    mov     #8, r15
-7:  mov     #-1, r11
-1:  rla     r12
-    rlc     r13
-    jc      2f
-    cmp     r14, r13
-    jlo     3f
-2:  sub     r14, r13
-    sub     r11, r12                ; (the bit shifted in is 0)
-3:  add     r11, r15
-    jnz     1b
-    clr     r13
-    ret
-4:  mov     r11, r13                ; (dk's high word again: r11 = its byte << 8)
-    swpb    r13
-    jmp     7b
-5:  br      #__mspabi_divul         ; t8 or the quotient 2^16 or more
-6:  mov     #-1, r12                ; t8 = 0: 0xffff
-    clr     r13
-    ret
-
-/*
- * uint8_t optical_drop(const optical_sighting_t *s, uint32_t wmin): R12 = s, R14:R13 = wmin ->
- * R12 = the sightings kept (fastmath.c). R11 = wmin's low word, R15 the mark of a kept
- * sighting: NONE, or DROPPED too when wmin >= 2^16 (none kept: the count cleared). R14 = j + 1,
- * R13 = kept, R10 = &s[ord[j]] (R9 scratch).
- */
-    .section .text.optical_drop,"ax",@progbits
-    .global optical_drop
-    .type optical_drop,@function
-optical_drop:
-    push    r10
-    push    r9
-    mov     r13, r11
-    mov     #MATCH_NONE, r15
-    tst     r14
-    jz      1f
-    mov     #MATCH_DROPPED, r15
-1:  clr     r13
-    mov.b   &OW+OW_N, r14
-    tst     r14
-    jz      9f
-8:  mov.b   #0x7f, OW+OW_WCHK-1(r14)
-    mov.b   r15, OW+OW_SM-1(r14)
-    mov.b   OW+OW_ORD-1(r14), r10   ; s[ord[j]].width >= wmin: kept
-    rla     r10
-    mov     r10, r9
-    rla     r10
-    add     r9, r10
-    add     r12, r10
-    cmp     r11, SIGHT_WIDTH(r10)
-    jlo     10f
-    sub     #-1, r13
-11: add     #-1, r14
-    jnz     8b
-    cmp     #MATCH_NONE, r15
-    jeq     9f
-    clr     r13
-9:  mov     r13, r12
-    pop     r9
-    pop     r10
-    ret
-10: mov.b   #MATCH_DROPPED, OW+OW_SM-1(r14)
-    jmp     11b
-
-/*
- * bool optical_width_ok(const optical_width_t *a, const optical_xy_t *b, uint16_t w16):
- * R12 = a, R13 = b, R14 = w16 -> R12: optical_width_core with R4 = a.
- */
-    .section .text.optical_width_ok,"ax",@progbits
-    .global optical_width_ok
-    .type optical_width_ok,@function
-optical_width_ok:
-    push    r4
-    mov     r12, r4
-    call    #optical_width_core
-    pop     r4
-    rla.b   r12                     ; 0x80 (a misfit): C = 1
-    subc    r12, r12                ; C - 1: 0 for a misfit, -1 when it fits
-    and     #1, r12
-    ret
-
-/*
- * O5's test for optical_width_ok and optical_unique (fastmath.c's steps), an internal entry:
- * R4 = a (optical_width_t), R13 = b, R14 = w16 -> R12 = 0 (fits) or 0x80 (a misfit). Clobbers
- * R11..R15 only. R11 = x8 then rhi, hi; R13 = rlo then lo; R15 = tol.
- */
-    .section .text.optical_width_core,"ax",@progbits
-    .global optical_width_core
-    .type optical_width_core,@function
-optical_width_core:
-    mov     @r13+, r12              ; x8 = the magnitude of b.x - a.x, 2^-8 m, capped
-    mov     @r13+, r15
-    sub     WD_X(r4), r12
-    subc    WD_X+2(r4), r15         ; (no overflow within the coordinate limit: N^V = N)
-    jge     1f
-    inv     r12
-    inv     r15
-    sub     #-1, r12                ; (+1, carry as add)
-    adc     r15
-1:  cmp     #0x0100, r15
-    jlo     2f
-    mov     #-1, r11
-    jmp     3f
-2:  swpb    r12
-    mov.b   r12, r11
-    swpb    r15
-    bis     r15, r11
-3:  mov     @r13+, r12              ; y8
-    mov     @r13, r15
-    sub     WD_Y(r4), r12
-    subc    WD_Y+2(r4), r15
-    jge     1f
-    inv     r12
-    inv     r15
-    sub     #-1, r12
-    adc     r15
-1:  cmp     #0x0100, r15
-    jlo     2f
-    mov     #-1, r12
-    jmp     3f
-2:  swpb    r12
-    mov.b   r12, r12
-    swpb    r15
-    bis     r15, r12
-3:  cmp     r11, r12                ; o = max + min / 2, saturated
-    jhs     4f
-    xor     r12, r11
-    xor     r11, r12
-    xor     r12, r11
-4:  clrc
-    rrc     r11
-    add     r11, r12
-    jnc     5f
-    mov     #-1, r12
-5:  mov     r12, r11                ; rhi = o + eps8, saturated
-    mov     r12, &MPY               ; rlo = (o 58623) >> 16 - eps8, or 0
-    mov     #58623, &OP2
-    add     WD_EPS8(r4), r11
-    jnc     1f
-    mov     #-1, r11
-1:  mov     &RESHI, r13
-    mov     r11, &MPY               ; tol = tol8 + (rhi rel16) >> 16, saturated
-    mov     WD_REL16(r4), &OP2
-    sub     WD_EPS8(r4), r13
-    jc      1f
-    clr     r13
-1:  mov     &RESHI, r15
-    add     WD_TOL8(r4), r15
-    jnc     1f
-    mov     #-1, r15
-1:  sub     r15, r13                ; lo = rlo - tol, or 0
-    jc      1f
-    clr     r13
-1:  add     r15, r11                ; hi = rhi + tol, saturated
-    jnc     1f
-    mov     #-1, r11
-1:  cmp     #5216, r14
-    jhs     wd_wide
-    mov     r14, &MPY               ; p = lo w16 (w16 stays in MPY for q)
-    mov     r13, &OP2
-    mov     &RESLO, r12
-    mov     &RESHI, r13
-    mov     r12, r14                ; p - (p >> 5) > dk: a misfit (p < 2^29: rra shifts in 0)
-    mov     r13, r15
-    rra     r15
-    rrc     r14
-    rra     r15
-    rrc     r14
-    rra     r15
-    rrc     r14
-    rra     r15
-    rrc     r14
-    rra     r15
-    rrc     r14
-    sub     r14, r12
-    subc    r15, r13
-    cmp     r13, WD_DK+2(r4)
-    jne     1f
-    cmp     r12, WD_DK(r4)
-1:  jlo     wd_misfit
-    tst.b   WD_FLAT(r4)             ; flat: only that bound
-    jnz     wd_fits
-    mov     r11, &OP2               ; q = hi w16 >= dk: fits
-    mov     &RESLO, r12
-    mov     &RESHI, r13
-    cmp     WD_DK+2(r4), r13
-    jne     1f
-    cmp     WD_DK(r4), r12
-1:  jhs     wd_fits
-    mov     #0x80, r12
-    ret
-wd_misfit:
-    mov     #0x80, r12
-    ret
-wd_fits:
-    clr     r12
-    ret
-wd_wide:                            ; w16 > 5215: lo 5215 <= dk + (dk >> 4)
-    mov     r13, &MPY
-    mov     #5215, &OP2
-    mov     &RESLO, r14
-    mov     &RESHI, r11
-    mov     0(r4), r12
-    mov     2(r4), r13
-    clrc
-    rrc     r13
-    rrc     r12
-    clrc
-    rrc     r13
-    rrc     r12
-    clrc
-    rrc     r13
-    rrc     r12
-    clrc
-    rrc     r13
-    rrc     r12
-    add     0(r4), r12
-    addc    2(r4), r13
-    cmp     r11, r13                ; s >= p: fits
-    jne     1f
-    cmp     r14, r12
-1:  jhs     wd_fits
-    mov     #0x80, r12
-    ret
+    .size optical_scan, .-optical_scan
