@@ -104,6 +104,21 @@
 #define UCSWRST   0x01u /* UCAxCTL1 */
 #define UCBUSY    0x01u /* UCAxSTAT */
 
+/* USCI_B0 in SPI mode (the MCP2515, hal/msp430/spi_usci_b0.c); UCB0CTL1 has UCAxCTL1's
+ * UCSSEL_2 and UCSWRST */
+#define UCB0CTL0  CY_REG8(0x0068)
+#define UCB0CTL1  CY_REG8(0x0069)
+#define UCB0BR0   CY_REG8(0x006A)
+#define UCB0BR1   CY_REG8(0x006B)
+#define UCB0RXBUF CY_REG8(0x006E)
+#define UCB0TXBUF CY_REG8(0x006F)
+#define UCCKPH    0x80u /* UCBxCTL0: data captured on the first UCLK edge */
+#define UCCKPL    0x40u /* UCBxCTL0: clock inactive high */
+#define UCMSB     0x20u /* UCBxCTL0: MSB first */
+#define UCMST     0x08u /* UCBxCTL0: master */
+#define UCSYNC    0x01u /* UCBxCTL0: synchronous mode (UCMODEx = 00b: 3-pin SPI) */
+#define UCB0RXIFG 0x04u /* IFG2 */
+
 /* Timer_A3 */
 #define TAIV        CY_REG16(0x012E)
 #define TACTL       CY_REG16(0x0160)

@@ -39,14 +39,14 @@
 #ifndef __ASSEMBLER__
 /** Port (1 or 2) of each edge line; 0 for the NMI pin. */
 #define HAL_EDGE_PORT_OF(line)                                                                     \
-    ((line) == HAL_EDGE_COORD_REQUEST                        ? 0                                   \
-     : (line) == HAL_EDGE_DELTA_S || (line) == HAL_EDGE_TEST ? 2                                   \
-                                                             : 1)
+    ((line) == HAL_EDGE_COORD_REQUEST                                                      ? 0     \
+     : (line) == HAL_EDGE_DELTA_S || (line) == HAL_EDGE_CAN_INT || (line) == HAL_EDGE_TEST ? 2     \
+                                                                                           : 1)
 
 /** Pin (0..7) of each edge line on its port (bit 0 of the NMI vector for the NMI pin). */
 static inline unsigned hal_edge_pin(hal_edge_line_t line)
 {
-    static const unsigned char pins[HAL_EDGE_COUNT] = {4, 5, 6, 7, 0, 7, 0};
+    static const unsigned char pins[HAL_EDGE_COUNT] = {4, 5, 6, 7, 0, 2, 7, 0};
     return pins[line];
 }
 
