@@ -61,6 +61,7 @@ int link_init(link_t *l, const link_config_t *cfg, link_msg_fn on_msg, void *ctx
     l->peer_seen = 0;
     l->silent = 0;
     l->flags = 0;
+    l->up = 0;
     l->stats = (link_stats_t){0};
     uint32_t now = hal_clock_ms();
     l->last_heard = now;
@@ -69,6 +70,7 @@ int link_init(link_t *l, const link_config_t *cfg, link_msg_fn on_msg, void *ctx
     hal_can_config_t cc = {
         cfg->bitrate_bps, {{0x000u, 0x700u}, {0x700u, 0x7FCu}}, 2, 0, on_frame, l};
     int rc = hal_can_init(LINK_CAN, &cc);
+    l->up = rc == 0;
     hal_irq_restore(s);
     return rc;
 }
@@ -79,6 +81,8 @@ int link_send(link_t *l, const linkmsg_t *m)
     uint8_t n = linkmsg_encode(m, f);
     if (n == 0)
         return LINK_E_MESSAGE;
+    if (!l->up)
+        return LINK_E_DOWN;
     int rc = 0;
     hal_irq_state_t s = hal_irq_disable();
     if (hal_can_tx_room(LINK_CAN) < n) {
@@ -129,6 +133,8 @@ static void heartbeat(link_t *l, uint32_t now)
 
 link_event_t link_poll(link_t *l)
 {
+    if (!l->up)
+        return LINK_EV_NONE;
     hal_irq_state_t s = hal_irq_disable();
     uint32_t heard = l->last_heard, now = hal_clock_ms(); /* both before a frame moves one */
     hal_irq_restore(s);
@@ -151,6 +157,11 @@ void link_set_stopped(link_t *l, uint8_t stopped)
     l->flags = stopped ? LINKMSG_HB_STOPPED : 0u;
 }
 
+bool link_up(const link_t *l)
+{
+    return l->up != 0;
+}
+
 bool link_peer_silent(const link_t *l)
 {
     return l->silent != 0;
@@ -162,5 +173,7 @@ void link_stats(const link_t *l, link_stats_t *out)
     *out = l->stats;
     out->rx_errors = l->rx.errors;
     hal_irq_restore(s);
-    hal_can_stats(LINK_CAN, &out->can);
+    out->can = (hal_can_stats_t){0};
+    if (l->up)
+        hal_can_stats(LINK_CAN, &out->can);
 }

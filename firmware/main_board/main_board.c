@@ -527,8 +527,10 @@ drive_status_t main_board_init(const main_board_config_t *cfg)
     hal_edge_init(HAL_EDGE_DELTA_S, HAL_EDGE_RISING, on_ds, &mb.ds);
     hal_signal_init(HAL_SIGNAL_COORD_REQUEST);
     hal_clock_init();
-    if (link_init(&mb.link, &cfg->link, on_msg, 0) != 0)
+    int rc = link_init(&mb.link, &cfg->link, on_msg, 0);
+    if (rc == LINK_E_CONFIG || rc == HAL_CAN_E_PARAM || rc == HAL_CAN_E_BITRATE)
         return DRIVE_ERR_PARAM;
+    mb.stats.can_error = (int8_t)rc; /* the controller does not answer: no link */
     hal_drive_port_init();
     port(PORT_INIT, 0, 0);
 
@@ -545,6 +547,10 @@ const drive_path_t *main_board_path(void)
 
 void main_board_start(void)
 {
+    if (!link_up(&mb.link)) {
+        stop_travel(MAIN_BOARD_STOP_FAULT_CAN); /* no nav board to drive with */
+        return;
+    }
     post(DRIVE_EVT_START);
     drain();
 }

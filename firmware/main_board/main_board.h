@@ -81,7 +81,8 @@ typedef struct {
     X(NAV_LINK_SILENT, "nav_link_silent") /* the nav board heard nothing from this board */        \
     X(FAULT_NOT_READY, "fault:not_ready") /* the sequencer: started without a ready path */        \
     X(FAULT_SOLVE, "fault:solve")         /* the sequencer: no double arc to the target */         \
-    X(FAULT_FIXES, "fault:fixes")         /* the sequencer: too many failed fixes in a row */
+    X(FAULT_FIXES, "fault:fixes")         /* the sequencer: too many failed fixes in a row */      \
+    X(FAULT_CAN, "fault:can")             /* the CAN controller did not start: no link */
 
 #define MAIN_BOARD_STOP_ENUM(name, text) MAIN_BOARD_STOP_##name,
 typedef enum {
@@ -100,6 +101,7 @@ typedef struct {
     uint8_t done, fault;
     uint8_t fault_why;   /**< drive_fault_t */
     uint8_t stop_reason; /**< main_board_stop_t: why the travel stopped (NONE: it did not) */
+    int8_t can_error;    /**< hal_can_init()'s error when the controller did not start, else 0 */
 } main_board_stats_t;
 
 /**
@@ -107,7 +109,9 @@ typedef struct {
  * @p cfg and what it points to must outlive the run. Sets up capture handlers, delta-S line,
  * drive port, the link on CAN (cfg->link), clock; prepares the path. Interrupts stay disabled.
  * Returns DRIVE_OK, or why the path or the configuration is not acceptable (DRIVE_ERR_PARAM
- * also for a link configuration link_init() refuses; the board then refuses to start).
+ * also for a link configuration link_init() refuses; the board then refuses to start). A CAN
+ * controller that does not answer is no configuration error: the board comes up without its
+ * link (stats can_error), and main_board_start() stops the travel at once (fault:can).
  */
 drive_status_t main_board_init(const main_board_config_t *cfg);
 

@@ -23,6 +23,10 @@ int main(void)
     if (nav_board_init(&config) != 0)
         hal_fault(HAL_FAULT_BAD_ARGUMENT);
     hal_console_puts("cyclopion nav board\r\n");
+    nav_board_stats_t st;
+    nav_board_stats(&st);
+    if (st.can_error != 0)
+        hal_console_puts("CAN controller does not answer: no board link\r\n");
     hal_irq_enable();
     for (;;) {
         nav_board_poll();

@@ -72,7 +72,11 @@ int nav_board_init(const nav_board_config_t *cfg)
     gnav_set_stop_callback(&g, on_stop, 0);
     if (gnav_attach(&g) != 0)
         return GNAV_ERR_NULL;
-    return link_init(&nav_link, &cfg->link, on_msg, 0) == 0 ? 0 : NAV_BOARD_E_LINK;
+    rc = link_init(&nav_link, &cfg->link, on_msg, 0);
+    if (rc == LINK_E_CONFIG || rc == HAL_CAN_E_PARAM || rc == HAL_CAN_E_BITRATE)
+        return NAV_BOARD_E_LINK;
+    stats.can_error = (int8_t)rc; /* the controller does not answer: no link */
+    return 0;
 }
 
 static void send_pose(const gnav_pose_t *p, uint8_t request)

@@ -40,12 +40,14 @@ typedef struct {
     uint32_t latches_sent;   /**< latches sent on request */
     uint16_t link_errors;    /**< malformed or orphan frames */
     uint8_t stop_sent;       /**< stop requests sent: bit (reason - 1), LINKMSG_STOP_REASON_* */
+    int8_t can_error;        /**< hal_can_init()'s error when the controller did not start */
 } nav_board_stats_t;
 
 /**
  * Set the board up: dead reckoning from @p cfg, handlers registered, the clock and the link on
  * CAN (cfg->link) started. Interrupts stay disabled. Returns 0, a gnav_err_t (configuration
- * refused) or NAV_BOARD_E_LINK (link_init() refused cfg->link).
+ * refused) or NAV_BOARD_E_LINK (link_init() refused cfg->link). A CAN controller that does not
+ * answer is no configuration error: the board dead-reckons without its link (stats can_error).
  */
 int nav_board_init(const nav_board_config_t *cfg);
 

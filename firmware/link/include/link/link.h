@@ -41,6 +41,7 @@ extern "C" {
 #define LINK_E_MESSAGE (-11) /**< link_send: unknown message type */
 #define LINK_E_FULL    (-12) /**< link_send: no room for all its frames now (nothing sent) */
 #define LINK_E_BUS_OFF (-13) /**< link_send: the controller is bus-off (nothing sent) */
+#define LINK_E_DOWN    (-14) /**< link_send: the link never came up (link_init failed) */
 
 typedef struct {
     uint8_t node;          /**< this board: LINKMSG_NODE_MAIN or LINKMSG_NODE_NAV */
@@ -83,6 +84,7 @@ typedef struct {
     uint8_t peer_seen;            /* one of its heartbeats arrived */
     uint8_t silent;               /* the other board is silent */
     uint8_t flags;                /* own LINKMSG_HB_STOPPED */
+    uint8_t up;                   /* link_init succeeded */
     link_stats_t stats;
 } link_t;
 
@@ -90,13 +92,14 @@ typedef struct {
  * Start the link of board @p cfg->node: the clock (hal/clock.h), CAN instance LINK_CAN at
  * cfg->bitrate_bps with filters for the table's ids (0x000-0x0FF, 0x700-0x703), automatic
  * bus-off recovery; received messages go to @p on_msg (may be NULL). The silence is timed from
- * now. Returns 0, LINK_E_CONFIG, or hal_can_init()'s error.
+ * now. Returns 0, LINK_E_CONFIG, or hal_can_init()'s error; after an error the link is down:
+ * link_send() refuses (LINK_E_DOWN), link_poll() does nothing.
  */
 int link_init(link_t *l, const link_config_t *cfg, link_msg_fn on_msg, void *ctx);
 
 /**
  * Send @p m: all its frames queued back to back with interrupts held off, or none. Returns 0,
- * LINK_E_MESSAGE, LINK_E_FULL (try again later) or LINK_E_BUS_OFF.
+ * LINK_E_MESSAGE, LINK_E_FULL (try again later), LINK_E_BUS_OFF or LINK_E_DOWN.
  */
 int link_send(link_t *l, const linkmsg_t *m);
 
@@ -111,6 +114,9 @@ link_event_t link_poll(link_t *l);
 
 /** Set the heartbeat's LINKMSG_HB_STOPPED flag (@p stopped non-zero) or clear it. */
 void link_set_stopped(link_t *l, uint8_t stopped);
+
+/** True when link_init() succeeded. */
+bool link_up(const link_t *l);
 
 /** True while the other board is silent. */
 bool link_peer_silent(const link_t *l);
