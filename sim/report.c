@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 void sim_stat_add(sim_stat_t *s, double x)
 {
@@ -89,6 +90,10 @@ int sim_report_judge(sim_report_t *r, const sim_success_t *c, char *why, size_t 
         why[0] = '\0';
     if (c->require_goal && !r->reached_goal)
         miss(&m, " goal not reached (stopped: %s);", r->stop_reason ? r->stop_reason : "?");
+    if (c->stop_reason[0] &&
+        (r->reached_goal || !r->stop_reason || strcmp(r->stop_reason, c->stop_reason) != 0))
+        miss(&m, " stop reason %s, expected %s;", r->reached_goal ? "none (goal)" : r->stop_reason,
+             c->stop_reason);
     if (sim_stat_mean(&r->cross_track) > c->max_cross_track_mean)
         miss(&m, " cross-track mean %.4f m > %.4f;", sim_stat_mean(&r->cross_track),
              c->max_cross_track_mean);

@@ -26,6 +26,7 @@ typedef struct {
     double max_fix_error;        /* m: no accepted fix further from the truth */
     double min_fix_ratio;        /* accepted / attempted */
     bool require_goal;           /* the run must reach the last point */
+    char stop_reason[32];        /* the run must stop for this reason ("": no requirement) */
 } sim_success_t;
 
 /** A fault injected into the CAN bus model (scenario "link.faults"; hal_posix/can_bus.h). */
