@@ -27,8 +27,11 @@ typedef struct {
     int is_signed;
 } field_t;
 
-#define MEMBER(m)    (((linkmsg_t *)0)->u.m)
-#define F(m, n, sgn) {n, offsetof(linkmsg_t, u.m), sizeof(MEMBER(m)), sgn}
+#define MEMBER(m) (((linkmsg_t *)0)->u.m)
+#define F(m, n, sgn)                                                                               \
+    {                                                                                              \
+        n, offsetof(linkmsg_t, u.m), sizeof(MEMBER(m)), sgn                                        \
+    }
 
 typedef struct {
     const char *name;
