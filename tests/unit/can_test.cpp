@@ -40,7 +40,7 @@ hal_can_frame_t frame(uint16_t id, uint8_t len)
     hal_can_frame_t f{};
     f.id = id;
     f.len = len;
-    for (uint8_t i = 0; i < len; i++)
+    for (uint8_t i = 0; i < len && i < HAL_CAN_MAX_DATA; i++) // a bad len is refused, not read
         f.data[i] = (uint8_t)(0xA0 + i);
     return f;
 }
