@@ -4,8 +4,9 @@
  * SPI traffic per operation (bytes on the bus, instruction and address included):
  *  - INT handler, per pass: READ CANINTF..EFLG (4); per received frame READ RX BUFFER
  *    (1 + 5 + data length; the read flag clears when /CS rises); one BIT MODIFY (4) clears
- *    the TX, ERR, MERR and WAK flags served; after an ERR flag READ TEC..REC (4) and, on an
- *    overflow, a BIT MODIFY of EFLG (4). A frame of 8 bytes alone: 4 + 14 + 4 = 22 bytes.
+ *    the TX, ERR, MERR and WAK flags served; after an ERR or MERR flag READ TEC..REC (4)
+ *    and, on an overflow, a BIT MODIFY of EFLG (4). A frame of 8 bytes alone: 4 + 14 + 4 =
+ *    22 bytes.
  *  - send: WRITE TXBnCTRL..data (2 + 6 + data length), RTS (1), and a BIT MODIFY (4) of each
  *    pending buffer whose priority the new frame moves.
  */

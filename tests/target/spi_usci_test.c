@@ -7,7 +7,7 @@
  * the pins (/CS high and an output, SIMO/SOMI/CLK selected), the argument checks, the chip
  * select around a transfer and a held frame, the timeout when the USCI never completes a byte
  * (UCB0RXIFG stays clear) and, with the flag preset, the cycles of the transfer loop itself
- * ("@cycles spi_transfer_22" at 16 MHz: 22 bytes, the SPI traffic of one received CAN frame;
+ * ("@cycles spi_transfer_22": 22 bytes, the SPI traffic of one received CAN frame;
  * on the chip each byte also waits 16 MCLK cycles of shifting at 8 MHz).
  */
 #include <stdint.h>
@@ -140,8 +140,7 @@ int main(void)
 
     for (uint8_t k = 0; k < 8u; k++)
         CY_BENCH(&st_22, hal_spi_transfer(HAL_SPI_BUS_B0, HAL_SPI_CS_CAN, tx, rx, 22u, 0u));
-    if (smclk == 16000000ul)
-        cy_bench_report(&st_22);
+    cy_bench_report(&st_22); /* cycles, the same on either clock (both runs report it) */
     cy_test_end();
     return 0;
 }

@@ -182,10 +182,10 @@ int mcp2515_set_mode(mcp2515_t *d, mcp2515_mode_t mode);
 /**
  * Load @p f into a free transmit buffer and request its transmission. Pending buffers get
  * transmit priorities in the order of their identifiers (lowest first, equal identifiers in
- * the order sent). Returns MCP2515_OK; MCP2515_ERR_ARG (NULL, id above the range of its
- * format, len > 8, ext or rtr not 0/1); MCP2515_ERR_FULL (three frames pending);
- * MCP2515_ERR_BUS_OFF; MCP2515_ERR_MODE (listen-only); MCP2515_ERR_SPI; MCP2515_ERR_DEVICE (not
- * initialised). Nothing is sent on an error.
+ * the order sent), or with tx_fifo in the order sent. Returns MCP2515_OK; MCP2515_ERR_ARG (NULL, id
+ * above the range of its format, len > 8, ext or rtr not 0/1); MCP2515_ERR_FULL (three frames
+ * pending); MCP2515_ERR_BUS_OFF; MCP2515_ERR_MODE (listen-only); MCP2515_ERR_SPI;
+ * MCP2515_ERR_DEVICE (not initialised). Nothing is sent on an error.
  */
 int mcp2515_send(mcp2515_t *d, const mcp2515_frame_t *f);
 
