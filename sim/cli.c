@@ -16,7 +16,8 @@ void sim_cli_usage(FILE *f)
 {
     fprintf(f,
             "usage: agv-sim --scenario FILE [--seed N] [--report FILE.json] [--log-dir DIR]\n"
-            "               [--lcm URL] [--quiet] [--trace] [--stats] [-h|--help] [--version]\n"
+            "               [--lcm URL] [--can IFACE] [--candump FILE] [--quiet] [--trace]\n"
+            "               [--stats] [-h|--help] [--version]\n"
             "Runs both boards' firmware against a simulated vehicle and building.\n"
             "  --scenario FILE   the scenario (JSON; format: docs/interfaces.md and\n"
             "                    docs/schema/scenario.schema.json; examples in sim/scenarios/)\n"
@@ -26,9 +27,14 @@ void sim_cli_usage(FILE *f)
             "  --log-dir DIR     create DIR (and its parents) and write truth.csv,\n"
             "                    estimate.csv, fixes.csv, commands.csv, path.csv, beacons.csv\n"
             "  --lcm URL         publish telemetry on LCM (e.g. udpm://239.255.76.67:7667?ttl=0)\n"
+            "  --can IFACE       carry every board-link frame through a SocketCAN raw socket on\n"
+            "                    IFACE (vcan0, can0) and back; the run stays the same\n"
+            "  --candump FILE    write the bus traffic there in candump's log format\n"
+            "                    (simulated timestamps; decode with firmware/link/cyclopion.dbc)\n"
             "  --quiet           no progress on stderr\n"
             "  --trace           every fix attempt (dead-reckoning pose, truth and fix at the\n"
-            "                    reference latch, sightings, status) and travel state on stderr\n"
+            "                    reference latch, sightings, status), travel state, CAN error and\n"
+            "                    CAN state change on stderr\n"
             "  --stats           the run's work counters (events, cross-track samples, path\n"
             "                    pieces examined) and its CPU time as one JSON line on stderr\n"
             "  -h, --help        this text\n"
@@ -45,6 +51,8 @@ int sim_cli_parse(int argc, char **argv, sim_cli_t *cli, FILE *out, FILE *err)
         OPT_REPORT,
         OPT_LOG_DIR,
         OPT_LCM,
+        OPT_CAN,
+        OPT_CANDUMP,
         OPT_QUIET,
         OPT_TRACE,
         OPT_STATS,
@@ -55,6 +63,8 @@ int sim_cli_parse(int argc, char **argv, sim_cli_t *cli, FILE *out, FILE *err)
                                          {"report", required_argument, 0, OPT_REPORT},
                                          {"log-dir", required_argument, 0, OPT_LOG_DIR},
                                          {"lcm", required_argument, 0, OPT_LCM},
+                                         {"can", required_argument, 0, OPT_CAN},
+                                         {"candump", required_argument, 0, OPT_CANDUMP},
                                          {"quiet", no_argument, 0, OPT_QUIET},
                                          {"trace", no_argument, 0, OPT_TRACE},
                                          {"stats", no_argument, 0, OPT_STATS},
@@ -89,6 +99,12 @@ int sim_cli_parse(int argc, char **argv, sim_cli_t *cli, FILE *out, FILE *err)
             break;
         case OPT_LCM:
             cli->lcm_url = optarg;
+            break;
+        case OPT_CAN:
+            cli->can = optarg;
+            break;
+        case OPT_CANDUMP:
+            cli->candump = optarg;
             break;
         case OPT_QUIET:
             cli->quiet = 1;

@@ -12,6 +12,7 @@
 #include "drive/drive_path.h"
 #include "fx/fx_host.h"
 #include "mission/mission.h"
+#include "sim/canbus.h"
 
 static fx_q16_t q16(double v)
 {
@@ -115,5 +116,7 @@ int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, siz
     m->nav.start.x = q16(sc->start_x + sc->start_err_x);
     m->nav.start.y = q16(sc->start_y + sc->start_err_y);
     m->nav.start.heading = fx_angle_from_rad(sc->start_heading + sc->start_err_heading);
+    mc->link = sim_canbus_link_config(sc, LINKMSG_NODE_MAIN);
+    m->nav.link = sim_canbus_link_config(sc, LINKMSG_NODE_NAV);
     return 0;
 }

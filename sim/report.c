@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 void sim_stat_add(sim_stat_t *s, double x)
 {
@@ -88,10 +89,11 @@ int sim_report_judge(sim_report_t *r, const sim_success_t *c, char *why, size_t 
     if (whylen)
         why[0] = '\0';
     if (c->require_goal && !r->reached_goal)
-        miss(&m, " goal not reached (%s);",
-             r->fault            ? "fault"
-             : r->stop_requested ? "stop request: no fix for too long"
-                                 : "time out");
+        miss(&m, " goal not reached (stopped: %s);", r->stop_reason ? r->stop_reason : "?");
+    if (c->stop_reason[0] &&
+        (r->reached_goal || !r->stop_reason || strcmp(r->stop_reason, c->stop_reason) != 0))
+        miss(&m, " stop reason %s, expected %s;", r->reached_goal ? "none (goal)" : r->stop_reason,
+             c->stop_reason);
     if (sim_stat_mean(&r->cross_track) > c->max_cross_track_mean)
         miss(&m, " cross-track mean %.4f m > %.4f;", sim_stat_mean(&r->cross_track),
              c->max_cross_track_mean);
@@ -122,6 +124,49 @@ static json_t *num(double v, int decimals)
     if (r == 0.0 || !isfinite(r))
         r = isfinite(r) ? 0.0 : -1.0;
     return json_real(r);
+}
+
+static json_t *board_json(const sim_link_board_t *b)
+{
+    json_t *o = json_object();
+    json_object_set_new(o, "tx_frames", json_integer(b->tx_frames));
+    json_object_set_new(o, "rx_frames", json_integer(b->rx_frames));
+    json_object_set_new(o, "tx_errors", json_integer(b->tx_errors));
+    json_object_set_new(o, "rx_errors", json_integer(b->rx_errors));
+    json_object_set_new(o, "rx_overruns", json_integer(b->rx_overruns));
+    json_object_set_new(o, "tx_aborted", json_integer(b->tx_aborted));
+    json_object_set_new(o, "error_passive", json_integer(b->error_passive));
+    json_object_set_new(o, "bus_off", json_integer(b->bus_off));
+    json_object_set_new(o, "recoveries", json_integer(b->recoveries));
+    json_object_set_new(o, "heartbeats_sent", json_integer(b->heartbeats_sent));
+    json_object_set_new(o, "heartbeats_missed", json_integer(b->heartbeats_missed));
+    json_object_set_new(o, "silences", json_integer(b->silences));
+    json_object_set_new(o, "send_refused", json_integer(b->send_refused));
+    json_object_set_new(o, "message_errors", json_integer(b->message_errors));
+    return o;
+}
+
+static json_t *link_json(const sim_link_report_t *l)
+{
+    json_t *o = json_object();
+    json_object_set_new(o, "bus", json_string("can"));
+    json_object_set_new(o, "bitrate_bps", json_integer(l->bitrate_bps));
+    json_object_set_new(o, "frames", json_integer((json_int_t)l->frames));
+    json_object_set_new(o, "bus_load", num(l->bus_load, 6));
+    json_object_set_new(o, "errors", json_integer((json_int_t)l->errors));
+    json_object_set_new(o, "lost", json_integer((json_int_t)l->lost));
+    json_object_set_new(o, "bus_off", json_integer(l->bus_off));
+    json_object_set_new(o, "recoveries", json_integer(l->recoveries));
+    json_object_set_new(o, "recovery_ms_max", num(l->recovery_ms_max, 3));
+    json_t *lat = json_object();
+    for (size_t i = 0; i < l->n_latency; i++)
+        json_object_set_new(lat, l->latency_name[i], num(l->latency_ms[i], 3));
+    json_object_set_new(o, "latency_ms", lat);
+    json_t *boards = json_object();
+    json_object_set_new(boards, "main", board_json(&l->board[0]));
+    json_object_set_new(boards, "nav", board_json(&l->board[1]));
+    json_object_set_new(o, "boards", boards);
+    return o;
 }
 
 char *sim_report_json(sim_report_t *r)
@@ -157,10 +202,19 @@ char *sim_report_json(sim_report_t *r)
     json_object_set_new(path, "final_error_m", num(r->final_error, 6));
     json_object_set_new(root, "path", path);
 
+    json_object_set_new(root, "outcome", json_string(r->reached_goal ? "goal" : "stopped"));
+    if (!r->reached_goal) {
+        json_object_set_new(root, "stop_reason", json_string(r->stop_reason));
+        json_object_set_new(root, "stop_at_s", num(r->stop_at, 6));
+        if (r->standstill_at >= 0)
+            json_object_set_new(root, "standstill_at_s", num(r->standstill_at, 6));
+    }
+
     json_t *isr = json_object();
     for (size_t i = 0; i < r->n_isr; i++)
         json_object_set_new(isr, r->isr_name[i], json_integer((json_int_t)r->isr_count[i]));
     json_object_set_new(root, "isr", isr);
+    json_object_set_new(root, "link", link_json(&r->link));
 
     char *s = json_dumps(root, JSON_INDENT(1) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(12));
     json_decref(root);

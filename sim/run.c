@@ -15,11 +15,18 @@
 #include "hal_posix/harness.h"
 #include "main_board.h"
 #include "nav_board.h"
+#include "sim/canbus.h"
 #include "sim/clock.h"
 #include "sim/drive_board.h"
 #include "sim/path_index.h"
 #include "sim/sensors.h"
+#include "sim/socketcan.h"
 #include "sim/telemetry.h"
+
+/* The report's stop_reason of each main_board_stop_t (main_board.h has the one list). */
+#define STOP_NAME(name, text) text,
+static const char *const stop_names[] = {MAIN_BOARD_STOP_REASONS(STOP_NAME)};
+#undef STOP_NAME
 
 /* Everything of one run; the harness and the boards' firmware are single instances anyway. */
 typedef struct {
@@ -28,6 +35,8 @@ typedef struct {
     sim_sensors_t sensors;
     sim_telemetry_t tm;
     sim_path_index_t nominal;
+    sim_canbus_t bus;
+    sim_socketcan_t sock;
 } run_t;
 
 static run_t R;
@@ -74,7 +83,10 @@ static int boards_up(const sim_scenario_t *sc, sim_mission_t *m, char *err, size
     hal_cpu_init();
     int rc = nav_board_init(&m->nav);
     if (rc != 0) {
-        snprintf(err, errlen, "the nav board refuses the vehicle: %s", gnav_strerror(rc));
+        if (rc == NAV_BOARD_E_LINK)
+            snprintf(err, errlen, "the nav board refuses its link configuration");
+        else
+            snprintf(err, errlen, "the nav board refuses the vehicle: %s", gnav_strerror(rc));
         return -1;
     }
     posix_board_select(R.main_b);
@@ -128,14 +140,15 @@ static void count_isrs(sim_report_t *r)
          posix_source_find(R.main_b, (int)hal_capture_vector(HAL_CAPTURE_BEACON),
                            HAL_CAPTURE_BEACON)},
         {"main.delta_s", R.main_b, posix_edge_source(R.main_b, HAL_EDGE_DELTA_S)},
-        {"main.link_rx", R.main_b, posix_source_find(R.main_b, HAL_VEC_LINK_RX, 0)},
+        {"main.can_rx", R.main_b, posix_source_find(R.main_b, HAL_CAN0_VECTOR, HAL_CAN0_INT_PIN)},
         {"main.clock_tick", R.main_b, posix_source_find(R.main_b, HAL_VEC_TIMERB0, 0)},
         {"nav.delta_l", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_DELTA_L)},
         {"nav.gyro_up", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_GYRO_UP)},
         {"nav.gyro_down", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_GYRO_DOWN)},
         {"nav.beacon_sighted", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_BEACON_SIGHTED)},
         {"nav.coord_request", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_COORD_REQUEST)},
-        {"nav.link_rx", R.nav_b, posix_source_find(R.nav_b, HAL_VEC_LINK_RX, 0)},
+        {"nav.can_rx", R.nav_b, posix_source_find(R.nav_b, HAL_CAN0_VECTOR, HAL_CAN0_INT_PIN)},
+        {"nav.clock_tick", R.nav_b, posix_source_find(R.nav_b, HAL_VEC_TIMERB0, 0)},
     };
     for (size_t i = 0; i < sizeof isrs / sizeof isrs[0] && i < SIM_MAX_ISR_NAMES; i++) {
         r->isr_name[r->n_isr] = isrs[i].name;
@@ -158,10 +171,22 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
         return -1;
     }
     R.tm.trace = o->trace;
+    R.sock.fd = -1;
     if (sim_telemetry_open(&R.tm, o->log_dir, o->lcm_url, sc, &m->nominal, err, errlen)) {
         sim_path_index_free(&R.nominal);
         return -1;
     }
+    if ((o->can && sim_socketcan_open(&R.sock, o->can, err, errlen)) ||
+        sim_canbus_start(&R.bus, sc, R.main_b, R.nav_b, o->candump, o->can ? o->can : "vcan0",
+                         o->trace, err, errlen)) {
+        sim_canbus_close(&R.bus);
+        sim_socketcan_close(&R.sock);
+        sim_telemetry_close(&R.tm);
+        sim_path_index_free(&R.nominal);
+        return -1;
+    }
+    if (o->can)
+        posix_can_set_carrier(sim_socketcan_carry, &R.sock);
 
     struct timespec w0, c0, c1;
     clock_gettime(CLOCK_MONOTONIC, &w0);
@@ -176,14 +201,21 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     main_board_start();
 
     uint64_t end_ns = sim_clock_ns(sc->duration);
-    double done_at = -1, next_progress = 0.1, wall_next = 0;
+    double done_at = -1, standstill_at = -1, next_progress = 0.1, wall_next = 0;
     while (posix_next_event_ns() <= end_ns) {
-        stats->events += posix_run_until(posix_next_event_ns());
+        uint64_t next = posix_next_event_ns();
+        if (o->pace)
+            o->pace(o->pace_ctx, next); /* the seam for pacing to the wall clock */
+        stats->events += posix_run_until(next);
         poll_boards();
+        if (R.sock.failed)
+            break;
         double now = sim_clock_now();
         drive_state_t st = main_board_state();
         if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT) && done_at < 0)
             done_at = now;
+        if (done_at >= 0 && standstill_at < 0 && sim_drive_standing(&R.drive))
+            standstill_at = now;
         if (done_at >= 0 && sim_drive_standing(&R.drive) && now > done_at + 0.5)
             break; /* finished and standing */
         if (!o->quiet) {
@@ -201,6 +233,19 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
     stats->cpu_time_s = (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
     sim_telemetry_close(&R.tm);
+    link_stats_t main_link, nav_link;
+    posix_board_select(R.main_b);
+    main_board_link_stats(&main_link);
+    posix_board_select(R.nav_b);
+    nav_board_link_stats(&nav_link);
+    sim_canbus_report(&R.bus, &main_link, &nav_link, sim_clock_now(), r);
+    int closed = sim_canbus_close(&R.bus);
+    sim_socketcan_close(&R.sock);
+    if (R.sock.failed || closed) {
+        snprintf(err, errlen, "%s", R.sock.failed ? R.sock.err : "--candump: writing failed");
+        sim_path_index_free(&R.nominal);
+        return -1;
+    }
 
     snprintf(r->scenario, sizeof r->scenario, "%s", sc->name);
     r->seed = sc->seed;
@@ -210,9 +255,16 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     main_board_stats_t ms;
     posix_board_select(R.main_b);
     main_board_stats(&ms);
-    r->fault = ms.fault;
-    r->stop_requested = ms.stop_requested;
-    r->reached_goal = ms.done && !ms.fault && !ms.stop_requested;
+    r->reached_goal = ms.done && !ms.fault && ms.stop_reason == MAIN_BOARD_STOP_NONE;
+    r->stop_reason = "";
+    r->stop_at = r->standstill_at = -1;
+    if (!r->reached_goal) {
+        /* The main board's reason; a travel still going at the end ran out of time. */
+        r->stop_reason =
+            ms.stop_reason != MAIN_BOARD_STOP_NONE ? stop_names[ms.stop_reason] : SIM_STOP_DURATION;
+        r->stop_at = done_at >= 0 ? done_at : r->sim_time;
+        r->standstill_at = standstill_at;
+    }
     sim_pose_t end = sim_drive_pose(&R.drive, r->sim_time);
     const sim_waypoint_t *goal = &sc->path[sc->n_path - 1];
     r->final_error = hypot(end.x - goal->x, end.y - goal->y);

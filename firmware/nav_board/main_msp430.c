@@ -15,6 +15,7 @@
 static const nav_board_config_t config = {
     {MISSION_WHEELBASE, MISSION_DL_Q40, MISSION_GYRO_STEP_Q48, MISSION_STOP_DISTANCE},
     MISSION_START,
+    MISSION_LINK_CONFIG(LINKMSG_NODE_NAV),
 };
 int main(void)
 {
@@ -22,6 +23,10 @@ int main(void)
     if (nav_board_init(&config) != 0)
         hal_fault(HAL_FAULT_BAD_ARGUMENT);
     hal_console_puts("cyclopion nav board\r\n");
+    nav_board_stats_t st;
+    nav_board_stats(&st);
+    if (st.can_error != 0)
+        hal_console_puts("CAN controller does not answer: no board link\r\n");
     hal_irq_enable();
     for (;;) {
         nav_board_poll();

@@ -78,7 +78,7 @@ void posix_reset(void)
     preempt_ctx = NULL;
     hal_preempt_armed = 0;
     posix_console_redirect(NULL, NULL);
-    posix_link_reset();
+    posix_can_reset();
     posix_clock_signal_reset();
 }
 

@@ -1,9 +1,8 @@
 #!/usr/bin/env python3
 """Writes the fuzz harnesses' seed corpora (tests/fuzz/corpus/<harness>/): small, meaningful
 inputs - valid frames and messages of every kind, valid request lines of every agvcalc op, the
-shipped scenarios - and the edge cases around them. The frame coding is implemented here from
-its description in hal/common/link_framer.h and firmware/link/include/link/linkmsg.h, not taken
-from the C.
+shipped scenarios - and the edge cases around them. The message coding is implemented here from
+its description in firmware/link/include/link/linkmsg.h, not taken from the C.
 
 The output is deterministic; the seeds are committed, beside the findings kept as regression
 seeds (regress_*, left alone). Run it again after a format changes:
@@ -31,20 +30,6 @@ def crc8(data):
     return crc
 
 
-def frame_bytes(fid, data, crc=None):
-    """Flag, stuffed header + data + CRC, flag."""
-    raw = bytes([fid >> 3, ((fid & 7) << 5) | len(data)]) + bytes(data)
-    raw += bytes([crc8(raw) if crc is None else crc])
-    out = bytearray([0x7E])
-    for b in raw:
-        if b in (0x7E, 0x7D):
-            out += bytes([0x7D, b ^ 0x20])
-        else:
-            out.append(b)
-    out.append(0x7E)
-    return bytes(out)
-
-
 def q16(m):
     return struct.pack("<i", round(m * 65536))
 
@@ -64,6 +49,7 @@ def pair(a_id, xy, rest):
 
 ID_STOP, ID_POSE_A, ID_FIX_A, ID_FIX_ACK = 0x010, 0x020, 0x030, 0x032
 ID_LATCH_REQ, ID_LATCH_A, ID_DIR = 0x040, 0x041, 0x050
+ID_MAIN_HEARTBEAT, ID_NAV_HEARTBEAT = 0x701, 0x702
 
 
 def messages():
@@ -77,29 +63,17 @@ def messages():
         "latch_req": [(ID_LATCH_REQ, struct.pack("<HB", 510, 4))],
         "latch": pair(ID_LATCH_A, xy, h + struct.pack("<Hb", 511, 0)),
         "dir": [(ID_DIR, b"\x01")],
+        "main_heartbeat": [(ID_MAIN_HEARTBEAT, bytes([41, 0x01, 0, 0]))],
+        "nav_heartbeat": [(ID_NAV_HEARTBEAT, bytes([255, 0x03, 136, 2]))],
     }
-
-
-def framer_seeds():
-    s = {}
-    for name, frames in messages().items():
-        s["msg_" + name] = b"".join(frame_bytes(i, d) for i, d in frames)
-    s["empty_frame"] = frame_bytes(0x7FF, b"")
-    s["stuffed"] = frame_bytes(0x3F0, bytes([0x7E, 0x7D, 0x5E, 0x5D, 0x20, 0x7E, 0x7D, 0xFF]))
-    s["bad_crc"] = frame_bytes(ID_DIR, b"\x00", crc=0x55)
-    s["too_long"] = b"\x7e" + bytes(range(1, 14)) + b"\x7e"
-    s["header_bit4"] = b"\x7e\x0a\x10\x00" + bytes([crc8(b"\x0a\x10")]) + b"\x7e"
-    s["escape_then_flag"] = b"\x7e\x0a\x01\x7d\x7e" + frame_bytes(ID_DIR, b"\x00")
-    s["garbage_then_frame"] = b"\x00\x7d\xff\x12" + frame_bytes(ID_STOP, b"\x02")
-    s["flags_only"] = b"\x7e\x7e\x7e"
-    return s
 
 
 # ----------------------------------------------------------------------- link messages
 # linkmsg_fuzz.c records: [selector, id byte, length byte, data...]; a selector below 0xC0
-# picks ids[selector % 10] in this order:
+# picks ids[selector % 12] in this order:
 SEL = {ID_STOP: 0, ID_POSE_A: 1, ID_POSE_A + 1: 2, ID_FIX_A: 3, ID_FIX_A + 1: 4,
-       ID_FIX_ACK: 5, ID_LATCH_A: 6, ID_LATCH_A + 1: 7, ID_DIR: 8, ID_LATCH_REQ: 9}
+       ID_FIX_ACK: 5, ID_LATCH_A: 6, ID_LATCH_A + 1: 7, ID_DIR: 8, ID_LATCH_REQ: 9,
+       ID_MAIN_HEARTBEAT: 10, ID_NAV_HEARTBEAT: 11}
 
 
 def record(fid, data, raw=False):
@@ -121,6 +95,7 @@ def linkmsg_seeds():
     s["a_twice"] = record(a_id, bytes(8)) + record(a_id, a) + record(b_id, b)
     s["foreign_between"] = record(a_id, a) + record(0x7FF, b"\x01\x02", raw=True) + record(b_id, b)
     s["stop_bad_len"] = record(ID_STOP, b"")
+    s["heartbeat_bad_len"] = record(ID_NAV_HEARTBEAT, b"\x01\x02\x03")
     return s
 
 
@@ -229,8 +204,7 @@ def scenario_seeds():
 
 
 def write(check):
-    corpora = {"link_framer": framer_seeds(), "linkmsg": linkmsg_seeds(), "agvcalc": agvcalc_seeds(),
-               "scenario": scenario_seeds()}
+    corpora = {"linkmsg": linkmsg_seeds(), "agvcalc": agvcalc_seeds(), "scenario": scenario_seeds()}
     differ = []
     for harness, seeds in corpora.items():
         d = os.path.join(HERE, "corpus", harness)

@@ -118,6 +118,11 @@ def main():
     base.setdefault("success", {})
     base["path"][0].setdefault("speed_mps", 1.0)
     base["spurious"][0].setdefault("width_deg", 0.02)
+    base.setdefault("link", {"bus": "can", "bitrate_bps": 250000, "heartbeat_ms": 50,
+                             "silence_ms": 250,
+                             "faults": [{"kind": "delay", "at_s": 1.0, "duration_s": 1.0,
+                                         "node": "any", "frame": "FIX_B", "count": 1,
+                                         "delay_ms": 1.0, "id": 0, "len": 8, "period_ms": 0}]})
     checked = 0
     with tempfile.TemporaryDirectory() as tmp:
         for path, node, required in leaves(schemas["scenario"], [], True):

@@ -17,8 +17,6 @@
 #endif
 
 /** Vector numbers of the MSP430F2618 (word at 0xFFC0 + 2N; a higher N is served first). */
-#define HAL_VEC_LINK_TX 16 /* 0xFFE0 USCIAB1TX */
-#define HAL_VEC_LINK_RX 17 /* 0xFFE2 USCIAB1RX */
 #define HAL_VEC_PORT1   18 /* 0xFFE4 */
 #define HAL_VEC_PORT2   19 /* 0xFFE6 */
 #define HAL_VEC_TIMERA1 24 /* 0xFFF0 TACCR1-2, TAIFG */

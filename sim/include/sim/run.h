@@ -1,8 +1,9 @@
 /*
  * run.h - one closed-loop run: both boards' firmware on the harness (hal/posix), the drive
  * board and the vehicle (sim/drive_board.h), its sensors (sim/sensors.h) and the telemetry
- * (sim/telemetry.h), from the start to the end of the scenario's time or, once the travel is
- * done or has faulted, half a second after the vehicle stands.
+ * (sim/telemetry.h) and the board link's CAN bus (sim/canbus.h, sim/socketcan.h), from the start
+ * to the end of the scenario's time or, once the travel is done, has stopped or has faulted,
+ * half a second after the vehicle stands.
  */
 #ifndef SIM_RUN_H
 #define SIM_RUN_H
@@ -14,11 +15,21 @@
 #include "sim/report.h"
 #include "sim/scenario.h"
 
+/**
+ * Pacing of the run loop: called before the loop runs the events at simulated time
+ * @p next_ns; it may wait (wall clock) before it returns. NULL: as fast as it can.
+ */
+typedef void (*sim_run_pace_fn)(void *ctx, uint64_t next_ns);
+
 typedef struct {
-    const char *log_dir; /* CSV logs there (created with its parents), or NULL */
-    const char *lcm_url; /* LCM telemetry there, or NULL */
-    int quiet;           /* no progress lines on stderr */
-    int trace;           /* every fix attempt and travel state on stderr */
+    const char *log_dir;  /* CSV logs there (created with its parents), or NULL */
+    const char *lcm_url;  /* LCM telemetry there, or NULL */
+    int quiet;            /* no progress lines on stderr */
+    int trace;            /* every fix attempt, travel state and CAN error on stderr */
+    const char *can;      /* carry the bus's frames through this SocketCAN interface, or NULL */
+    const char *candump;  /* the bus traffic in candump's log format there, or NULL */
+    sim_run_pace_fn pace; /* the loop's pacing (NULL: none) */
+    void *pace_ctx;
 } sim_run_options_t;
 
 /** Work counters of a run: deterministic (the same scenario and seed give the same), and the
@@ -36,7 +47,8 @@ typedef struct {
  * Run scenario @p sc with its download @p m (sim_mission_build()) under options @p o; fill
  * @p r (zeroed first; the caller frees it with sim_report_free()) and @p stats. Returns 0
  * when the run went to its end, or -1 with the reason in @p err when it could not start (a
- * board refused its configuration, an output could not be opened).
+ * board refused its configuration, an output or the SocketCAN interface could not be opened)
+ * or --can failed on the way.
  */
 int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t *o, sim_report_t *r,
             sim_run_stats_t *stats, char *err, size_t errlen);

@@ -11,7 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "sim/scenario_keys.h" /* generated: SIM_SCENARIO_MODE_*, SIM_SCENARIO_*_MAX_ITEMS */
+#include "sim/scenario_keys.h" /* generated: SIM_SCENARIO_MODE_*, SIM_LINK_*, *_MAX_ITEMS */
 #include "sim/world.h"
 
 typedef struct {
@@ -26,7 +26,32 @@ typedef struct {
     double max_fix_error;        /* m: no accepted fix further from the truth */
     double min_fix_ratio;        /* accepted / attempted */
     bool require_goal;           /* the run must reach the last point */
+    char stop_reason[32];        /* the run must stop for this reason ("": no requirement) */
 } sim_success_t;
+
+/** A fault injected into the CAN bus model (scenario "link.faults"; hal_posix/can_bus.h). */
+typedef struct {
+    int kind;         /* SIM_LINK_FAULT_DROP, _CORRUPT, _DELAY, _BABBLE, _BUSOFF */
+    double at;        /* s */
+    double duration;  /* s */
+    int node;         /* SIM_LINK_NODE_ANY, _MAIN, _NAV */
+    char frame[32];   /* a frame's name in the DBC, "" = every frame */
+    uint32_t count;   /* frames it hits, 0 = all within the duration */
+    double delay_ms;  /* ms */
+    uint32_t id;      /* babble: its id */
+    uint32_t len;     /* babble: its data bytes */
+    double period_ms; /* babble: ms from frame to frame, 0 = back to back */
+} sim_link_fault_t;
+
+/** The board link (scenario "link"): 0 for a setting means the boards' built-in one. */
+typedef struct {
+    int bus;               /* SIM_LINK_BUS_CAN */
+    uint32_t bitrate_bps;  /* bit/s */
+    uint32_t heartbeat_ms; /* ms */
+    uint32_t silence_ms;   /* ms */
+    sim_link_fault_t fault[SIM_SCENARIO_LINK_FAULTS_MAX_ITEMS];
+    size_t n_faults;
+} sim_link_t;
 
 typedef struct {
     char name[64];
@@ -47,6 +72,7 @@ typedef struct {
     double gyro_drift;  /* rad/s */
     uint64_t seed;
     double duration; /* s */
+    sim_link_t link;
     sim_success_t success;
 } sim_scenario_t;
 

@@ -27,7 +27,6 @@
 
 #include "hal/capture.h"
 #include "hal/edge.h"
-#include "hal/link.h"
 #include "hal/signal.h"
 
 #ifdef __cplusplus
@@ -166,17 +165,10 @@ void posix_signal_connect(int from_board, hal_signal_t s, int to_board, hal_edge
 /** Forget clocks and wiring (posix_reset() calls it). */
 void posix_clock_signal_reset(void);
 
-/* ---- the inter-board link (hal/link.h) ---- */
+/* ---- CAN (hal/can.h): the bus model, hal_posix/can_bus.h ---- */
 
-/** Latency of the in-process bus, ns (default 200 us). posix_reset() restores the default. */
-void posix_link_set_latency(uint64_t ns);
-
-/** Observer of every frame sent (logs, telemetry); NULL removes it. */
-typedef void (*posix_link_tap_fn)(void *ctx, int from_board, const hal_link_frame_t *f);
-void posix_link_set_tap(posix_link_tap_fn fn, void *ctx);
-
-/** Forget every link port and frame in flight (posix_reset() calls it). */
-void posix_link_reset(void);
+/** Forget every CAN bus, node, frame and fault (posix_reset() calls it). */
+void posix_can_reset(void);
 
 #ifdef __cplusplus
 }
