@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 void sim_stat_add(sim_stat_t *s, double x)
 {
@@ -88,10 +89,11 @@ int sim_report_judge(sim_report_t *r, const sim_success_t *c, char *why, size_t 
     if (whylen)
         why[0] = '\0';
     if (c->require_goal && !r->reached_goal)
-        miss(&m, " goal not reached (%s);",
-             r->fault            ? "fault"
-             : r->stop_requested ? "stop request: no fix for too long"
-                                 : "time out");
+        miss(&m, " goal not reached (stopped: %s);", r->stop_reason ? r->stop_reason : "?");
+    if (c->stop_reason[0] &&
+        (r->reached_goal || !r->stop_reason || strcmp(r->stop_reason, c->stop_reason) != 0))
+        miss(&m, " ended %s%s, not stopped: %s;", r->reached_goal ? "at the goal" : "stopped: ",
+             r->reached_goal ? "" : (r->stop_reason ? r->stop_reason : "?"), c->stop_reason);
     if (sim_stat_mean(&r->cross_track) > c->max_cross_track_mean)
         miss(&m, " cross-track mean %.4f m > %.4f;", sim_stat_mean(&r->cross_track),
              c->max_cross_track_mean);
@@ -132,6 +134,10 @@ char *sim_report_json(sim_report_t *r)
     json_object_set_new(root, "mode", json_string(r->mode));
     json_object_set_new(root, "sim_time_s", num(r->sim_time, 6));
     json_object_set_new(root, "wall_time_s", num(r->wall_time, 6));
+    json_object_set_new(root, "outcome", json_string(r->reached_goal ? "goal" : "stopped"));
+    if (!r->reached_goal)
+        json_object_set_new(root, "stop_reason",
+                            json_string(r->stop_reason ? r->stop_reason : "unknown"));
 
     json_t *fixes = json_object();
     json_object_set_new(fixes, "attempted", json_integer(r->fixes_attempted));

@@ -21,9 +21,19 @@
 #include "sim/sensors.h"
 #include "sim/telemetry.h"
 
+/* The report's name of each way the travel can end (stop_reason), from the main board's table. */
+static const char *const end_names[MAIN_BOARD_END_COUNT] = {
+#define END_NAME(id, name) name,
+    MAIN_BOARD_ENDS(END_NAME)
+#undef END_NAME
+};
+
 /* Everything of one run; the harness and the boards' firmware are single instances anyway. */
 typedef struct {
     int main_b, nav_b;
+    const sim_scenario_t *sc;
+    sim_rng_t rng_link; /* link frame losses */
+    uint32_t link_lost;
     sim_drive_t drive;
     sim_sensors_t sensors;
     sim_telemetry_t tm;
@@ -31,6 +41,22 @@ typedef struct {
 } run_t;
 
 static run_t R;
+
+/* The disturbed board link: each frame lost with probability link_drop, every frame lost in
+ * an outage window. */
+static bool link_loss(void *ctx, int from_board, const hal_link_frame_t *f)
+{
+    (void)ctx;
+    (void)from_board;
+    (void)f;
+    const sim_scenario_t *sc = R.sc;
+    double t = sim_clock_now();
+    bool lost = sc->link_drop > 0 && sim_rng_uniform(&R.rng_link) < sc->link_drop;
+    for (size_t i = 0; i < sc->n_link_outages && !lost; i++)
+        lost = t >= sc->link_outage[i].t && t < sc->link_outage[i].t + sc->link_outage[i].duration;
+    R.link_lost += lost;
+    return lost;
+}
 
 /* The drive board moved the vehicle differently: the sensors follow. */
 static void on_motion(void *ctx, double t)
@@ -91,6 +117,10 @@ static int boards_up(const sim_scenario_t *sc, sim_mission_t *m, char *err, size
     obs = (main_board_observer_t){&R.tm, sim_telemetry_fix, 0, sim_telemetry_state};
     main_board_set_observer(&obs);
     posix_signal_connect(R.main_b, HAL_SIGNAL_COORD_REQUEST, R.nav_b, HAL_EDGE_COORD_REQUEST);
+    R.sc = sc;
+    sim_rng_seed(&R.rng_link, sc->seed, 5);
+    if (sc->link_drop > 0 || sc->n_link_outages > 0)
+        posix_link_set_loss(link_loss, NULL);
     return 0;
 }
 
@@ -182,7 +212,7 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
         poll_boards();
         double now = sim_clock_now();
         drive_state_t st = main_board_state();
-        if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT) && done_at < 0)
+        if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT || st == DRIVE_ST_STOPPED) && done_at < 0)
             done_at = now;
         if (done_at >= 0 && sim_drive_standing(&R.drive) && now > done_at + 0.5)
             break; /* finished and standing */
@@ -210,9 +240,8 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     main_board_stats_t ms;
     posix_board_select(R.main_b);
     main_board_stats(&ms);
-    r->fault = ms.fault;
-    r->stop_requested = ms.stop_requested;
-    r->reached_goal = ms.done && !ms.fault && !ms.stop_requested;
+    r->reached_goal = ms.end == MAIN_BOARD_END_GOAL;
+    r->stop_reason = r->reached_goal ? NULL : end_names[ms.end < MAIN_BOARD_END_COUNT ? ms.end : 0];
     sim_pose_t end = sim_drive_pose(&R.drive, r->sim_time);
     const sim_waypoint_t *goal = &sc->path[sc->n_path - 1];
     r->final_error = hypot(end.x - goal->x, end.y - goal->y);

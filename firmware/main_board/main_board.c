@@ -412,6 +412,13 @@ static __attribute__((noinline)) optical_pose_t predict(const optical_pose_t *no
     return p;
 }
 
+/* The travel ended: the first reason stays. */
+static void end(main_board_end_t why)
+{
+    if (mb.stats.end == MAIN_BOARD_END_NONE)
+        mb.stats.end = (uint8_t)why;
+}
+
 /* Not inlined: its port-write buffer stays off the stack while the sequencer solves. */
 static __attribute__((noinline)) void execute(const drive_seq_out_t *out)
 {
@@ -461,11 +468,18 @@ static __attribute__((noinline)) void execute(const drive_seq_out_t *out)
         optical_capture_start(&mb.cap);
     if (a & DRIVE_ACT_INDEX_OFF)
         optical_capture_stop(&mb.cap);
-    if (a & DRIVE_ACT_DONE)
+    if (a & DRIVE_ACT_DONE) {
         mb.stats.done = 1;
+        /* Short of the goal: the sequencer's own blind-distance stop, or the nav board's
+         * stop request (its only reason: G6, the same blind distance on the odometer). */
+        end(out->stop == DRIVE_STOP_NONE ? MAIN_BOARD_END_GOAL : MAIN_BOARD_END_BLIND_DISTANCE);
+    }
     if (a & DRIVE_ACT_FAULT) {
         mb.stats.fault = 1;
         mb.stats.fault_why = (uint8_t)out->fault;
+        end(out->fault == DRIVE_FAULT_NOT_READY ? MAIN_BOARD_END_FAULT_NOT_READY
+            : out->fault == DRIVE_FAULT_FIXES   ? MAIN_BOARD_END_FAULT_FIXES
+                                                : MAIN_BOARD_END_FAULT_SOLVE);
     }
 }
 

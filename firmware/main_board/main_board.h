@@ -67,6 +67,27 @@ typedef struct {
     void (*on_state)(void *ctx, drive_state_t state);
 } main_board_observer_t;
 
+/*
+ * How the travel ended (main_board_stats_t.end): the one table of reasons. Each row is the
+ * enum constant and the name agv-sim's report gives it (`outcome` "goal" for GOAL, else
+ * "stopped" with this name as `stop_reason`; docs/interfaces.md). A new reason is a new row
+ * here and nothing else; faults are named "fault:<what>".
+ */
+#define MAIN_BOARD_ENDS(X)                                                                         \
+    X(MAIN_BOARD_END_NONE, "time_out") /* not ended (when the run ends: out of time) */            \
+    X(MAIN_BOARD_END_GOAL, "goal")     /* the path finished at its last point */                   \
+    X(MAIN_BOARD_END_BLIND_DISTANCE, "blind_distance")        /* too far without a fix (G6) */     \
+    X(MAIN_BOARD_END_FAULT_NOT_READY, "fault:path_not_ready") /* started without a path */         \
+    X(MAIN_BOARD_END_FAULT_SOLVE, "fault:solve")              /* no double arc to the target */    \
+    X(MAIN_BOARD_END_FAULT_FIXES, "fault:fixes") /* simplified: the fixes kept failing */
+
+typedef enum {
+#define MAIN_BOARD_END_ENUM(id, name) id,
+    MAIN_BOARD_ENDS(MAIN_BOARD_END_ENUM)
+#undef MAIN_BOARD_END_ENUM
+        MAIN_BOARD_END_COUNT
+} main_board_end_t;
+
 /** Counters for diagnostics. */
 typedef struct {
     uint32_t revolutions; /**< index pulses */
@@ -78,6 +99,7 @@ typedef struct {
     uint8_t done, fault;
     uint8_t fault_why;      /**< drive_fault_t */
     uint8_t stop_requested; /**< the nav board asked for a stop (G6) */
+    uint8_t end;            /**< main_board_end_t: how the travel ended (the first end) */
 } main_board_stats_t;
 
 /**

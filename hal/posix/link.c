@@ -2,7 +2,8 @@
  * link.c - hal/link.h on the harness: an in-process bus. A frame sent by one board reaches
  * every other board that started its link, after the bus latency, as a receive interrupt
  * (vector HAL_VEC_LINK_RX). Each board buffers up to POSIX_LINK_RX_DEPTH frames; one more is
- * an overrun (counted, dropped), as a UART would lose bytes.
+ * an overrun (counted, dropped), as a UART would lose bytes. A loss function may drop frames
+ * in transit (a disturbed link).
  */
 #include <stddef.h>
 #include <string.h>
@@ -35,6 +36,8 @@ static flight_t flights[POSIX_LINK_IN_FLIGHT];
 static uint64_t latency_ns = 200000;
 static posix_link_tap_fn tap;
 static void *tap_ctx;
+static posix_link_loss_fn loss;
+static void *loss_ctx;
 
 void posix_link_reset(void)
 {
@@ -43,6 +46,8 @@ void posix_link_reset(void)
     latency_ns = 200000;
     tap = NULL;
     tap_ctx = NULL;
+    loss = NULL;
+    loss_ctx = NULL;
 }
 
 void posix_link_set_latency(uint64_t ns)
@@ -54,6 +59,12 @@ void posix_link_set_tap(posix_link_tap_fn fn, void *ctx)
 {
     tap = fn;
     tap_ctx = ctx;
+}
+
+void posix_link_set_loss(posix_link_loss_fn fn, void *ctx)
+{
+    loss = fn;
+    loss_ctx = ctx;
 }
 
 static void rx_isr(void *ctx)
@@ -104,6 +115,8 @@ int hal_link_send(const hal_link_frame_t *f)
     int from = posix_board_current();
     if (tap)
         tap(tap_ctx, from, f);
+    if (loss && loss(loss_ctx, from, f))
+        return 0;
     for (int b = 0; b < POSIX_MAX_BOARDS; b++) {
         if (b == from || !ports[b].started)
             continue;

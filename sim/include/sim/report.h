@@ -36,10 +36,10 @@ typedef struct {
     uint32_t fixes_attempted, fixes_accepted, fixes_rejected;
     sim_stat_t fix_error;     /* m, accepted fixes vs truth at their reference instant */
     sim_stat_t heading_error; /* deg, absolute */
-    bool reached_goal;
-    bool fault, stop_requested; /* why the goal was not reached: a fault, the nav board's stop */
-    sim_stat_t cross_track;     /* m, sampled along the travelled distance */
-    double final_error;         /* m, truth at the end vs the last prescribed point */
+    bool reached_goal;        /* the outcome: "goal", else "stopped" */
+    const char *stop_reason;  /* why it stopped (a static string), NULL at the goal */
+    sim_stat_t cross_track;   /* m, sampled along the travelled distance */
+    double final_error;       /* m, truth at the end vs the last prescribed point */
     const char *isr_name[SIM_MAX_ISR_NAMES];
     uint64_t isr_count[SIM_MAX_ISR_NAMES];
     size_t n_isr;

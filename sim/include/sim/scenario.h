@@ -26,7 +26,13 @@ typedef struct {
     double max_fix_error;        /* m: no accepted fix further from the truth */
     double min_fix_ratio;        /* accepted / attempted */
     bool require_goal;           /* the run must reach the last point */
+    char stop_reason[32];        /* "" or the stop_reason the run must end with */
 } sim_success_t;
+
+/** A window of simulated time: from t for duration seconds. */
+typedef struct {
+    double t, duration; /* s */
+} sim_window_t;
 
 typedef struct {
     char name[64];
@@ -41,12 +47,21 @@ typedef struct {
     uint32_t counts;
     double gonio_noise; /* rad */
     double gonio_range; /* m */
+    double index_loss;  /* probability that an index pulse is lost */
+    sim_window_t dropout[SIM_SCENARIO_SENSORS_GONIOMETER_DROPOUTS_MAX_ITEMS]; /* blinded */
+    size_t n_dropouts;
     double dl;          /* m of front-wheel travel per odometer pulse */
     double odo_scale;   /* true travel per nominal dl (1 = perfect wheel) */
+    double odo_missed;  /* probability that a pulse is lost */
+    double odo_extra;   /* probability that a pulse comes with an extra one */
     double gyro_step;   /* rad */
     double gyro_drift;  /* rad/s */
     uint64_t seed;
-    double duration; /* s */
+    double duration;       /* s */
+    double blind_distance; /* m without a fix before the stop (both boards) */
+    double link_drop;      /* probability that a link frame is lost */
+    sim_window_t link_outage[SIM_SCENARIO_LINK_LOSS_OUTAGES_MAX_ITEMS]; /* all frames lost */
+    size_t n_link_outages;
     sim_success_t success;
 } sim_scenario_t;
 

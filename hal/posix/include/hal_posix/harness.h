@@ -175,6 +175,11 @@ void posix_link_set_latency(uint64_t ns);
 typedef void (*posix_link_tap_fn)(void *ctx, int from_board, const hal_link_frame_t *f);
 void posix_link_set_tap(posix_link_tap_fn fn, void *ctx);
 
+/** Loss in transit: called for every frame sent (after the tap); true drops it for every
+ * receiver (the sender does not know). NULL removes it. */
+typedef bool (*posix_link_loss_fn)(void *ctx, int from_board, const hal_link_frame_t *f);
+void posix_link_set_loss(posix_link_loss_fn fn, void *ctx);
+
 /** Forget every link port and frame in flight (posix_reset() calls it). */
 void posix_link_reset(void);
 
