@@ -9,8 +9,8 @@
  * The rooms: cli (the command line), scenario (the file, checked against its schema), mission
  * (the boards' download and the nominal path), run (the boards on the harness and the loop),
  * drive_board (the drive board and the vehicle's motion), sensors (odometer, gyro and
- * goniometer pulses), telemetry (measurements, logs, LCM, trace), report (the JSON report
- * and the verdict).
+ * goniometer pulses, with their disturbances), link_loss (frames of the board link lost),
+ * telemetry (measurements, logs, LCM, trace), report (the JSON report and the verdict).
  */
 #include <errno.h>
 #include <inttypes.h>

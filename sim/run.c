@@ -17,6 +17,7 @@
 #include "nav_board.h"
 #include "sim/clock.h"
 #include "sim/drive_board.h"
+#include "sim/link_loss.h"
 #include "sim/path_index.h"
 #include "sim/sensors.h"
 #include "sim/telemetry.h"
@@ -31,9 +32,7 @@ static const char *const end_names[MAIN_BOARD_END_COUNT] = {
 /* Everything of one run; the harness and the boards' firmware are single instances anyway. */
 typedef struct {
     int main_b, nav_b;
-    const sim_scenario_t *sc;
-    sim_rng_t rng_link; /* link frame losses */
-    uint32_t link_lost;
+    sim_link_loss_t link_loss;
     sim_drive_t drive;
     sim_sensors_t sensors;
     sim_telemetry_t tm;
@@ -42,20 +41,12 @@ typedef struct {
 
 static run_t R;
 
-/* The disturbed board link: each frame lost with probability link_drop, every frame lost in
- * an outage window. */
+/* The disturbed board link (sim/link_loss.h). */
 static bool link_loss(void *ctx, int from_board, const hal_link_frame_t *f)
 {
-    (void)ctx;
     (void)from_board;
     (void)f;
-    const sim_scenario_t *sc = R.sc;
-    double t = sim_clock_now();
-    bool lost = sc->link_drop > 0 && sim_rng_uniform(&R.rng_link) < sc->link_drop;
-    for (size_t i = 0; i < sc->n_link_outages && !lost; i++)
-        lost = t >= sc->link_outage[i].t && t < sc->link_outage[i].t + sc->link_outage[i].duration;
-    R.link_lost += lost;
-    return lost;
+    return sim_link_loss_frame(ctx, sim_clock_now());
 }
 
 /* The drive board moved the vehicle differently: the sensors follow. */
@@ -117,10 +108,9 @@ static int boards_up(const sim_scenario_t *sc, sim_mission_t *m, char *err, size
     obs = (main_board_observer_t){&R.tm, sim_telemetry_fix, 0, sim_telemetry_state};
     main_board_set_observer(&obs);
     posix_signal_connect(R.main_b, HAL_SIGNAL_COORD_REQUEST, R.nav_b, HAL_EDGE_COORD_REQUEST);
-    R.sc = sc;
-    sim_rng_seed(&R.rng_link, sc->seed, 5);
-    if (sc->link_drop > 0 || sc->n_link_outages > 0)
-        posix_link_set_loss(link_loss, NULL);
+    sim_link_loss_init(&R.link_loss, sc);
+    if (sim_link_loss_active(sc))
+        posix_link_set_loss(link_loss, &R.link_loss);
     return 0;
 }
 

@@ -82,6 +82,16 @@ static int in_window(const sim_window_t *w, size_t n, double t)
 
 /* ------------------------------------------------------------------ odometer */
 
+/* A spurious pulse, a little after a real one (the handler's flag would merge the two). */
+#define GLITCH_DELAY_S 20e-6
+
+static void on_glitch(void *ctx, uint64_t t_ns)
+{
+    sim_sensors_t *s = ctx;
+    (void)t_ns;
+    posix_edge_raise(s->nav_board, HAL_EDGE_DELTA_L);
+}
+
 static void schedule_dl(sim_sensors_t *s, double after)
 {
     double t = sim_segment_time_at_front(s->seg, s->front_next, after);
@@ -100,7 +110,7 @@ static void on_dl(void *ctx, uint64_t t_ns)
         posix_edge_raise(s->nav_board, HAL_EDGE_DELTA_L);
         if (s->sc->odo_extra > 0 && sim_rng_uniform(&s->rng_odo) < s->sc->odo_extra) {
             s->odo_extra++;
-            posix_edge_raise(s->nav_board, HAL_EDGE_DELTA_L);
+            sim_clock_schedule(sim_clock_s(t_ns) + GLITCH_DELAY_S, on_glitch, s);
         }
     }
     s->front_next += s->dl;

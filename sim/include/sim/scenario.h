@@ -50,12 +50,12 @@ typedef struct {
     double index_loss;  /* probability that an index pulse is lost */
     sim_window_t dropout[SIM_SCENARIO_SENSORS_GONIOMETER_DROPOUTS_MAX_ITEMS]; /* blinded */
     size_t n_dropouts;
-    double dl;          /* m of front-wheel travel per odometer pulse */
-    double odo_scale;   /* true travel per nominal dl (1 = perfect wheel) */
-    double odo_missed;  /* probability that a pulse is lost */
-    double odo_extra;   /* probability that a pulse comes with an extra one */
-    double gyro_step;   /* rad */
-    double gyro_drift;  /* rad/s */
+    double dl;         /* m of front-wheel travel per odometer pulse */
+    double odo_scale;  /* true travel per nominal dl (1 = perfect wheel) */
+    double odo_missed; /* probability that a pulse is lost */
+    double odo_extra;  /* probability that a pulse comes with an extra one */
+    double gyro_step;  /* rad */
+    double gyro_drift; /* rad/s */
     uint64_t seed;
     double duration;       /* s */
     double blind_distance; /* m without a fix before the stop (both boards) */

@@ -52,7 +52,7 @@ typedef struct {
     double rise_t[SIM_SENSORS_LATCHES];
     sim_pose_t rise_pose[SIM_SENSORS_LATCHES];
     int16_t rise_target[SIM_SENSORS_LATCHES]; /* beacon index, or -1 - glint index */
-    uint64_t ev_dl, ev_gyro, ev_gonio; /* harness event ids, 0 = none */
+    uint64_t ev_dl, ev_gyro, ev_gonio;        /* harness event ids, 0 = none */
 } sim_sensors_t;
 
 /**
