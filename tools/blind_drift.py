@@ -15,16 +15,21 @@ stays within --budget: the blind distance the measurement supports.
 
   tools/blind_drift.py [--agv build/host/bin/agv-sim] [--scenario FILE] [--seeds 1-6]
                        [--starts 3,13,23,33,43,53] [--window 14] [--budget 0.01]
-                       [--jobs N] [--json FILE] [--check-default]
+                       [--jobs N] [--json FILE] [--check-default] [--doc FILE | --check-doc FILE]
 
 --check-default exits 1 unless the scenario schema's default blind_distance_m is within the
-supported distance (the test sim.blind_drift runs it).
+supported distance. --doc writes the table (with the command that measured it) between the
+markers <!-- blind-drift-table --> and <!-- end blind-drift-table --> of a document;
+--check-doc exits 1 when that table differs from the measurement (the runs are deterministic).
+The test sim.blind_drift runs --check-default --check-doc docs/drive.md with the parameters
+written in the document's table.
 """
 import argparse
 import csv
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -33,6 +38,7 @@ from concurrent.futures import ProcessPoolExecutor
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCHEMA = os.path.join(ROOT, "docs", "schema", "scenario.schema.json")
 INSTALL_S = 0.005  # the nav board installs a fix within a few ms of its computation
+BLOCK = re.compile(r"(<!-- blind-drift-table -->\n)(.*?)(<!-- end blind-drift-table -->)", re.S)
 
 
 def seeds_arg(text):
@@ -134,6 +140,11 @@ def main():
     ap.add_argument("--json", metavar="FILE", help="also write the figures as JSON")
     ap.add_argument("--check-default", action="store_true",
                     help="exit 1 unless the schema's default blind_distance_m is supported")
+    docs = ap.add_mutually_exclusive_group()
+    docs.add_argument("--doc", metavar="FILE",
+                      help="write the table between the blind-drift-table markers of FILE")
+    docs.add_argument("--check-doc", metavar="FILE",
+                      help="exit 1 when the table in FILE differs from the measurement")
     a = ap.parse_args()
     if a.window <= 0 or a.budget <= 0 or a.jobs < 1:
         ap.error("--window, --budget and --jobs must be positive")
@@ -150,29 +161,52 @@ def main():
     # Supported: the longest whole distance d with every drift below d within the budget
     # (the last metre bin is not full: it does not count).
     supported, running = 0, 0.0
-    print("distance since the fix (m) | worst drift (mm) | worst so far per metre (mm/m)")
-    print("--- | --- | ---")
+    lines = ["| distance since the fix (m) | worst drift (mm) | worst so far, per metre (mm/m) |",
+             "| --- | ---: | ---: |"]
     for b in range(max(worst) + 1):
         running = max(running, worst.get(b, 0.0))
-        print(f"{b}-{b + 1} | {worst.get(b, 0.0) * 1000:.1f} | {running / (b + 1) * 1000:.2f}")
+        lines.append(f"| {b}-{b + 1} | {worst.get(b, 0.0) * 1000:.1f} | "
+                     f"{running / (b + 1) * 1000:.2f} |")
         if running <= a.budget and supported == b and b < max(worst):
             supported = b + 1
-    print(f"\nblind distance supported by a drift budget of {a.budget * 1000:g} mm: "
-          f"{supported} m")
     with open(SCHEMA) as f:
         default = json.load(f)["properties"]["blind_distance_m"]["default"]
-    print(f"the schema's default blind_distance_m: {default:g} m")
+    scen = os.path.relpath(os.path.abspath(a.scenario), ROOT)
+    seeds = f"{a.seeds[0]}-{a.seeds[-1]}" if a.seeds == list(range(a.seeds[0], a.seeds[-1] + 1)) \
+        else ",".join(map(str, a.seeds))
+    text = (f"`tools/blind_drift.py --scenario {scen} --seeds {seeds} --starts "
+            f"{','.join(f'{s:g}' for s in a.starts)} --window {a.window:g} --budget "
+            f"{a.budget:g}`: {len(a.seeds) * len(a.starts)} runs.\n\n" + "\n".join(lines) +
+            f"\n\nBlind distance supported by a drift budget of {a.budget * 1000:g} mm: "
+            f"{supported} m; the default blind_distance_m: {default:g} m.\n")
+    print(text, end="")
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"budget_m": a.budget, "supported_m": supported, "default_m": default,
                        "worst_drift_m": {str(b): worst[b] for b in sorted(worst)},
                        "seeds": a.seeds, "starts_s": a.starts, "window_s": a.window}, f,
                       indent=1)
+    rc = 0
     if a.check_default and default > supported:
         print(f"blind_drift: the default blind distance {default:g} m is longer than the "
               f"{supported} m the measured drift supports", file=sys.stderr)
-        return 1
-    return 0
+        rc = 1
+    doc = a.doc or a.check_doc
+    if doc:
+        with open(doc) as f:
+            old = f.read()
+        new, n = BLOCK.subn(lambda m: m.group(1) + text + m.group(3), old)
+        if n != 1:
+            print(f"blind_drift: {doc}: no blind-drift-table markers", file=sys.stderr)
+            return 2
+        if a.doc and new != old:
+            with open(doc, "w") as f:
+                f.write(new)
+        elif a.check_doc and new != old:
+            print(f"blind_drift: {doc}: the drift table differs from the measurement (run "
+                  f"tools/blind_drift.py with its parameters and --doc {doc})", file=sys.stderr)
+            rc = 1
+    return rc
 
 
 if __name__ == "__main__":

@@ -159,7 +159,7 @@ fx_q16_t drive_blind_speed(fx_q16_t speed, fx_q16_t blind, fx_q16_t limit, fx_q1
 }
 
 /* The travel since the last accepted fix grows by the chord from the last pose to @p pose
- * (the poses come once a revolution: the chord of a 0.5 m arc of 0.8 m radius is 1 % short). */
+ * (the poses come once a revolution: the chord of a 0.5 m arc of 0.8 m radius is 1.6 % short). */
 static void blind_add(drive_seq_t *seq, const drive_pose_t *pose)
 {
     int32_t dx = (int32_t)((uint32_t)pose->x - (uint32_t)seq->blind_from.x);
