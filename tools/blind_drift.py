@@ -13,7 +13,7 @@ cancels; its heading error and everything dead reckoning adds do not). It prints
 drift in each metre of distance, and the longest whole number of metres whose worst drift
 stays within --budget: the blind distance the measurement supports.
 
-  tools/blind_drift.py [--agv build/host/bin/agv-sim] [--scenario FILE] [--seeds 1-6]
+  tools/blind_drift.py [--agv build/host/bin/agv-sim] [--scenario FILE] [--seeds 1-4]
                        [--starts 3,13,23,33,43,53] [--window 14] [--budget 0.01]
                        [--jobs N] [--json FILE] [--check-default] [--doc FILE | --check-doc FILE]
 
@@ -127,8 +127,8 @@ def main():
     ap.add_argument("--scenario", default=os.path.join(ROOT, "sim", "scenarios",
                                                        "factory_loop.json"),
                     help="the world and route (default: sim/scenarios/factory_loop.json)")
-    ap.add_argument("--seeds", type=seeds_arg, default=seeds_arg("1-6"),
-                    help="seeds, e.g. 1-6 or 1,3,5 (default 1-6)")
+    ap.add_argument("--seeds", type=seeds_arg, default=seeds_arg("1-4"),
+                    help="seeds, e.g. 1-4 or 1,3,5 (default 1-4)")
     ap.add_argument("--starts", type=floats_arg, default=floats_arg("3,13,23,33,43,53"),
                     help="start times of the dropout window, s (default 3,13,23,33,43,53)")
     ap.add_argument("--window", type=float, default=14.0,
