@@ -9,9 +9,9 @@
  * The rooms: cli (the command line), scenario (the file, checked against its schema), mission
  * (the boards' download and the nominal path), run (the boards on the harness and the loop),
  * drive_board (the drive board and the vehicle's motion), sensors (odometer, gyro and
- * goniometer pulses), telemetry (measurements, logs, LCM, trace), canbus (the board link's CAN
- * bus: faults, candump log, figures), socketcan (--can), report (the JSON report and the
- * verdict).
+ * goniometer pulses, with their disturbances), telemetry (measurements, logs, LCM, trace),
+ * canbus (the board link's CAN bus: faults, candump log, figures), socketcan (--can), report
+ * (the JSON report and the verdict).
  */
 #include <errno.h>
 #include <inttypes.h>

@@ -100,8 +100,10 @@ int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, siz
     mc->board.wheelbase = q16(sc->wheelbase);
     mc->board.min_radius = q16(sc->min_radius);
     mc->path_cfg = (drive_path_config_t)MISSION_PATH_CONFIG(q16(sc->min_radius));
+    /* The blind distance: one value for both boards (the sequencer's and the nav board's G6). */
+    fx_q16_t blind = q16(sc->blind_distance);
     mc->seq_cfg = (drive_seq_config_t)MISSION_SEQ_CONFIG(
-        sc->mode == SIM_SCENARIO_MODE_FULL ? DRIVE_MODE_FULL : DRIVE_MODE_SIMPLIFIED);
+        sc->mode == SIM_SCENARIO_MODE_FULL ? DRIVE_MODE_FULL : DRIVE_MODE_SIMPLIFIED, blind);
     mc->counts_per_turn = (uint16_t)sc->counts;
     optical_config_default(&mc->optical);
     mc->optical.beacon_diameter = q16(sc->world.beacon[0].diameter);
@@ -112,7 +114,7 @@ int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, siz
     g->wheelbase = q16(sc->wheelbase);
     g->dl_q40 = (uint32_t)llround(sc->dl * 1099511627776.0);
     g->gyro_step_q48 = (uint64_t)llround(sc->gyro_step / (2 * M_PI) * 281474976710656.0);
-    g->stop_distance = MISSION_STOP_DISTANCE;
+    g->stop_distance = blind;
     m->nav.start.x = q16(sc->start_x + sc->start_err_x);
     m->nav.start.y = q16(sc->start_y + sc->start_err_y);
     m->nav.start.heading = fx_angle_from_rad(sc->start_heading + sc->start_err_heading);

@@ -177,6 +177,10 @@ char *sim_report_json(sim_report_t *r)
     json_object_set_new(root, "mode", json_string(r->mode));
     json_object_set_new(root, "sim_time_s", num(r->sim_time, 6));
     json_object_set_new(root, "wall_time_s", num(r->wall_time, 6));
+    json_object_set_new(root, "outcome", json_string(r->reached_goal ? "goal" : "stopped"));
+    if (!r->reached_goal)
+        json_object_set_new(root, "stop_reason",
+                            json_string(r->stop_reason ? r->stop_reason : "unknown"));
 
     json_t *fixes = json_object();
     json_object_set_new(fixes, "attempted", json_integer(r->fixes_attempted));

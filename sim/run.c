@@ -212,7 +212,7 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
             break;
         double now = sim_clock_now();
         drive_state_t st = main_board_state();
-        if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT) && done_at < 0)
+        if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT || st == DRIVE_ST_STOPPED) && done_at < 0)
             done_at = now;
         if (done_at >= 0 && standstill_at < 0 && sim_drive_standing(&R.drive))
             standstill_at = now;

@@ -118,7 +118,7 @@ int sim_telemetry_open(sim_telemetry_t *tm, const char *log_dir, const char *lcm
                                 : NULL;
         tm->f_fix = tm->f_est ? open_log(log_dir, "fixes.csv",
                                          "t_s,ref_t_s,accepted,x_m,y_m,heading_deg,error_m,"
-                                         "heading_error_deg,quality,used,status\n",
+                                         "heading_error_deg,quality,used,status,beacons\n",
                                          err, errlen)
                               : NULL;
         tm->f_cmd = tm->f_fix ? open_log(log_dir, "commands.csv",
@@ -297,11 +297,12 @@ void sim_telemetry_fix(void *ctx, const main_board_fix_event_t *ev)
         r->fixes_rejected++;
     }
     if (tm->f_fix)
-        fprintf(tm->f_fix, "%.6f,%.6f,%d,%.6f,%.6f,%.5f,%.6f,%.5f,%u,%d;%d;%d,%d\n", t, tref,
+        fprintf(tm->f_fix, "%.6f,%.6f,%d,%.6f,%.6f,%.5f,%.6f,%.5f,%u,%d;%d;%d,%d,%d\n", t, tref,
                 accepted, fx_q16_to_double(ev->fix.pose.x), fx_q16_to_double(ev->fix.pose.y),
                 fx_angle_to_deg(ev->fix.pose.heading), err, herr, ev->fix.quality,
                 accepted ? ev->fix.used[0] : -1, accepted ? ev->fix.used[1] : -1,
-                accepted ? ev->fix.used[2] : -1, ev->status);
+                accepted ? ev->fix.used[2] : -1, ev->status,
+                ev->n > 0 ? sim_sensors_beacons(tm->sensors, ev->ref_latch, ev->n) : 0);
     if (tm->lcm)
         publish_fix(tm, ev, tref, accepted, err);
 }

@@ -3,6 +3,8 @@
  */
 #include "sim/world.h"
 
+#include <math.h>
+
 /* Signed area of the triangle (a, b, c): > 0 when c is left of a->b. */
 static double orient(double ax, double ay, double bx, double by, double cx, double cy)
 {
@@ -18,6 +20,16 @@ bool sim_world_visible(const sim_world_t *w, double ax, double ay, double bx, do
         double d3 = orient(o->x1, o->y1, o->x2, o->y2, ax, ay);
         double d4 = orient(o->x1, o->y1, o->x2, o->y2, bx, by);
         if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)))
+            return false;
+    }
+    double dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
+    for (size_t i = 0; i < w->n_pillars; i++) {
+        const sim_pillar_t *c = &w->pillar[i];
+        /* The point of the segment nearest to the centre. */
+        double u = len2 > 0 ? ((c->x - ax) * dx + (c->y - ay) * dy) / len2 : 0.0;
+        u = u < 0 ? 0 : u > 1 ? 1 : u;
+        double r = 0.5 * c->diameter;
+        if (hypot(ax + u * dx - c->x, ay + u * dy - c->y) < r)
             return false;
     }
     return true;

@@ -13,7 +13,11 @@ drawn path; the scenario gives the rest).
 import argparse
 import json
 import math
+import os
 import sys
+
+SCHEMA = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "docs",
+                      "schema", "scenario.schema.json")
 
 
 def q16(v):
@@ -48,6 +52,14 @@ def read_path(filename):
             [pose(x, f"path[{i}]", True) for i, x in enumerate(d["path"])])
 
 
+def blind_distance(sc):
+    """The scenario's blind_distance_m, or the schema's default (the one the simulator takes)."""
+    if "blind_distance_m" in sc:
+        return sc["blind_distance_m"]
+    with open(SCHEMA) as f:
+        return json.load(f)["properties"]["blind_distance_m"]["default"]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -79,6 +91,7 @@ def main():
            f"#define MISSION_GYRO_STEP_Q48 "
            f"{int(round(sen['gyro']['step_deg'] / 360.0 * 2**48))}ull",
            f"#define MISSION_BEACON_DIAMETER {q16(b[0]['diameter_m'])}l",
+           f"#define MISSION_BLIND_DISTANCE {q16(blind_distance(sc))}l",
            f"#define MISSION_START {{{q16(st['x'])}l, {q16(st['y'])}l, "
            f"{angle(st['heading_deg'])}ul}}",
            f"#define MISSION_N_BEACONS {len(b)}u",

@@ -460,8 +460,15 @@ static __attribute__((noinline)) void execute(const drive_seq_out_t *out)
         optical_capture_start(&mb.cap);
     if (a & DRIVE_ACT_INDEX_OFF)
         optical_capture_stop(&mb.cap);
-    if (a & DRIVE_ACT_DONE)
+    if (a & DRIVE_ACT_DONE) {
         mb.stats.done = 1;
+        /* Short of the goal by the sequencer's own blind-distance stop (a stop asked for over
+         * the link has its reason already: stop_travel()). */
+        if (out->stop == DRIVE_STOP_BLIND && mb.stats.stop_reason == MAIN_BOARD_STOP_NONE) {
+            mb.stats.stop_reason = MAIN_BOARD_STOP_BLIND_DISTANCE;
+            link_set_stopped(&mb.link, 1);
+        }
+    }
     if (a & DRIVE_ACT_FAULT) {
         mb.stats.fault = 1;
         mb.stats.fault_why = (uint8_t)out->fault;
@@ -497,7 +504,8 @@ static void drain(void)
 /* Stop the travel for @p reason (main_board_stop_t) unless it has already ended. */
 static void stop_travel(uint8_t reason)
 {
-    if (mb.seq.state == DRIVE_ST_DONE || mb.seq.state == DRIVE_ST_FAULT)
+    if (mb.seq.state == DRIVE_ST_DONE || mb.seq.state == DRIVE_ST_FAULT ||
+        mb.seq.state == DRIVE_ST_STOPPED)
         return;
     mb.stats.stop_reason = reason;
     link_set_stopped(&mb.link, 1);

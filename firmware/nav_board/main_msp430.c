@@ -2,7 +2,8 @@
  * main_msp430.c - reset-to-main-loop of the nav board image, with its built-in mission
  * (generated from sim/scenarios/table_6_1_1987_full.json by tools/gen_mission.py): the
  * vehicle of seed 000 at the start of the thesis's Table 6-1 run; it asks for a stop after
- * MISSION_STOP_DISTANCE without an optical fix (mission/mission.h).
+ * MISSION_BLIND_DISTANCE without an optical fix (the scenario's blind_distance_m, which the
+ * main board's travel sequence watches too).
  */
 #include "hal/console.h"
 #include "hal/cpu.h"
@@ -13,7 +14,7 @@
 #include "nav_board.h"
 
 static const nav_board_config_t config = {
-    {MISSION_WHEELBASE, MISSION_DL_Q40, MISSION_GYRO_STEP_Q48, MISSION_STOP_DISTANCE},
+    {MISSION_WHEELBASE, MISSION_DL_Q40, MISSION_GYRO_STEP_Q48, MISSION_BLIND_DISTANCE},
     MISSION_START,
     MISSION_LINK_CONFIG(LINKMSG_NODE_NAV),
 };

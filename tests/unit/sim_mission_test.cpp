@@ -25,7 +25,7 @@ const char *kScenario = R"({
           {"x":6,"y":6,"heading_deg":0}],
  "sensors": {"goniometer":{"rev_per_s":2,"counts":50000,"noise_deg":0},
              "odometer":{"dl_m":0.000254},"gyro":{"step_deg":0.25,"drift_deg_per_s":0}},
- "seed": 7, "duration_s": 20})";
+ "seed": 7, "duration_s": 20, "blind_distance_m": 6.5})";
 
 long q16(double v)
 {
@@ -57,7 +57,9 @@ TEST(Mission, DownloadHoldsTheScenarioInTheFirmwaresFormats)
     EXPECT_EQ(mc.seq_cfg.stop_speed, q16(0.15));
     EXPECT_EQ(mc.seq_cfg.advance, q16(0.4));
     EXPECT_EQ(mc.seq_cfg.max_fix_failures, 3);
-    EXPECT_EQ(m.nav.gnav.stop_distance, q16(5.0));
+    // The blind distance: one value for both boards.
+    EXPECT_EQ(mc.seq_cfg.blind_distance, q16(6.5));
+    EXPECT_EQ(m.nav.gnav.stop_distance, mc.seq_cfg.blind_distance);
     // The nav board: odometer pulse in Q40 m, gyro step in Q48 turns, start plus its error.
     EXPECT_EQ(m.nav.gnav.dl_q40, (uint32_t)std::llround(0.000254 * std::ldexp(1.0, 40)));
     EXPECT_EQ(m.nav.gnav.gyro_step_q48, (uint64_t)std::llround(0.25 / 360 * std::ldexp(1.0, 48)));

@@ -91,6 +91,25 @@ TEST(Report, EachCriterionIsJudgedWithItsFigure)
         {[](sim_report_t *x) { sim_stat_add(&x->fix_error, 0.07); }, "fix error max 0.0700"},
         {[](sim_report_t *x) { x->fixes_accepted = 4; }, "40% of fixes accepted < 50%"},
     };
+    // A scenario that must end stopped for a reason: met by that stop only.
+    sim_success_t cs = c;
+    cs.require_goal = false;
+    snprintf(cs.stop_reason, sizeof cs.stop_reason, "blind_distance");
+    r = fresh();
+    EXPECT_EQ(sim_report_judge(&r, &cs, why, sizeof why), 0);
+    EXPECT_NE(std::string(why).find("stop reason none (goal), expected blind_distance"),
+              std::string::npos)
+        << why;
+    r.reached_goal = false;
+    r.stop_reason = "duration";
+    EXPECT_EQ(sim_report_judge(&r, &cs, why, sizeof why), 0);
+    EXPECT_NE(std::string(why).find("stop reason duration, expected blind_distance"),
+              std::string::npos)
+        << why;
+    r.stop_reason = "blind_distance";
+    EXPECT_EQ(sim_report_judge(&r, &cs, why, sizeof why), 1) << why;
+    sim_report_free(&r);
+
     for (const Case &k : cases) {
         r = fresh();
         k.spoil(&r);

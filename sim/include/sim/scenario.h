@@ -53,6 +53,11 @@ typedef struct {
     size_t n_faults;
 } sim_link_t;
 
+/** A window of simulated time: from t for duration seconds. */
+typedef struct {
+    double t, duration; /* s */
+} sim_window_t;
+
 typedef struct {
     char name[64];
     int mode; /* SIM_SCENARIO_MODE_FULL or SIM_SCENARIO_MODE_SIMPLIFIED */
@@ -66,12 +71,18 @@ typedef struct {
     uint32_t counts;
     double gonio_noise; /* rad */
     double gonio_range; /* m */
-    double dl;          /* m of front-wheel travel per odometer pulse */
-    double odo_scale;   /* true travel per nominal dl (1 = perfect wheel) */
-    double gyro_step;   /* rad */
-    double gyro_drift;  /* rad/s */
+    double index_loss;  /* probability that an index pulse is lost */
+    sim_window_t dropout[SIM_SCENARIO_SENSORS_GONIOMETER_DROPOUTS_MAX_ITEMS]; /* blinded */
+    size_t n_dropouts;
+    double dl;         /* m of front-wheel travel per odometer pulse */
+    double odo_scale;  /* true travel per nominal dl (1 = perfect wheel) */
+    double odo_missed; /* probability that a pulse is lost */
+    double odo_extra;  /* probability that a pulse comes with an extra one */
+    double gyro_step;  /* rad */
+    double gyro_drift; /* rad/s */
     uint64_t seed;
-    double duration; /* s */
+    double duration;       /* s */
+    double blind_distance; /* m without a fix before the stop (both boards) */
     sim_link_t link;
     sim_success_t success;
 } sim_scenario_t;
