@@ -136,7 +136,7 @@ static void regulate(pursuit_t *p, fx_q16_t dist, uint32_t t_ms, pursuit_out_t *
         !fx_div_shift(v, nominal, 16, &f))
         return;
     f = f < CAL_MIN ? CAL_MIN : f > CAL_MAX ? CAL_MAX : f;
-    p->cal += (f - p->cal) / 4;
+    p->cal += (f - p->cal) / 2;
     p->st.regulations++;
     set_speed(p, t_ms, out);
 }
