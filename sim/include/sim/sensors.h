@@ -8,7 +8,9 @@
  *    (sim/gonio.h) as captures on the main board; each rising edge also reaches the nav board
  *    (it latches its pose there) and is recorded with the true pose of its instant, so that a
  *    fix referring to that latch can be compared with the truth.
- * Every change of motion reschedules them (sim_sensors_motion()).
+ * Every change of motion reschedules them (sim_sensors_motion()). In mode pursuit the mirror
+ * stands still (no index pulse, no edge): the main board navigates on the position receiver
+ * and leaves the goniometer off, and seed 002's vehicle had none.
  */
 #ifndef SIM_SENSORS_H
 #define SIM_SENSORS_H
@@ -33,6 +35,7 @@ typedef struct {
     double heading0;   /* rad: the start heading, centre of gyro step 0 */
     const sim_world_t *world;
     sim_gonio_cfg_t gonio;
+    int gonio_off; /* mode pursuit: the mirror stands still */
     sim_rng_t rng_gonio;
     /* state */
     double front_next; /* front-wheel total at the next odometer pulse, m */
