@@ -1,10 +1,14 @@
 # cyclopion - a thin wrapper over the CMake presets (CMakePresets.json).
 #   make demo   install what is missing, build, run the main job and print its summary
 #   make test   install what is missing, build host + MSP430, run every test under ctest
+#   make fuzz   run every fuzz harness longer (FUZZ_SECONDS each, default 600; docs/fuzzing.md)
 #   make flash BOARD=main|nav [PROBE=uif|tilib|olimex]   program a board (README)
 #   make debug BOARD=main|nav [PROBE=...] | make debug SIM=1 BOARD=...|IMAGE=...
 #   make sim IMAGE=name|path.elf   run one MSP430 image in mspdebug's simulator, as ctest does
-.PHONY: all deps host host-asan msp430 build test demo format clean flash debug sim image
+.PHONY: all deps host host-asan msp430 fuzz-build build test fuzz demo format clean flash debug \
+    sim image
+
+FUZZ_SECONDS ?= 600
 
 all: build
 
@@ -20,13 +24,22 @@ msp430: deps host
 	@cmake --preset $@ >/dev/null
 	@cmake --build --preset $@
 
-build: host host-asan msp430
+# The libFuzzer harnesses (clang-16, ASan, UBSan): tests/fuzz, docs/fuzzing.md.
+fuzz-build: deps
+	@cmake --preset fuzz >/dev/null
+	@cmake --build --preset fuzz
+
+build: host host-asan msp430 fuzz-build
 
 test: build
 	ctest --preset host-asan
+	ctest --preset fuzz
 	@rm -f build/msp430/cycles.json # rewritten by the target tests, without stale entries
 	ctest --preset msp430
 	@python3 tools/cycles_report.py build/msp430/cycles.json
+
+fuzz: fuzz-build
+	tools/fuzz.py --seconds $(FUZZ_SECONDS) $(FUZZERS)
 
 demo: host
 	@python3 tools/demo.py

@@ -459,3 +459,54 @@ function(cy_agvcalc_op)
     set_property(GLOBAL APPEND PROPERTY CY_AGVCALC_SOURCES ${A_SOURCE})
     set_property(GLOBAL APPEND PROPERTY CY_AGVCALC_LIBS ${A_LINK})
 endfunction()
+
+# cy_fuzzer(NAME SOURCES src... [LINK lib...] [CORPUS dir] [DICT file] [MAX_LEN bytes])
+# A libFuzzer harness (docs/fuzzing.md), built in the fuzz tree only (preset "fuzz": clang-16,
+# -fsanitize=fuzzer,address,undefined; elsewhere the call does nothing): bin/fuzz_NAME, and
+# the ctest fuzz.NAME (label "fuzz") that runs it for CY_FUZZ_SECONDS seconds with a fixed
+# seed from the seed corpus CORPUS (default tests/fuzz/corpus/NAME). A finding fails the test
+# and stays in the build tree (findings/NAME/, its path printed). tools/fuzz.py runs the
+# harnesses longer (fuzzers.json lists them).
+set(CY_FUZZ_SECONDS 20 CACHE STRING "Seconds each fuzz harness runs under ctest")
+function(cy_fuzzer name)
+    if(NOT CY_FUZZ)
+        return()
+    endif()
+    cmake_parse_arguments(A "" "CORPUS;DICT;MAX_LEN" "SOURCES;LINK" ${ARGN})
+    if(NOT A_CORPUS)
+        set(A_CORPUS ${PROJECT_SOURCE_DIR}/tests/fuzz/corpus/${name})
+    endif()
+    if(NOT IS_DIRECTORY ${A_CORPUS})
+        message(FATAL_ERROR "cy_fuzzer(${name}): no seed corpus at ${A_CORPUS}")
+    endif()
+    if(NOT A_MAX_LEN)
+        set(A_MAX_LEN 4096)
+    endif()
+    add_executable(fuzz_${name} ${A_SOURCES})
+    cy_warnings(fuzz_${name})
+    target_link_libraries(fuzz_${name} PRIVATE ${A_LINK})
+    target_link_options(fuzz_${name} PRIVATE -fsanitize=fuzzer)
+    # built by "all" even when declared in a directory that the fuzz tree builds on demand only
+    set_target_properties(fuzz_${name} PROPERTIES EXCLUDE_FROM_ALL FALSE)
+    set(opts --corpus ${A_CORPUS} --max-len ${A_MAX_LEN})
+    set(entry "\"name\":\"${name}\",\"binary\":\"$<TARGET_FILE:fuzz_${name}>\",\"corpus\":\"${A_CORPUS}\",\"max_len\":${A_MAX_LEN}")
+    if(A_DICT)
+        list(APPEND opts --dict ${A_DICT})
+        string(APPEND entry ",\"dict\":\"${A_DICT}\"")
+    endif()
+    set_property(GLOBAL APPEND PROPERTY CY_FUZZERS "{${entry}}")
+    add_test(NAME fuzz.${name}
+        COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/fuzz.py --build-dir
+            ${CMAKE_BINARY_DIR} --test --seconds ${CY_FUZZ_SECONDS}
+            --binary $<TARGET_FILE:fuzz_${name}> ${opts} ${name})
+    math(EXPR timeout "${CY_FUZZ_SECONDS} * 3 + 60")
+    set_tests_properties(fuzz.${name} PROPERTIES LABELS fuzz TIMEOUT ${timeout})
+endfunction()
+
+# The fuzz tree's list of harnesses for tools/fuzz.py (build/fuzz/fuzzers.json), written once
+# every directory has declared its harnesses.
+function(cy_fuzzers_manifest)
+    get_property(list GLOBAL PROPERTY CY_FUZZERS)
+    string(JOIN ",\n " body ${list})
+    file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/fuzzers.json CONTENT "[\n ${body}\n]\n")
+endfunction()

@@ -6,7 +6,8 @@
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 
-debs="clang-16 lld-16 llvm-16 clang-format-16 mspdebug cmake ninja-build make \
+# libclang-rt-16-dev: libFuzzer and the sanitizers' runtimes for clang-16 (the fuzz preset)
+debs="clang-16 lld-16 llvm-16 clang-format-16 libclang-rt-16-dev mspdebug cmake ninja-build make \
 libgtest-dev libeigen3-dev liblcm-dev liblcm-bin libjansson-dev pkg-config python3 python3-pip gdb \
 qemu-system-x86 busybox-static can-utils iproute2"
 

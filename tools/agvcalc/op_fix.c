@@ -143,6 +143,18 @@ static const char *why(int8_t st)
     }
 }
 
+/* --help: the fields and their units. */
+const char agvcalc_fields_fix[] =
+    "    map           [[x, y], ...]: 3 to 32 beacon positions, m (within +-8191)\n"
+    "    approx        {x, y, heading_deg}: the dead-reckoning pose, m and degrees\n"
+    "    sightings     [{angle_deg, width_deg, pose?}, ...]: up to 15; angle: degrees CCW\n"
+    "                  from the heading; width: apparent angular width, degrees [0, 180];\n"
+    "                  pose: the pose latched at the sighting (all sightings or none)\n"
+    "    config?       {name: value}: thresholds (docs/optical.md: beacon_diameter_m 0.08,\n"
+    "                  window_deg, window_pos_m, range_m, jump_max_m, quality_max, ...)\n"
+    "    -> x, y: m; heading_deg: [0, 360); used: [i, j, k] map indices; identified: the map\n"
+    "       index per sighting (-1: none); quality: m per count; widened: widenings used\n";
+
 int agvcalc_op_fix(json_t *req, json_t *resp, char *err, size_t errlen);
 
 int agvcalc_op_fix(json_t *req, json_t *resp, char *err, size_t errlen)
