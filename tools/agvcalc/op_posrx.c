@@ -26,6 +26,16 @@
 
 #define MAX_T_S 4294967.0 /* the receiver's clock: 32-bit milliseconds */
 
+const char agvcalc_fields_posrx[] =
+    "    chunks        [[t_s, \"hex bytes\"], ...]: each chunk's bytes reach the UART at t_s\n"
+    "                  (s, [0, 4294967], not decreasing); two hex digits a byte, spaces between\n"
+    "                  bytes allowed; packets: 00, x, y, z (int32 big-endian mm), ff\n"
+    "    config        optional {min_update_m [0, 65.535] (0.05), max_speed_mps\n"
+    "                  [0.001, 65.535] (2.0)}\n"
+    "    reference     optional {x, y: m, t_s: s}: the position known before the first packet\n"
+    "    -> positions [{t_s, x, y, z: m, accepted, reason: ok|zero|jump|too_close}, ...],\n"
+    "       resyncs, skipped_bytes, trailing_bytes\n";
+
 static int hex_digit(int c)
 {
     return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c - 'A' + 10;
