@@ -139,12 +139,12 @@ static void navigate(main_pursuit_event_t *ev, const fx_angle_t *heading)
 static void receiver1(const posrx_pos_t *p)
 {
     main_pursuit_event_t ev = {0};
-    ev.receiver = 0;
     ev.pos = *p;
+    fx_angle_t h = 0;
+    bool paired = false;
     if (mp.pc->receivers == 2u && mp.has2 && p->t_ms - mp.pos2.t_ms <= PAIR_WINDOW_MS &&
         !(p->x == 0 && p->y == 0 && p->z == 0)) {
         /* two receivers: their distance checks the pair before the update is judged */
-        fx_angle_t h;
         mp.has2 = false;
         if (!pursuit_pair(&mp.law, q16_of_mm(p->x), q16_of_mm(p->y), q16_of_mm(mp.pos2.x),
                           q16_of_mm(mp.pos2.y), &h)) {
@@ -152,25 +152,20 @@ static void receiver1(const posrx_pos_t *p)
             main_board_notify_pursuit(&ev);
             return;
         }
-        ev.reason = (uint8_t)posrx_check(&mp.rx[0], p, 0);
-        if (ev.reason == POSRX_OK || ev.reason == POSRX_TOO_CLOSE)
-            pursuit_alive(&mp.law, p->t_ms);
-        if (ev.reason == POSRX_OK && mp.pc->heading == MAIN_HEADING_RECEIVERS) {
-            navigate(&ev, &h);
-            return;
-        }
-    } else {
-        ev.reason = (uint8_t)posrx_check(&mp.rx[0], p, 0);
-        if (ev.reason == POSRX_OK || ev.reason == POSRX_TOO_CLOSE)
-            pursuit_alive(&mp.law, p->t_ms);
-        if (ev.reason == POSRX_OK && mp.pc->receivers == 2u)
-            mp.unpaired++;
+        paired = true;
     }
+    ev.reason = (uint8_t)posrx_check(&mp.rx[0], p, 0);
+    if (ev.reason == POSRX_OK || ev.reason == POSRX_TOO_CLOSE)
+        pursuit_alive(&mp.law, p->t_ms);
     if (ev.reason != POSRX_OK) {
         main_board_notify_pursuit(&ev);
         return;
     }
-    if (mp.pc->heading == MAIN_HEADING_NAV) {
+    if (mp.pc->receivers == 2u && !paired)
+        mp.unpaired++;
+    if (paired && mp.pc->heading == MAIN_HEADING_RECEIVERS) {
+        navigate(&ev, &h);
+    } else if (mp.pc->heading == MAIN_HEADING_NAV) {
         /* ask the nav board for its heading; the update waits for the answer */
         optical_pose_t stale;
         (void)main_board_pose_take(&stale);
@@ -178,9 +173,9 @@ static void receiver1(const posrx_pos_t *p)
         mp.pending = ev;
         mp.waiting = true;
         mp.wait_end = hal_clock_ms() + NAV_WAIT_MS;
-        return;
+    } else {
+        navigate(&ev, 0);
     }
-    navigate(&ev, 0);
 }
 
 static void receiver2(const posrx_pos_t *p)
