@@ -114,6 +114,7 @@ void sim_report_free(sim_report_t *r)
     sim_stat_free(&r->fix_error);
     sim_stat_free(&r->heading_error);
     sim_stat_free(&r->cross_track);
+    sim_stat_free(&r->pursuit.true_error);
 }
 
 /* Fixed decimals: the text of a number never depends on float formatting quirks. */
@@ -169,6 +170,55 @@ static json_t *link_json(const sim_link_report_t *l)
     return o;
 }
 
+static json_t *mean_max(double mean, double max)
+{
+    json_t *o = json_object();
+    json_object_set_new(o, "mean", num(mean, 6));
+    json_object_set_new(o, "max", num(max, 6));
+    return o;
+}
+
+/* Set the counts @p v, named @p names, in @p o; returns @p o. */
+static json_t *counts(json_t *o, const char *const *names, const uint32_t *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        json_object_set_new(o, names[i], json_integer(v[i]));
+    return o;
+}
+
+static json_t *pursuit_json(sim_pursuit_report_t *p)
+{
+    json_t *o = json_object();
+    json_object_set_new(o, "updates", json_integer(p->updates));
+    json_object_set_new(o, "path_error_m", mean_max(p->error_mean, p->error_max));
+    json_object_set_new(
+        o, "true_path_error_m",
+        mean_max(sim_stat_mean(&p->true_error), p->true_error.n ? p->true_error.max : 0.0));
+    json_object_set_new(o, "speed_mps", num(p->moving > 0 ? p->distance / p->moving : 0.0, 4));
+    json_t *rx = json_array();
+    for (uint32_t k = 0; k < p->n_receivers && k < 2; k++) {
+        static const char *const names[] = {"framed",      "resyncs", "skipped_bytes",
+                                            "error_bytes", "dropped", "overruns"};
+        static const char *const reasons[] = {"accepted", "zero", "jump", "too_close", "pair"};
+        const uint32_t v[] = {p->rx[k].framed,      p->rx[k].resyncs, p->rx[k].skipped,
+                              p->rx[k].error_bytes, p->rx[k].dropped, p->rx[k].overruns};
+        json_t *one = counts(json_object(), reasons, p->rx[k].reason, 5);
+        json_array_append_new(rx, counts(one, names, v, 6));
+    }
+    json_object_set_new(o, "receivers", rx);
+    static const char *const src[] = {"updates",       "sent",         "outage", "dropouts",
+                                      "no_sight",      "line_busy",    "zeros",  "wilds",
+                                      "garbage_bytes", "corrupt_bytes"};
+    json_object_set_new(o, "source", counts(json_object(), src, p->src, 10));
+    static const char *const law[] = {"corrections",  "goal_switches", "slowdowns",
+                                      "stops",        "resumes",       "regulations",
+                                      "pair_rejects", "unpaired",      "nav_timeouts"};
+    const uint32_t lv[] = {p->corrections,  p->goals,    p->slowdowns,
+                           p->stops,        p->resumes,  p->regulations,
+                           p->pair_rejects, p->unpaired, p->nav_timeouts};
+    return counts(o, law, lv, 9);
+}
+
 char *sim_report_json(sim_report_t *r)
 {
     json_t *root = json_object();
@@ -213,6 +263,9 @@ char *sim_report_json(sim_report_t *r)
         if (r->standstill_at >= 0)
             json_object_set_new(root, "standstill_at_s", num(r->standstill_at, 6));
     }
+
+    if (r->pursuit.on)
+        json_object_set_new(root, "pursuit", pursuit_json(&r->pursuit));
 
     json_t *isr = json_object();
     for (size_t i = 0; i < r->n_isr; i++)

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "fx/fx_host.h"
 #include "hal/cpu.h"
 #include "hal/irq.h"
 #include "hal/pinmap.h"
@@ -19,6 +20,7 @@
 #include "sim/clock.h"
 #include "sim/drive_board.h"
 #include "sim/path_index.h"
+#include "sim/possrc.h"
 #include "sim/sensors.h"
 #include "sim/socketcan.h"
 #include "sim/telemetry.h"
@@ -33,6 +35,7 @@ typedef struct {
     int main_b, nav_b;
     sim_drive_t drive;
     sim_sensors_t sensors;
+    sim_possrc_t src; /* mode pursuit: the laser positioning system */
     sim_telemetry_t tm;
     sim_path_index_t nominal;
     sim_canbus_t bus;
@@ -93,6 +96,11 @@ static int boards_up(const sim_scenario_t *sc, sim_mission_t *m, char *err, size
     hal_cpu_init();
     posix_drive_port_set_sink(R.main_b, drive_sink, &R.drive);
     drive_status_t ds = main_board_init(&m->main);
+    if (ds != DRIVE_OK && m->main.pursuit) {
+        snprintf(err, errlen, "the main board refuses pursuit mode's configuration: %s",
+                 drive_status_text(ds));
+        return -1;
+    }
     if (ds != DRIVE_OK) {
         const drive_path_t *pp = main_board_path();
         snprintf(err, errlen, "the main board refuses the path: leg %u piece %u: %s", pp->bad_leg,
@@ -100,7 +108,8 @@ static int boards_up(const sim_scenario_t *sc, sim_mission_t *m, char *err, size
         return -1;
     }
     static main_board_observer_t obs;
-    obs = (main_board_observer_t){&R.tm, sim_telemetry_fix, 0, sim_telemetry_state};
+    obs = (main_board_observer_t){&R.tm, sim_telemetry_fix, 0, sim_telemetry_state,
+                                  sim_telemetry_pursuit};
     main_board_set_observer(&obs);
     posix_signal_connect(R.main_b, HAL_SIGNAL_COORD_REQUEST, R.nav_b, HAL_EDGE_COORD_REQUEST);
     return 0;
@@ -142,6 +151,8 @@ static void count_isrs(sim_report_t *r)
         {"main.delta_s", R.main_b, posix_edge_source(R.main_b, HAL_EDGE_DELTA_S)},
         {"main.can_rx", R.main_b, posix_source_find(R.main_b, HAL_CAN0_VECTOR, HAL_CAN0_INT_PIN)},
         {"main.clock_tick", R.main_b, posix_source_find(R.main_b, HAL_VEC_TIMERB0, 0)},
+        {"main.uart0_rx", R.main_b, posix_uart_source(R.main_b, 0)},
+        {"main.uart1_rx", R.main_b, posix_uart_source(R.main_b, 1)},
         {"nav.delta_l", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_DELTA_L)},
         {"nav.gyro_up", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_GYRO_UP)},
         {"nav.gyro_down", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_GYRO_DOWN)},
@@ -155,6 +166,43 @@ static void count_isrs(sim_report_t *r)
         r->isr_count[r->n_isr++] =
             isrs[i].source >= 0 ? posix_source_count(isrs[i].board, isrs[i].source) : 0;
     }
+}
+
+/* Mode pursuit: the main board's counters and the positioning system's (main board selected). */
+static void pursuit_report(sim_pursuit_report_t *p)
+{
+    main_pursuit_stats_t ps;
+    main_pursuit_stats(&ps);
+    p->updates = ps.law.updates;
+    p->error_mean = ps.law.updates ? (double)ps.law.err_sum / 65536.0 / ps.law.updates : 0.0;
+    p->error_max = fx_q16_to_double(ps.law.err_max);
+    p->n_receivers = (uint32_t)R.src.n_rcv;
+    for (int k = 0; k < 2; k++) {
+        p->rx[k].framed = ps.rx[k].framed;
+        for (int i = 0; i < POSRX_REASON_COUNT; i++)
+            p->rx[k].reason[i] = ps.rx[k].reason[i];
+        p->rx[k].resyncs = ps.rx[k].resyncs;
+        p->rx[k].skipped = ps.rx[k].skipped;
+        p->rx[k].error_bytes = ps.rx[k].error_bytes;
+        p->rx[k].dropped = ps.rx[k].dropped;
+        p->rx[k].overruns = ps.overruns[k];
+    }
+    /* refused by the pair check: framed and judged by neither rule of the receiver */
+    p->rx[0].reason[4] = ps.law.pair_rejects;
+    const sim_possrc_stats_t *s = &R.src.st;
+    const uint32_t src[10] = {s->updates,       s->sent,         s->outage, s->dropouts,
+                              s->no_sight,      s->line_busy,    s->zeros,  s->wilds,
+                              s->garbage_bytes, s->corrupt_bytes};
+    memcpy(p->src, src, sizeof src);
+    p->corrections = ps.law.corrections;
+    p->goals = ps.law.goals;
+    p->slowdowns = ps.law.slowdowns;
+    p->stops = ps.law.stops;
+    p->resumes = ps.law.resumes;
+    p->regulations = ps.law.regulations;
+    p->pair_rejects = ps.law.pair_rejects;
+    p->unpaired = ps.unpaired;
+    p->nav_timeouts = ps.nav_timeouts;
 }
 
 int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t *o, sim_report_t *r,
@@ -198,6 +246,12 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     sim_telemetry_start(&R.tm, &R.drive, &R.sensors, &R.nominal, R.nav_b, r);
     sim_sensors_motion(&R.sensors);
     sim_drive_schedule(&R.drive, sim_clock_now());
+    int pursuit = m->main.pursuit != NULL;
+    if (pursuit) {
+        sim_possrc_init(&R.src, sc, &R.drive, R.main_b);
+        sim_telemetry_pursuit_start(&R.tm, &R.src, sc);
+        sim_possrc_start(&R.src);
+    }
     main_board_start();
 
     uint64_t end_ns = sim_clock_ns(sc->duration);
@@ -212,8 +266,11 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
             break;
         double now = sim_clock_now();
         drive_state_t st = main_board_state();
-        if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT || st == DRIVE_ST_STOPPED) && done_at < 0)
+        if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT || st == DRIVE_ST_STOPPED) &&
+            done_at < 0) {
             done_at = now;
+            R.tm.travel_done = pursuit; /* pursuit stops when it is done: no more samples */
+        }
         if (done_at >= 0 && standstill_at < 0 && sim_drive_standing(&R.drive))
             standstill_at = now;
         if (done_at >= 0 && sim_drive_standing(&R.drive) && now > done_at + 0.5)
@@ -223,7 +280,8 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
             if (frac >= next_progress || wall >= wall_next) {
                 fprintf(stderr, "agv-sim: %s t=%.1f/%.0f s, fixes %u/%u accepted, state %s\n",
                         sc->name, now, sc->duration, r->fixes_accepted, r->fixes_attempted,
-                        drive_seq_state_name(st));
+                        pursuit ? (st == DRIVE_ST_DONE ? "done" : "pursuit")
+                                : drive_seq_state_name(st));
                 while (next_progress <= frac)
                     next_progress += 0.1;
                 wall_next = wall + 2.0;
@@ -268,6 +326,8 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     sim_pose_t end = sim_drive_pose(&R.drive, r->sim_time);
     const sim_waypoint_t *goal = &sc->path[sc->n_path - 1];
     r->final_error = hypot(end.x - goal->x, end.y - goal->y);
+    if (pursuit)
+        pursuit_report(&r->pursuit);
     count_isrs(r);
 
     stats->samples = R.nominal.queries;

@@ -31,6 +31,7 @@ void sim_sensors_init(sim_sensors_t *s, const sim_scenario_t *sc, const sim_segm
     s->gonio.counts = sc->counts;
     s->gonio.noise_rad = sc->gonio_noise;
     s->gonio.max_range = sc->gonio_range;
+    s->gonio_off = sc->mode == SIM_SCENARIO_MODE_PURSUIT;
     sim_rng_seed(&s->rng_gonio, sc->seed, 1);
     sim_rng_seed(&s->rng_index, sc->seed, 3);
     sim_rng_seed(&s->rng_odo, sc->seed, 4);
@@ -225,5 +226,6 @@ void sim_sensors_motion(sim_sensors_t *s)
     sim_clock_cancel(&s->ev_dl);
     schedule_dl(s, t);
     schedule_gyro(s, t);
-    gonio_recompute(s, t + 1e-9);
+    if (!s->gonio_off)
+        gonio_recompute(s, t + 1e-9);
 }

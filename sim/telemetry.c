@@ -126,6 +126,19 @@ int sim_telemetry_open(sim_telemetry_t *tm, const char *log_dir, const char *lcm
                                          "length2_m,speed_mps\n",
                                          err, errlen)
                               : NULL;
+        if (tm->f_cmd && sc->mode == SIM_SCENARIO_MODE_PURSUIT) {
+            tm->f_pos = open_log(log_dir, "positions.csv",
+                                 "t_s,receiver,x_m,y_m,z_m,accepted,reason,true_x_m,true_y_m,"
+                                 "error_m\n",
+                                 err, errlen);
+            tm->f_err = tm->f_pos ? open_log(log_dir, "path_error.csv",
+                                             "t_s,segment,error_m,true_error_m\n", err, errlen)
+                                  : NULL;
+            if (!tm->f_err) {
+                sim_telemetry_close(tm);
+                return -1;
+            }
+        }
         if (!tm->f_cmd || write_static_logs(log_dir, sc, nominal, err, errlen)) {
             sim_telemetry_close(tm);
             return -1;
@@ -144,7 +157,10 @@ int sim_telemetry_open(sim_telemetry_t *tm, const char *log_dir, const char *lcm
 
 void sim_telemetry_close(sim_telemetry_t *tm)
 {
-    FILE **files[] = {&tm->f_truth, &tm->f_est, &tm->f_fix, &tm->f_cmd};
+    if (tm->f_err) /* the seed's error file ends with the average */
+        fprintf(tm->f_err, "average,,%.6f,%.6f\n", tm->err_n ? tm->err_sum / tm->err_n : 0.0,
+                tm->err_n ? tm->true_sum / tm->err_n : 0.0);
+    FILE **files[] = {&tm->f_truth, &tm->f_est, &tm->f_fix, &tm->f_cmd, &tm->f_pos, &tm->f_err};
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
         if (*files[i])
             fclose(*files[i]);
@@ -164,7 +180,12 @@ static void sample(void *ctx, uint64_t t_ns)
     double t = sim_clock_s(t_ns);
     sim_pose_t p = sim_drive_pose(tm->drive, t);
     double ct = sim_path_index_distance(tm->nominal, p.x, p.y);
-    if (hypot(p.x - tm->last_sample.x, p.y - tm->last_sample.y) >= 1e-3 && !tm->done) {
+    if (tm->src && !tm->done && !tm->travel_done && tm->drive->seg.v != 0) {
+        tm->report->pursuit.distance += fabs(tm->drive->seg.v) * SIM_TELEMETRY_SAMPLE;
+        tm->report->pursuit.moving += SIM_TELEMETRY_SAMPLE;
+    }
+    if (hypot(p.x - tm->last_sample.x, p.y - tm->last_sample.y) >= 1e-3 && !tm->done &&
+        !tm->travel_done) {
         sim_stat_add(&tm->report->cross_track, ct); /* while moving: the mean is over distance */
         tm->last_sample = p;
     }
@@ -324,6 +345,15 @@ void sim_telemetry_command(void *ctx, double t, const drive_event_t *ev)
     double steer[2], len[2], speed;
     sim_drive_command_si(tm->drive, &ev->cmd, steer, len, &speed);
     int load = ev->type == DRIVE_EV_LOAD;
+    if (ev->type == DRIVE_EV_DAC_ANGLE || ev->type == DRIVE_EV_OUTPUTS) {
+        /* seed 002's DAC style: the steering DAC, the digital outputs */
+        double a = (double)(int32_t)ev->alpha * (180.0 / 2147483648.0);
+        if (tm->f_cmd && ev->type == DRIVE_EV_DAC_ANGLE)
+            fprintf(tm->f_cmd, "%.6f,steer,%.4f,,,,\n", t, a);
+        else if (tm->f_cmd)
+            fprintf(tm->f_cmd, "%.6f,outputs,,,,,\n", t);
+        return;
+    }
     if (tm->f_cmd) {
         if (load)
             fprintf(tm->f_cmd, "%.6f,load,%.4f,%.4f,%.4f,%.4f,%.4f\n", t, steer[0], len[0],
@@ -342,4 +372,60 @@ void sim_telemetry_command(void *ctx, double t, const drive_event_t *ev)
         m.speed_mps = speed;
         cyclopion_drive_command_t_publish(tm->lcm, "CYCLOPION_DRIVE", &m);
     }
+}
+
+/* ------------------------------------------------------------------ pursuit mode */
+
+void sim_telemetry_pursuit_start(sim_telemetry_t *tm, const sim_possrc_t *src,
+                                 const sim_scenario_t *sc)
+{
+    tm->src = src;
+    tm->sc = sc;
+    tm->report->pursuit.on = true;
+}
+
+/* Goal point @p i of the pursuit: the start, then the path's positions. */
+static void goal_point(const sim_scenario_t *sc, unsigned i, double *x, double *y)
+{
+    *x = i == 0 ? sc->start_x : sc->path[i - 1].x;
+    *y = i == 0 ? sc->start_y : sc->path[i - 1].y;
+}
+
+void sim_telemetry_pursuit(void *ctx, const main_pursuit_event_t *ev)
+{
+    static const char *const reasons[] = {"ok", "zero", "jump", "too_close", "pair"};
+    sim_telemetry_t *tm = ctx;
+    double t = sim_clock_now();
+    sim_xy_t tr = sim_possrc_truth(tm->src, ev->receiver, t);
+    double x = ev->pos.x / 1000.0, y = ev->pos.y / 1000.0;
+    const char *why = ev->reason < 5 ? reasons[ev->reason] : "?";
+    if (tm->f_pos)
+        fprintf(tm->f_pos, "%.4f,%d,%.3f,%.3f,%.3f,%d,%s,%.4f,%.4f,%.4f\n", t, ev->receiver + 1, x,
+                y, ev->pos.z / 1000.0, ev->reason == POSRX_OK, why, tr.x, tr.y,
+                hypot(x - tr.x, y - tr.y));
+    if (tm->trace)
+        fprintf(stderr, "t=%.3f receiver %d (%.3f %.3f) %s%s\n", t, ev->receiver + 1, x, y, why,
+                ev->used ? "" : ", not used");
+    if (!ev->used)
+        return;
+    /* the seed's error: perpendicular distance to the line of the segment it was measured on,
+     * for the position used and for the receiver's true position at that instant */
+    double ax, ay, bx, by;
+    goal_point(tm->sc, (unsigned)ev->rec.segment - 1u, &ax, &ay);
+    goal_point(tm->sc, ev->rec.segment, &bx, &by);
+    double len = hypot(bx - ax, by - ay);
+    double true_err = fabs(((tr.x - ax) * (by - ay) - (tr.y - ay) * (bx - ax)) / len);
+    double err = fx_q16_to_double(ev->rec.err);
+    sim_stat_add(&tm->report->pursuit.true_error, true_err);
+    tm->err_sum += err;
+    tm->true_sum += true_err;
+    tm->err_n++;
+    if (tm->f_err)
+        fprintf(tm->f_err, "%.4f,%u,%.6f,%.6f\n", t, ev->rec.segment, err, true_err);
+    if (tm->trace)
+        fprintf(stderr,
+                "  segment %u error %.4f m (true %.4f), goal %u, heading %.2f, heading error "
+                "%.2f deg\n",
+                ev->rec.segment, err, true_err, ev->rec.goal, fx_angle_to_deg(ev->rec.heading),
+                (double)(int32_t)ev->rec.dphi * (180.0 / 2147483648.0));
 }

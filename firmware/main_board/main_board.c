@@ -542,6 +542,8 @@ drive_status_t main_board_init(const main_board_config_t *cfg)
     hal_drive_port_init();
     port(PORT_INIT, 0, 0);
 
+    if (cfg->pursuit)
+        return main_pursuit_init(cfg);
     drive_status_t st = drive_path_prepare(&mb.path, &cfg->start, cfg->path, cfg->n_path,
                                            &cfg->path_cfg, &cfg->board);
     drive_seq_init(&mb.seq, &mb.path, &cfg->seq_cfg);
@@ -555,6 +557,10 @@ const drive_path_t *main_board_path(void)
 
 void main_board_start(void)
 {
+    if (mb.cfg->pursuit) { /* the position receiver steers: no nav board needed */
+        main_pursuit_start();
+        return;
+    }
     if (!link_up(&mb.link)) {
         stop_travel(MAIN_BOARD_STOP_FAULT_CAN); /* no nav board to drive with */
         return;
@@ -565,6 +571,10 @@ void main_board_start(void)
 
 void main_board_poll(void)
 {
+    if (mb.cfg->pursuit) {
+        main_pursuit_poll();
+        return;
+    }
     uint32_t now = hal_clock_ms();
 
     /* delta-S first: a double arc that ends loads the next at once (D1). */
@@ -628,7 +638,7 @@ void main_board_set_observer(const main_board_observer_t *obs)
     if (obs)
         mb.obs = *obs;
     else
-        mb.obs = (main_board_observer_t){0, 0, 0, 0};
+        mb.obs = (main_board_observer_t){0};
 }
 
 void main_board_stats(main_board_stats_t *out)
@@ -637,6 +647,8 @@ void main_board_stats(main_board_stats_t *out)
     *out = mb.stats;
     out->link_errors = mb.link.rx.errors;
     hal_critical_exit();
+    if (mb.cfg && mb.cfg->pursuit)
+        out->done = main_pursuit_done();
 }
 
 void main_board_link_stats(link_stats_t *out)
@@ -646,5 +658,24 @@ void main_board_link_stats(link_stats_t *out)
 
 drive_state_t main_board_state(void)
 {
+    if (mb.cfg && mb.cfg->pursuit)
+        return main_pursuit_done() ? DRIVE_ST_DONE : DRIVE_ST_IDLE;
     return mb.seq.state;
+}
+
+void main_board_notify_pursuit(const main_pursuit_event_t *ev)
+{
+    if (mb.obs.on_pursuit)
+        mb.obs.on_pursuit(mb.obs.ctx, ev);
+}
+
+bool main_board_pose_take(optical_pose_t *out)
+{
+    hal_critical_enter();
+    bool in = mb.pose_in != 0;
+    if (in)
+        *out = mb.pose;
+    mb.pose_in = 0;
+    hal_critical_exit();
+    return in;
 }

@@ -24,6 +24,7 @@
 #include "drive/drive_path.h"
 #include "drive/drive_seq.h"
 #include "link/link.h"
+#include "main_pursuit.h"
 #include "optical/optical.h"
 
 #ifdef __cplusplus
@@ -35,7 +36,7 @@ extern "C" {
 #define MAIN_BOARD_MAX_PATH 254
 
 /** What the board is told before a run (the base station's download, seed 5.1 step 1). */
-typedef struct {
+typedef struct main_board_config {
     optical_map_t map; /**< the beacon map, compiled (optical_map_compile) */
     /** Primary points with their speeds, prepared in place (the board writes each point's
      * nsub and reads the points while it drives): the storage must outlive the run, and
@@ -49,6 +50,9 @@ typedef struct {
     uint16_t counts_per_turn;     /**< goniometer angle clock per mirror turn */
     optical_config_t optical;     /**< identification and checking parameters */
     link_config_t link;           /**< the board link (node LINKMSG_NODE_MAIN) */
+    /** Pursuit mode (seed 002's goal-point pursuit on the serial position receiver,
+     * main_pursuit.h) with its parameters, or NULL: the travel of seq_cfg.mode. */
+    const main_pursuit_config_t *pursuit;
 } main_board_config_t;
 
 /** One fix attempt, as the observer sees it. */
@@ -67,6 +71,8 @@ typedef struct {
     void (*on_fix)(void *ctx, const main_board_fix_event_t *ev);
     void (*on_load)(void *ctx, const drive_cmd_t *cmd);
     void (*on_state)(void *ctx, drive_state_t state);
+    /** Pursuit mode: every packet the receivers framed, and what became of it. */
+    void (*on_pursuit)(void *ctx, const main_pursuit_event_t *ev);
 } main_board_observer_t;
 
 /**

@@ -80,6 +80,7 @@ void posix_reset(void)
     posix_console_redirect(NULL, NULL);
     posix_can_reset();
     posix_clock_signal_reset();
+    posix_uart_reset();
 }
 
 int posix_board_create(const char *name)

@@ -28,6 +28,7 @@ static const struct {
     {"reflectors3", {"x", "y", "heading_deg", "quality"}, {"first"}},
     {"doublearc", {NULL}, {"case", "segments", "steering_deg"}},
     {"deadreckon", {"x", "y", "heading_deg"}, {NULL}},
+    {"posrx", {"resyncs", "skipped_bytes", "trailing_bytes"}, {"positions"}},
     {"version", {NULL}, {"version", "ops"}},
 };
 

@@ -148,6 +148,12 @@ def agvcalc_seeds():
         "deadreckon": line(dr),
         "deadreckon_backwards": line(dr_back),
         "deadreckon_range_edge": line(dr_edge),
+        "posrx": line({"op": "posrx", "chunks": [[0.1, position_packet(2500, 2000, 1200).hex(" ")],
+                                                [0.2, "12 ff " + position_packet(2500, 2100, 1200).hex(" ")],
+                                                [0.3, position_packet(10000, 2200, 1200).hex()]],
+                       "config": {"min_update_m": 0.05, "max_speed_mps": 2.0}}),
+        "posrx_reference": line({"op": "posrx", "reference": {"x": 2.5, "y": 2.0, "t_s": 0},
+                                 "chunks": [[0.5, position_packet(0, 0, 0).hex()]]}),
         "version": b'{"op":"version"}',
         "several_lines": b"\n".join([line(tri), b"", b"not json", line(da)]) + b"\r\n",
         "unknown_op": b'{"op":"nope","x":1}',
@@ -156,6 +162,42 @@ def agvcalc_seeds():
         "duplicate_key": b'{"op":"version","op":"fix"}',
     }
     return s
+
+
+# ----------------------------------------------------------------------- position packets
+
+
+def position_packet(x_mm, y_mm, z_mm):
+    """Seed 002's packet (docs/posrx.md): 0x00, x, y, z as signed 32-bit big-endian mm, 0xFF."""
+    return b"\x00" + struct.pack(">iii", x_mm, y_mm, z_mm) + b"\xff"
+
+
+def posrx_seeds():
+    """The posrx harness's input (tests/fuzz/posrx_fuzz.c): the minimum update distance and the
+    top speed (16-bit little-endian mm, mm/s), then (byte, control) records: control bit 0 a
+    receive error, bits 1-7 the milliseconds before the byte."""
+    cfg = struct.pack("<HH", 50, 2000)
+
+    def records(stream, first_ms=100, error_at=None):
+        out = bytearray()
+        for i, b in enumerate(stream):
+            ctrl = (min(first_ms, 127) << 1) if i == 0 else 0
+            out += bytes([b, ctrl | (1 if i == error_at else 0)])
+        return bytes(out)
+
+    a, b = position_packet(2500, 2000, 1200), position_packet(2500, 2100, 1200)
+    return {
+        "packet": cfg + records(a),
+        "two_packets": cfg + records(a) + records(b),
+        "garbage_then_packet": cfg + records(b"\x12\xff\x00\x34" + a),
+        "torn_then_packet": cfg + records(a[:9] + b),
+        "zeros": cfg + records(position_packet(0, 0, 0)),
+        "jump": cfg + records(a) + records(position_packet(90000, 2000, 1200), first_ms=10),
+        "too_close": cfg + records(a) + records(position_packet(2510, 2000, 1200)),
+        "error_byte": cfg + records(a, error_at=5) + records(b),
+        "beyond_range": cfg + records(position_packet(2**31 - 1, -(2**31), 0)),
+        "max_speed_zero": struct.pack("<HH", 50, 0) + records(a),
+    }
 
 
 # ----------------------------------------------------------------------- scenarios
@@ -204,7 +246,8 @@ def scenario_seeds():
 
 
 def write(check):
-    corpora = {"linkmsg": linkmsg_seeds(), "agvcalc": agvcalc_seeds(), "scenario": scenario_seeds()}
+    corpora = {"linkmsg": linkmsg_seeds(), "agvcalc": agvcalc_seeds(), "scenario": scenario_seeds(),
+               "posrx": posrx_seeds()}
     differ = []
     for harness, seeds in corpora.items():
         d = os.path.join(HERE, "corpus", harness)

@@ -111,8 +111,18 @@ def main():
         errs = [e.message for e in validator.iter_errors(docs[sc])]
         print(f"{'ok ' if not errs else 'BAD'} {os.path.basename(sc)} follows the schema {errs}")
         failures += bool(errs)
-    # Mutate the richest scenario (with every optional array).
-    base = max(docs.values(), key=lambda d: len(json.dumps(d)))
+    # Mutate the richest scenario: the one with the most distinct keys (it has every optional
+    # object and array), the longest of those.
+    def keys(d, path=""):
+        if isinstance(d, dict):
+            for k, v in d.items():
+                yield path + "." + k
+                yield from keys(v, path + "." + k)
+        elif isinstance(d, list):
+            for v in d:
+                yield from keys(v, path + "[]")
+
+    base = max(docs.values(), key=lambda d: (len(set(keys(d))), len(json.dumps(d))))
     base = copy.deepcopy(base)
     base.setdefault("start_error", {"x": 0.0, "y": 0.0, "heading_deg": 0.0})
     base.setdefault("success", {})

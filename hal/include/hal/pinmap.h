@@ -28,6 +28,9 @@
 #define HAL_VEC_RESET   31 /* 0xFFFE */
 /** Number of vectors (0..HAL_VEC_COUNT-1). */
 #define HAL_VEC_COUNT   32
+/** Receive vectors of the hal/uart.h instances. */
+#define HAL_VEC_UART0_RX 17 /* 0xFFE2 USCIAB1RX: USCI_A1 */
+#define HAL_VEC_UART1_RX 23 /* 0xFFEE USCIAB0RX: USCI_A0 */
 
 /** CAN instance 0 (hal/can.h): the MCP2515's /INT on P2.2, falling edge, PORT2 vector. */
 #define HAL_CAN0_INT_PORT 2

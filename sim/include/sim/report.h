@@ -55,6 +55,23 @@ typedef struct {
     sim_link_board_t board[2]; /* main, nav */
 } sim_link_report_t;
 
+/** Mode pursuit: what the receivers, the pursuit and the positioning system did. */
+typedef struct {
+    bool on;                 /* the report has a pursuit section */
+    uint32_t updates;        /* positions the pursuit used */
+    double error_mean;       /* m: the seed's average path error (the firmware's records) */
+    double error_max;        /* m */
+    sim_stat_t true_error;   /* m: the true receiver position's, at each update */
+    double distance, moving; /* m and s travelled while moving (speed = distance / moving) */
+    uint32_t n_receivers;
+    struct {
+        uint32_t framed, reason[5], resyncs, skipped, error_bytes, dropped, overruns;
+    } rx[2];          /* reason: ok, zero, jump, too_close, pair */
+    uint32_t src[10]; /* sim_possrc_stats_t, in its order */
+    uint32_t corrections, goals, slowdowns, stops, resumes, regulations, pair_rejects;
+    uint32_t unpaired, nav_timeouts;
+} sim_pursuit_report_t;
+
 typedef struct {
     char scenario[64];
     uint64_t seed;
@@ -69,6 +86,7 @@ typedef struct {
     double standstill_at;    /* s: when the vehicle stood after the stop, -1 if it did not */
     sim_stat_t cross_track;  /* m, sampled along the travelled distance */
     double final_error;      /* m, truth at the end vs the last prescribed point */
+    sim_pursuit_report_t pursuit;
     const char *isr_name[SIM_MAX_ISR_NAMES];
     uint64_t isr_count[SIM_MAX_ISR_NAMES];
     size_t n_isr;

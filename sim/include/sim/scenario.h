@@ -58,9 +58,48 @@ typedef struct {
     double t, duration; /* s */
 } sim_window_t;
 
+/** A point, or a receiver's mounting (x forward, y left of the rear axle's centre). */
+typedef struct {
+    double x, y; /* m */
+} sim_xy_t;
+
+/** A span of time. */
+typedef struct {
+    double from, to; /* s */
+} sim_span_t;
+
+/** Seed 002's goal-point pursuit (mode pursuit). */
+typedef struct {
+    double speed, max_speed;       /* m/s */
+    double k;                      /* smoothing constant */
+    double activation;             /* s */
+    double threshold_pct;          /* % */
+    double min_update;             /* m */
+    int heading;                   /* SIM_PURSUIT_HEADING_* */
+    double slow_after, stop_after; /* s (slow_after 0: no error recovery) */
+    bool regulate;
+    double pair_tol; /* m */
+} sim_pursuit_t;
+
+/** The simulated laser positioning system. */
+typedef struct {
+    double rate_hz, lag;       /* Hz, s */
+    double noise_rel, noise_m; /* relative to the farthest transmitter; m */
+    double range, height;      /* m */
+    uint32_t baud;
+    double dropout, corrupt, garbage, zero, wild; /* chances */
+    double wild_m;
+    sim_xy_t transmitter[3];
+    size_t n_transmitters; /* 0: the corners of the beacons' bounding box */
+    sim_xy_t receiver[2];
+    size_t n_receivers; /* 0: one on the rear axle's centre */
+    sim_span_t outage[16];
+    size_t n_outages;
+} sim_position_source_t;
+
 typedef struct {
     char name[64];
-    int mode; /* SIM_SCENARIO_MODE_FULL or SIM_SCENARIO_MODE_SIMPLIFIED */
+    int mode; /* SIM_SCENARIO_MODE_FULL, _SIMPLIFIED or _PURSUIT */
     sim_world_t world;
     double wheelbase, min_radius, speed; /* m, m, m/s */
     double start_x, start_y, start_heading;
@@ -84,6 +123,8 @@ typedef struct {
     double duration;       /* s */
     double blind_distance; /* m without a fix before the stop (both boards) */
     sim_link_t link;
+    sim_pursuit_t pursuit;
+    sim_position_source_t src;
     sim_success_t success;
 } sim_scenario_t;
 

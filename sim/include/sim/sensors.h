@@ -10,7 +10,9 @@
  *    (it latches its pose there) and is recorded with the true pose of its instant and the
  *    target that lit it, so that a fix referring to that latch can be compared with the truth.
  * The random disturbances draw from their own streams of the scenario's seed.
- * Every change of motion reschedules them (sim_sensors_motion()).
+ * Every change of motion reschedules them (sim_sensors_motion()). In mode pursuit the mirror
+ * stands still (no index pulse, no edge): the main board navigates on the position receiver
+ * and leaves the goniometer off, and seed 002's vehicle had none.
  */
 #ifndef SIM_SENSORS_H
 #define SIM_SENSORS_H
@@ -36,6 +38,7 @@ typedef struct {
     const sim_world_t *world;
     const sim_scenario_t *sc; /* the disturbances: losses, glitches, dropout windows */
     sim_gonio_cfg_t gonio;
+    int gonio_off; /* mode pursuit: the mirror stands still */
     sim_rng_t rng_gonio;
     sim_rng_t rng_index, rng_odo; /* index pulse losses, odometer glitches */
     /* state */
