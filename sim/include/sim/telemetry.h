@@ -9,6 +9,7 @@
 
 #include <lcm/lcm.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #include "drive/drive_proto.h"
@@ -22,6 +23,18 @@
 #define SIM_TELEMETRY_SAMPLE 0.01 /* s: cross-track samples */
 #define SIM_TELEMETRY_LOG    0.05 /* s: truth and estimate rows, LCM pose and truth messages */
 
+/* The LCM channels, in the order of sim_telemetry_t.lcm_published[]. */
+enum {
+    SIM_LCM_TRUTH,
+    SIM_LCM_POSE,
+    SIM_LCM_FIX,
+    SIM_LCM_SIGHTINGS,
+    SIM_LCM_DRIVE,
+    SIM_LCM_CHANNELS
+};
+/** The channel names: "CYCLOPION_TRUTH", ... (indexed by SIM_LCM_*). */
+extern const char *const sim_telemetry_channel[SIM_LCM_CHANNELS];
+
 typedef struct sim_telemetry {
     /* what it watches */
     const sim_drive_t *drive;
@@ -32,7 +45,9 @@ typedef struct sim_telemetry {
     /* outputs */
     FILE *f_truth, *f_est, *f_fix, *f_cmd;
     lcm_t *lcm;
-    int trace; /* every fix attempt and travel state on stderr */
+    uint64_t lcm_published[SIM_LCM_CHANNELS]; /* messages handed to LCM, per channel */
+    uint64_t lcm_failed;                      /* messages LCM refused (sendto failed) */
+    int trace;                                /* every fix attempt and travel state on stderr */
     /* state */
     sim_pose_t last_sample;
     double next_log;
