@@ -2,7 +2,7 @@
 #   make demo   install what is missing, build, run the main job and print its summary
 #   make test   install what is missing, build host + MSP430, run every test under ctest
 #   make fuzz   run every fuzz harness longer (FUZZ_SECONDS each, default 600; docs/fuzzing.md)
-#   make flash BOARD=main|nav [PROBE=uif|tilib|olimex]   program a board (README)
+#   make flash BOARD=main|nav [PROBE=uif|tilib|olimex|sim]   program a board (README)
 #   make debug BOARD=main|nav [PROBE=...] | make debug SIM=1 BOARD=...|IMAGE=...
 #   make sim IMAGE=name|path.elf   run one MSP430 image in mspdebug's simulator, as ctest does
 #   make lcm-spy [LCM_URL=...]   lcm-spy with the project's LCM types (README "Watching a run live")
@@ -65,7 +65,9 @@ BOARD_ELF = $(BIN)/$(BOARD)_board.elf
 MSPDEBUG_uif = mspdebug -j uif$(if $(UIF_TTY), -d $(UIF_TTY))
 MSPDEBUG_tilib = mspdebug tilib
 MSPDEBUG_olimex = mspdebug -j olimex
-MSPDEBUG_PROBE = $(or $(MSPDEBUG_$(PROBE)),$(error PROBE=$(PROBE): use uif, tilib or olimex (the F2618 is JTAG-only; rf2500 cannot program it)))
+# sim: mspdebug's simulator, no board: the same commands as a dry run (the docs test uses it).
+MSPDEBUG_sim = mspdebug sim
+MSPDEBUG_PROBE = $(or $(MSPDEBUG_$(PROBE)),$(error PROBE=$(PROBE): use uif, tilib, olimex or sim (the F2618 is JTAG-only; rf2500 cannot program it)))
 
 # The board image, built with the MSP430 preset only.
 image:

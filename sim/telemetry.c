@@ -85,7 +85,7 @@ static FILE *open_log(const char *dir, const char *name, const char *header, cha
     return f;
 }
 
-/* beacons.csv and path.csv: what does not change during the run. */
+/* beacons.csv, glints.csv, walls.csv and path.csv: what does not change during the run. */
 static int write_static_logs(const char *dir, const sim_scenario_t *sc, const sim_path_t *nominal,
                              char *err, size_t errlen)
 {
@@ -95,6 +95,20 @@ static int write_static_logs(const char *dir, const sim_scenario_t *sc, const si
     for (size_t i = 0; i < sc->world.n_beacons; i++)
         fprintf(f, "%.4f,%.4f,%.4f\n", sc->world.beacon[i].x, sc->world.beacon[i].y,
                 sc->world.beacon[i].diameter);
+    fclose(f);
+    f = open_log(dir, "glints.csv", "x_m,y_m,width_deg\n", err, errlen);
+    if (!f)
+        return -1;
+    for (size_t i = 0; i < sc->world.n_spurious; i++)
+        fprintf(f, "%.4f,%.4f,%.5f\n", sc->world.spurious[i].x, sc->world.spurious[i].y,
+                sc->world.spurious[i].width / DEG);
+    fclose(f);
+    f = open_log(dir, "walls.csv", "x1_m,y1_m,x2_m,y2_m\n", err, errlen);
+    if (!f)
+        return -1;
+    for (size_t i = 0; i < sc->world.n_occluders; i++)
+        fprintf(f, "%.4f,%.4f,%.4f,%.4f\n", sc->world.occluder[i].x1, sc->world.occluder[i].y1,
+                sc->world.occluder[i].x2, sc->world.occluder[i].y2);
     fclose(f);
     f = open_log(dir, "path.csv", "s_m,x_m,y_m\n", err, errlen);
     if (!f)

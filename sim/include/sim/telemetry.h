@@ -56,9 +56,9 @@ typedef struct sim_telemetry {
 
 /**
  * Open the outputs: with @p log_dir (may be NULL) the directory (and its parents) and the CSV
- * logs, including the static ones (beacons.csv of @p sc's world, path.csv of @p nominal
- * sampled every centimetre); with @p lcm_url (may be NULL) an LCM publisher. Returns 0, or -1
- * with the reason (naming the file or URL) in @p err.
+ * logs, including the static ones (beacons.csv, glints.csv and walls.csv of @p sc's world,
+ * path.csv of @p nominal sampled every centimetre); with @p lcm_url (may be NULL) an LCM publisher.
+ * Returns 0, or -1 with the reason (naming the file or URL) in @p err.
  */
 int sim_telemetry_open(sim_telemetry_t *tm, const char *log_dir, const char *lcm_url,
                        const sim_scenario_t *sc, const sim_path_t *nominal, char *err,
