@@ -180,7 +180,7 @@ def main():
     p = subprocess.run(plot, capture_output=True, text=True)
     print(f"\nPlot: {png if p.returncode == 0 else '(not drawn: ' + p.stderr.strip() + ')'}")
     print(f"Logs: {log_dir}/ (truth.csv, estimate.csv, fixes.csv, commands.csv, path.csv, "
-          f"beacons.csv); report: {os.path.join(a.out, name + '.json')}")
+          f"beacons.csv, glints.csv, walls.csv); report: {os.path.join(a.out, name + '.json')}")
     return 0 if ok else 1
 
 

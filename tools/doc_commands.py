@@ -12,6 +12,8 @@ fence:
     <!-- run -->                      run it, as written
     <!-- run: OPTION; OPTION -->      run it with options:
         timeout N                       seconds for the block (default 300)
+        exit N                          the block shows a failure: its first failing line
+                                        must exit with N (and none may fail otherwise)
         with 'OLD' as 'NEW'             run a variant: OLD (which must be in the block) replaced
                                         by NEW, e.g. a bounded run or the simulator for a probe
     <!-- norun: REASON -->            not run here, and why (a display, a probe, root on the host)
@@ -77,6 +79,7 @@ class Block:
         self.timeout = DEFAULT_TIMEOUT
         self.subs = []
         self.reason = None
+        self.exit = 0
 
     def where(self, offset=0):
         return f"{self.path}:{self.line + offset}"
@@ -140,6 +143,8 @@ def check_marks(b):
         m = WITH_RE.match(opt)
         if opt.startswith("timeout") and opt[7:].strip().isdigit():
             b.timeout = int(opt[7:].strip())
+        elif opt.startswith("exit") and opt[4:].strip().isdigit() and int(opt[4:]) > 0:
+            b.exit = int(opt[4:].strip())
         elif m:
             if m.group("old") not in text:
                 b.errors.append(f"{b.path}:{b.mark_line}: with '{m.group('old')}': not in the "
@@ -147,7 +152,7 @@ def check_marks(b):
             b.subs.append((m.group("old"), m.group("new")))
         else:
             b.errors.append(f"{b.path}:{b.mark_line}: unknown run option {opt!r} (timeout N, "
-                            f"with 'OLD' as 'NEW')")
+                            f"exit N, with 'OLD' as 'NEW')")
 
 
 def variant(b, text):
@@ -229,12 +234,13 @@ def run_sh(b, root):
     problems = []
     if rc is None:
         problems.append(f"{b.where()}: timed out after {b.timeout} s")
-    elif rc != 0:
+    elif rc != b.exit:
         m = re.findall(r"doc_commands: line (\d+) failed", out)
         # bash counts the source line as 1: the block's lines start at 2
         k = int(m[-1]) - 1 if m else 0
         cmd = script.split("\n")[k - 1] if 0 < k <= len(b.body) else script
-        problems.append(f"{b.where(k)}: exit {rc}: {cmd.strip()}")
+        expected = f" (the mark says exit {b.exit})" if b.exit else ""
+        problems.append(f"{b.where(k)}: exit {rc}{expected}: {cmd.strip()}")
     for pid, cmd in left:
         problems.append(f"{b.where()}: left a process behind (killed): {pid} {cmd}")
     return problems, out

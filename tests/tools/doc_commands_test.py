@@ -3,7 +3,8 @@
 what it promises to find, on a hand-written document: the failing line of a script with its
 file and line, a process left behind (and kills it), a session's output that differs from the
 block, a debugger's complaint, a `ctest` that selects no test, a block that changes a file
-git tracks, and every kind of bad mark; and it runs a variant (`with 'OLD' as 'NEW'`)."""
+git tracks, and every kind of bad mark; and it runs a variant (`with 'OLD' as 'NEW'`) and a
+block that shows a failure (`exit N`)."""
 import os
 import subprocess
 import sys
@@ -59,6 +60,17 @@ ctest --test-dir . -R nosuchtest
 <!-- run -->
 ```sh
 echo changed >> tracked.txt
+```
+
+<!-- run: exit 4 -->
+```sh
+echo shows a failure
+exit 4
+```
+
+<!-- run: exit 4 -->
+```sh
+true
 ```
 """
 
@@ -127,7 +139,9 @@ class DocCommands(unittest.TestCase):
         self.assertIn("ok   doc.md:34", out)                     # the variant ran
         self.assertIn("selects no test", out)
         self.assertIn("changed files git tracks: tracked.txt", out)
-        self.assertIn("7 blocks run, 0 not run (marked norun), 6 failed", out)
+        self.assertIn("ok   doc.md:49", out)                     # exit 4 as the mark says
+        self.assertIn("doc.md:55: exit 0 (the mark says exit 4)", out)
+        self.assertIn("9 blocks run, 0 not run (marked norun), 7 failed", out)
         time.sleep(0.2)
         left = subprocess.run(["pgrep", "-f", "^sleep 300$"], capture_output=True, text=True)
         mine = [p for p in left.stdout.split()
