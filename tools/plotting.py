@@ -378,7 +378,7 @@ def run_figure(run, title="", magnify=None, points=None):
                           height_ratios=[map_h, panels_h / 3, panels_h / 3, panels_h / 3],
                           hspace=0.3, wspace=0.16, left=0.06, right=0.985,
                           top=1 - 0.75 / fig_h, bottom=0.5 / fig_h)
-    ax_map = fig.add_subplot(gs[0, 0])
+    ax_map = fig.add_subplot(gs[0, 0] if frame else gs[0, 0:2])
     ax_mag = fig.add_subplot(gs[0, 1]) if frame else None
     ax_t = [fig.add_subplot(gs[1 + i, 0:2]) for i in range(3)]
     for a in ax_t[1:]:
