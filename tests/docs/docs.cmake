@@ -8,6 +8,7 @@
 # - docs.commands (msp430 tree only): every command block marked to run in README.md and
 #   docs/*.md runs as written from the repository root, board commands on the simulator
 #   (tools/doc_commands.py; `make test` builds what they use: host, host-asan, fuzz, msp430).
+# - hygiene.leftovers: last of all, no test of any tree left a process behind.
 # The host trees check the marks (docs.marks) and the tools' --help (tools.help).
 function(cy_tests_below dir out)
     get_property(tests DIRECTORY ${dir} PROPERTY TESTS)
@@ -39,9 +40,16 @@ function(cy_docs_tests)
         list(APPEND docs_tests docs.commands)
     endif()
     set_tests_properties(${docs_tests} PROPERTIES LABELS docs)
+    # The very last: no test of any tree left a process behind (make test runs the trees one
+    # after the other, this one last).
+    add_test(NAME hygiene.leftovers
+        COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/docs/leftovers_test.py
+            --build-root ${PROJECT_SOURCE_DIR}/build)
+    set_tests_properties(hygiene.leftovers PROPERTIES LABELS hygiene RUN_SERIAL ON
+        DEPENDS "${docs_tests}")
 
     # Every other test of the tree first.
     cy_tests_below(${PROJECT_SOURCE_DIR} all_tests)
-    list(REMOVE_ITEM all_tests ${docs_tests})
+    list(REMOVE_ITEM all_tests ${docs_tests} hygiene.leftovers)
     set_tests_properties(docs.figures PROPERTIES DEPENDS "${all_tests}")
 endfunction()
