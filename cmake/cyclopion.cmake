@@ -65,8 +65,9 @@ if(CY_TARGET_MSP430)
         target_link_libraries(${name} PRIVATE ${A_LINK} cy_hal_msp430 ${console} cy_mspabi)
         target_link_options(${name} PRIVATE -T ${ld} -L ${PROJECT_SOURCE_DIR}/hal/msp430/ld
             --gc-sections -Map=${CMAKE_BINARY_DIR}/bin/${name}.map)
+        # (relinked when the size tool changes: its figures land in images/NAME.json)
         set_target_properties(${name} PROPERTIES LINK_DEPENDS
-            "${ld};${PROJECT_SOURCE_DIR}/hal/msp430/ld/f2618_sections.ld")
+            "${ld};${PROJECT_SOURCE_DIR}/hal/msp430/ld/f2618_sections.ld;${PROJECT_SOURCE_DIR}/tools/image_size.py")
         if(A_KIND STREQUAL "board")
             set(limits --flash-limit ${CY_BOARD_FLASH_BUDGET} --ram-limit ${CY_BOARD_RAM_BUDGET})
         else()

@@ -19,6 +19,7 @@
 #include "sim/canbus.h"
 #include "sim/clock.h"
 #include "sim/drive_board.h"
+#include "sim/pace.h"
 #include "sim/path_index.h"
 #include "sim/possrc.h"
 #include "sim/sensors.h"
@@ -211,6 +212,12 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     memset(r, 0, sizeof *r);
     memset(stats, 0, sizeof *stats);
     memset(&R, 0, sizeof R);
+    sim_pace_t check;
+    if (sim_pace_start(&check, o->realtime, 0)) {
+        snprintf(err, errlen, "--realtime: %g is not a factor from 0 to %g", o->realtime,
+                 SIM_PACE_MAX_FACTOR);
+        return -1;
+    }
     if (boards_up(sc, m, err, errlen))
         return -1;
     sim_sensors_init(&R.sensors, sc, &R.drive.seg, R.main_b, R.nav_b);
@@ -254,13 +261,13 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     }
     main_board_start();
 
-    uint64_t end_ns = sim_clock_ns(sc->duration);
+    uint64_t end_ns = sim_clock_ns(sc->duration), next_ns;
     double done_at = -1, standstill_at = -1, next_progress = 0.1, wall_next = 0;
-    while (posix_next_event_ns() <= end_ns) {
-        uint64_t next = posix_next_event_ns();
-        if (o->pace)
-            o->pace(o->pace_ctx, next); /* the seam for pacing to the wall clock */
-        stats->events += posix_run_until(next);
+    sim_pace_t pace;
+    sim_pace_start(&pace, o->realtime, posix_now_ns()); /* the factor was checked above */
+    while ((next_ns = posix_next_event_ns()) <= end_ns) {
+        sim_pace_wait(&pace, next_ns); /* --realtime: the wall clock catches up (waits only) */
+        stats->events += posix_run_until(next_ns);
         poll_boards();
         if (R.sock.failed)
             break;
@@ -290,6 +297,8 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     }
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
     stats->cpu_time_s = (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
+    memcpy(stats->lcm_published, R.tm.lcm_published, sizeof stats->lcm_published);
+    stats->lcm_failed = R.tm.lcm_failed;
     sim_telemetry_close(&R.tm);
     link_stats_t main_link, nav_link;
     posix_board_select(R.main_b);

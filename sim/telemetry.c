@@ -22,6 +22,18 @@
 
 #define DEG (M_PI / 180.0)
 
+const char *const sim_telemetry_channel[SIM_LCM_CHANNELS] = {
+    "CYCLOPION_TRUTH", "CYCLOPION_POSE", "CYCLOPION_FIX", "CYCLOPION_SIGHTINGS", "CYCLOPION_DRIVE"};
+
+/* A publish call's result (0: handed to LCM) counted for channel @p ch. */
+static void published(sim_telemetry_t *tm, int ch, int rc)
+{
+    if (rc == 0)
+        tm->lcm_published[ch]++;
+    else
+        tm->lcm_failed++;
+}
+
 static double wrap_deg(double d)
 {
     d = fmod(d, 360.0);
@@ -73,7 +85,7 @@ static FILE *open_log(const char *dir, const char *name, const char *header, cha
     return f;
 }
 
-/* beacons.csv and path.csv: what does not change during the run. */
+/* beacons.csv, glints.csv, walls.csv and path.csv: what does not change during the run. */
 static int write_static_logs(const char *dir, const sim_scenario_t *sc, const sim_path_t *nominal,
                              char *err, size_t errlen)
 {
@@ -83,6 +95,20 @@ static int write_static_logs(const char *dir, const sim_scenario_t *sc, const si
     for (size_t i = 0; i < sc->world.n_beacons; i++)
         fprintf(f, "%.4f,%.4f,%.4f\n", sc->world.beacon[i].x, sc->world.beacon[i].y,
                 sc->world.beacon[i].diameter);
+    fclose(f);
+    f = open_log(dir, "glints.csv", "x_m,y_m,width_deg\n", err, errlen);
+    if (!f)
+        return -1;
+    for (size_t i = 0; i < sc->world.n_spurious; i++)
+        fprintf(f, "%.4f,%.4f,%.5f\n", sc->world.spurious[i].x, sc->world.spurious[i].y,
+                sc->world.spurious[i].width / DEG);
+    fclose(f);
+    f = open_log(dir, "walls.csv", "x1_m,y1_m,x2_m,y2_m\n", err, errlen);
+    if (!f)
+        return -1;
+    for (size_t i = 0; i < sc->world.n_occluders; i++)
+        fprintf(f, "%.4f,%.4f,%.4f,%.4f\n", sc->world.occluder[i].x1, sc->world.occluder[i].y1,
+                sc->world.occluder[i].x2, sc->world.occluder[i].y2);
     fclose(f);
     f = open_log(dir, "path.csv", "s_m,x_m,y_m\n", err, errlen);
     if (!f)
@@ -205,12 +231,15 @@ static void sample(void *ctx, uint64_t t_ns)
         if (tm->lcm) {
             cyclopion_truth_t tmsg = {
                 (int64_t)(t_ns / 1000), p.x, p.y, wrap_deg(p.th / DEG), v, steer, ct};
-            cyclopion_truth_t_publish(tm->lcm, "CYCLOPION_TRUTH", &tmsg);
+            published(
+                tm, SIM_LCM_TRUTH,
+                cyclopion_truth_t_publish(tm->lcm, sim_telemetry_channel[SIM_LCM_TRUTH], &tmsg));
             int src = posix_source_find(tm->nav_board, (int)hal_edge_vector(HAL_EDGE_DELTA_L),
                                         (int)hal_edge_pin(HAL_EDGE_DELTA_L));
             cyclopion_pose_t pm = {(int64_t)(t_ns / 1000), ex, ey, eh,
                                    src >= 0 ? (int64_t)posix_source_count(tm->nav_board, src) : 0};
-            cyclopion_pose_t_publish(tm->lcm, "CYCLOPION_POSE", &pm);
+            published(tm, SIM_LCM_POSE,
+                      cyclopion_pose_t_publish(tm->lcm, sim_telemetry_channel[SIM_LCM_POSE], &pm));
         }
     }
     posix_schedule(t_ns + sim_clock_ns(SIM_TELEMETRY_SAMPLE), sample, tm);
@@ -270,7 +299,8 @@ static void publish_fix(sim_telemetry_t *tm, const main_board_fix_event_t *ev, d
     char reason[32];
     snprintf(reason, sizeof reason, accepted ? "" : "status %d", ev->status);
     m.reason = reason;
-    cyclopion_fix_t_publish(tm->lcm, "CYCLOPION_FIX", &m);
+    published(tm, SIM_LCM_FIX,
+              cyclopion_fix_t_publish(tm->lcm, sim_telemetry_channel[SIM_LCM_FIX], &m));
 
     cyclopion_sightings_t sg;
     double ang[OPTICAL_MAX_SIGHTINGS], wid[OPTICAL_MAX_SIGHTINGS];
@@ -287,7 +317,9 @@ static void publish_fix(sim_telemetry_t *tm, const main_board_fix_event_t *ev, d
     sg.width_deg = wid;
     sg.identified = idn;
     sg.truth = tru;
-    cyclopion_sightings_t_publish(tm->lcm, "CYCLOPION_SIGHTINGS", &sg);
+    published(
+        tm, SIM_LCM_SIGHTINGS,
+        cyclopion_sightings_t_publish(tm->lcm, sim_telemetry_channel[SIM_LCM_SIGHTINGS], &sg));
 }
 
 void sim_telemetry_fix(void *ctx, const main_board_fix_event_t *ev)
@@ -370,7 +402,9 @@ void sim_telemetry_command(void *ctx, double t, const drive_event_t *ev)
         m.steering_deg = steer;
         m.length_m = len;
         m.speed_mps = speed;
-        cyclopion_drive_command_t_publish(tm->lcm, "CYCLOPION_DRIVE", &m);
+        published(
+            tm, SIM_LCM_DRIVE,
+            cyclopion_drive_command_t_publish(tm->lcm, sim_telemetry_channel[SIM_LCM_DRIVE], &m));
     }
 }
 

@@ -131,6 +131,21 @@ def side_by_side(agv, out_dir):
           f"rear-axle position to the drawn path until the stop (docs/pursuit.md)")
 
 
+def table_6_1_points(log_dir):
+    """Table 6-1's points for tools/plot_run.py --points: prescribed, where the 1987 vehicle
+    actually was, and where ours passed closest (metres)."""
+    pts = []
+    for n, (px, py, ph, m, act, off87, e, t, off) in enumerate(table_6_1(log_dir), 1):
+        pts.append({"label": "Table 6-1: prescribed", "x": px * IN, "y": py * IN,
+                    "marker": "+", "color": "k", "ms": 12, "text": str(n)})
+        pts.append({"label": "Table 6-1: 1987 vehicle (actual)", "x": act[0] * IN,
+                    "y": act[1] * IN, "marker": "s", "color": "#D55E00", "ms": 7,
+                    "magnify": False})  # 60-159 mm off: far outside the magnified map
+        pts.append({"label": "ours: closest approach", "x": t["x_m"], "y": t["y_m"],
+                    "marker": "D", "color": "#0072B2", "ms": 6})
+    return pts
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -184,12 +199,17 @@ def main():
     side_by_side(agv, a.out)
 
     png = os.path.join(a.out, f"{name}.png")
-    p = subprocess.run([sys.executable, os.path.join(HERE, "plot_run.py"), "--log-dir", log_dir,
-                        "-o", png, "--title", f"{name}: truth, estimate, fixes"],
-                       capture_output=True, text=True)
+    plot = [sys.executable, os.path.join(HERE, "plot_run.py"), "--log-dir", log_dir, "-o", png,
+            "--title", f"{name}: truth, estimate, fixes"]
+    if name.startswith("table_6_1"):
+        points = os.path.join(a.out, f"{name}_points.json")
+        with open(points, "w") as f:
+            json.dump(table_6_1_points(log_dir), f, indent=1)
+        plot += ["--points", points]
+    p = subprocess.run(plot, capture_output=True, text=True)
     print(f"\nPlot: {png if p.returncode == 0 else '(not drawn: ' + p.stderr.strip() + ')'}")
     print(f"Logs: {log_dir}/ (truth.csv, estimate.csv, fixes.csv, commands.csv, path.csv, "
-          f"beacons.csv); report: {os.path.join(a.out, name + '.json')}")
+          f"beacons.csv, glints.csv, walls.csv); report: {os.path.join(a.out, name + '.json')}")
     return 0 if ok else 1
 
 

@@ -68,8 +68,23 @@ def main():
     ap.add_argument("--path", metavar="PATH.json",
                     help="take start and path from this tools/dxf2path.py result")
     a = ap.parse_args()
-    with open(a.scenario) as f:
-        sc = json.load(f)
+    try:
+        with open(a.scenario) as f:
+            sc = json.load(f)
+    except OSError as e:
+        sys.exit(f"gen_mission: {a.scenario}: {e.strerror}")
+    except ValueError as e:
+        sys.exit(f"gen_mission: {a.scenario}: not JSON: {e}")
+    try:
+        return write(a, sc)
+    except (KeyError, IndexError, TypeError) as e:
+        # the scenario follows docs/schema/scenario.schema.json when agv-sim takes it
+        sys.exit(f"gen_mission: {a.scenario}: a key missing or of the wrong type: {e!r} "
+                 f"(check it with build/host/bin/agv-sim --scenario {a.scenario})")
+
+
+def write(a, sc):
+    """The header of scenario @p sc (a.scenario) into a.output."""
     b, p, v, st, sen = sc["beacons"], sc["path"], sc["vehicle"], sc["start"], sc["sensors"]
     src = a.scenario
     if a.path:

@@ -11,6 +11,7 @@
 
 #include <lcm/lcm.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #include "drive/drive_proto.h"
@@ -24,6 +25,18 @@
 
 #define SIM_TELEMETRY_SAMPLE 0.01 /* s: cross-track samples */
 #define SIM_TELEMETRY_LOG    0.05 /* s: truth and estimate rows, LCM pose and truth messages */
+
+/* The LCM channels, in the order of sim_telemetry_t.lcm_published[]. */
+enum {
+    SIM_LCM_TRUTH,
+    SIM_LCM_POSE,
+    SIM_LCM_FIX,
+    SIM_LCM_SIGHTINGS,
+    SIM_LCM_DRIVE,
+    SIM_LCM_CHANNELS
+};
+/** The channel names: "CYCLOPION_TRUTH", ... (indexed by SIM_LCM_*). */
+extern const char *const sim_telemetry_channel[SIM_LCM_CHANNELS];
 
 typedef struct sim_telemetry {
     /* what it watches */
@@ -40,7 +53,9 @@ typedef struct sim_telemetry {
     double err_sum, true_sum;
     uint32_t err_n;
     lcm_t *lcm;
-    int trace; /* every fix attempt and travel state on stderr */
+    uint64_t lcm_published[SIM_LCM_CHANNELS]; /* messages handed to LCM, per channel */
+    uint64_t lcm_failed;                      /* messages LCM refused (sendto failed) */
+    int trace;                                /* every fix attempt and travel state on stderr */
     /* state */
     sim_pose_t last_sample;
     double next_log;
@@ -50,9 +65,9 @@ typedef struct sim_telemetry {
 
 /**
  * Open the outputs: with @p log_dir (may be NULL) the directory (and its parents) and the CSV
- * logs, including the static ones (beacons.csv of @p sc's world, path.csv of @p nominal
- * sampled every centimetre); with @p lcm_url (may be NULL) an LCM publisher. Returns 0, or -1
- * with the reason (naming the file or URL) in @p err.
+ * logs, including the static ones (beacons.csv, glints.csv and walls.csv of @p sc's world,
+ * path.csv of @p nominal sampled every centimetre); with @p lcm_url (may be NULL) an LCM publisher.
+ * Returns 0, or -1 with the reason (naming the file or URL) in @p err.
  */
 int sim_telemetry_open(sim_telemetry_t *tm, const char *log_dir, const char *lcm_url,
                        const sim_scenario_t *sc, const sim_path_t *nominal, char *err,

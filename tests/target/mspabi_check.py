@@ -1,4 +1,5 @@
-"""Checker for tests/target/mspabi_test.c: recomputes every line with Python integers.
+"""Checker for tests/target/mspabi_test.c (tools/msp430sim.py --check): recomputes every line
+with Python integers.
 
 C semantics: truncating division, remainder with the dividend's sign, wrap-around at the
 operand width. The helpers' documented extras (hal/msp430/mspabi.c): x / 0 is the maximum
