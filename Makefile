@@ -1,10 +1,15 @@
 # cyclopion - a thin wrapper over the CMake presets (CMakePresets.json).
 #   make demo   install what is missing, build, run the main job and print its summary
 #   make test   install what is missing, build host + MSP430, run every test under ctest
-#   make flash BOARD=main|nav [PROBE=uif|tilib|olimex]   program a board (README)
+#   make fuzz   run every fuzz harness longer (FUZZ_SECONDS each, default 600; docs/fuzzing.md)
+#   make flash BOARD=main|nav [PROBE=uif|tilib|olimex|sim]   program a board (README)
 #   make debug BOARD=main|nav [PROBE=...] | make debug SIM=1 BOARD=...|IMAGE=...
 #   make sim IMAGE=name|path.elf   run one MSP430 image in mspdebug's simulator, as ctest does
-.PHONY: all deps host host-asan msp430 build test demo format clean flash debug sim image
+#   make lcm-spy [LCM_URL=...]   lcm-spy with the project's LCM types (README "Watching a run live")
+.PHONY: all deps host host-asan msp430 fuzz-build build test fuzz demo format clean flash debug \
+    sim image lcm-spy
+
+FUZZ_SECONDS ?= 600
 
 all: build
 
@@ -20,13 +25,22 @@ msp430: deps host
 	@cmake --preset $@ >/dev/null
 	@cmake --build --preset $@
 
-build: host host-asan msp430
+# The libFuzzer harnesses (clang-16, ASan, UBSan): tests/fuzz, docs/fuzzing.md.
+fuzz-build: deps
+	@cmake --preset fuzz >/dev/null
+	@cmake --build --preset fuzz
+
+build: host host-asan msp430 fuzz-build
 
 test: build
 	ctest --preset host-asan
+	ctest --preset fuzz
 	@rm -f build/msp430/cycles.json # rewritten by the target tests, without stale entries
 	ctest --preset msp430
 	@python3 tools/cycles_report.py build/msp430/cycles.json
+
+fuzz: fuzz-build
+	tools/fuzz.py --seconds $(FUZZ_SECONDS) $(FUZZERS)
 
 demo: host
 	@python3 tools/demo.py
@@ -51,7 +65,9 @@ BOARD_ELF = $(BIN)/$(BOARD)_board.elf
 MSPDEBUG_uif = mspdebug -j uif$(if $(UIF_TTY), -d $(UIF_TTY))
 MSPDEBUG_tilib = mspdebug tilib
 MSPDEBUG_olimex = mspdebug -j olimex
-MSPDEBUG_PROBE = $(or $(MSPDEBUG_$(PROBE)),$(error PROBE=$(PROBE): use uif, tilib or olimex (the F2618 is JTAG-only; rf2500 cannot program it)))
+# sim: mspdebug's simulator, no board: the same commands as a dry run (the docs test uses it).
+MSPDEBUG_sim = mspdebug sim
+MSPDEBUG_PROBE = $(or $(MSPDEBUG_$(PROBE)),$(error PROBE=$(PROBE): use uif, tilib, olimex or sim (the F2618 is JTAG-only; rf2500 cannot program it)))
 
 # The board image, built with the MSP430 preset only.
 image:
@@ -80,3 +96,14 @@ sim:
 	@test -n "$(IMAGE)" || { echo "IMAGE=name|path.elf (e.g. make sim IMAGE=irq_test)" >&2; exit 2; }
 	@test -f "$(IMAGE_ELF)" || { echo "no $(IMAGE_ELF): make msp430 first" >&2; exit 2; }
 	python3 tools/msp430sim.py --elf $(IMAGE_ELF) --verbose
+
+# --- live telemetry: lcm-spy with the project's types (README "Watching a run live") --------
+# Debian's lcm-spy script passes -Xincgc, which Java 17 refuses: java is called directly, with
+# lcm-spy's jars (liblcm-java, libjchart2d-java) and the types lcm-gen made for Java
+# (build/host/java/cyclopion_lcm.jar) on the CLASSPATH. lcm-spy is a window: it needs a display.
+LCM_URL ?= udpm://239.255.76.67:7667?ttl=0
+LCM_SPY_CLASSPATH = /usr/share/java/lcm.jar:/usr/share/java/jchart2d.jar:build/host/java/cyclopion_lcm.jar
+
+lcm-spy: host
+	@test -n "$$DISPLAY$$WAYLAND_DISPLAY" || { echo "make lcm-spy: lcm-spy opens a window: it needs a display (DISPLAY)" >&2; exit 2; }
+	java -Djava.net.preferIPv4Stack=true -Xmx256m -cp $(LCM_SPY_CLASSPATH) lcm.spy.Spy --lcm-url='$(LCM_URL)'

@@ -65,8 +65,9 @@ if(CY_TARGET_MSP430)
         target_link_libraries(${name} PRIVATE ${A_LINK} cy_hal_msp430 ${console} cy_mspabi)
         target_link_options(${name} PRIVATE -T ${ld} -L ${PROJECT_SOURCE_DIR}/hal/msp430/ld
             --gc-sections -Map=${CMAKE_BINARY_DIR}/bin/${name}.map)
+        # (relinked when the size tool changes: its figures land in images/NAME.json)
         set_target_properties(${name} PROPERTIES LINK_DEPENDS
-            "${ld};${PROJECT_SOURCE_DIR}/hal/msp430/ld/f2618_sections.ld")
+            "${ld};${PROJECT_SOURCE_DIR}/hal/msp430/ld/f2618_sections.ld;${PROJECT_SOURCE_DIR}/tools/image_size.py")
         if(A_KIND STREQUAL "board")
             set(limits --flash-limit ${CY_BOARD_FLASH_BUDGET} --ram-limit ${CY_BOARD_RAM_BUDGET})
         else()
@@ -264,19 +265,20 @@ function(cy_kernels lib)
     set_tests_properties(target.kernels.${lib} PROPERTIES LABELS target)
 endfunction()
 
-# cy_asm_offsets(LIB SOURCE msp430/M_offsets.c HEADER M_offsets.h)
+# cy_asm_offsets(LIB SOURCE msp430/M_offsets.c HEADER M_offsets.h [DEPENDS generated.h...])
 # Offsets, sizes and constants for LIB's assembly, from the C headers at build time (the
 # Linux asm-offsets trick): SOURCE lists them with CY_OFFSET(SYM, value) (cmake/cy_offsets.h)
 # inside one non-static function; it is compiled for the MSP430 with -S (LIB's include
 # directories and definitions) and tools/gen_asm_offsets.py writes HEADER (#define SYM value)
-# into the build tree, on LIB's include path. Only where LIB assembles its .S files.
+# into the build tree, on LIB's include path. DEPENDS: generated headers SOURCE includes
+# (made in the same directory). Only where LIB assembles its .S files.
 function(cy_asm_offsets lib)
-    cmake_parse_arguments(A "" "SOURCE;HEADER" "" ${ARGN})
+    cmake_parse_arguments(A "" "SOURCE;HEADER" "DEPENDS" ${ARGN})
     if(NOT CY_TARGET_MSP430 OR NOT CY_KERNELS STREQUAL "ASM")
         return()
     endif()
     set(dir ${CMAKE_CURRENT_BINARY_DIR}/asm_offsets)
-    add_library(${lib}_offsets_s OBJECT ${A_SOURCE})
+    add_library(${lib}_offsets_s OBJECT ${A_SOURCE} ${A_DEPENDS})
     target_compile_options(${lib}_offsets_s PRIVATE -S) # the "object" is assembly text
     # LIB's headers and those of what it links (not LIB itself: LIB waits for the header)
     target_link_libraries(${lib}_offsets_s PRIVATE $<TARGET_PROPERTY:${lib},LINK_LIBRARIES>)
@@ -335,6 +337,15 @@ function(cy_link_closure out)
     set(${out} ${seen} PARENT_SCOPE)
 endfunction()
 
+# cy_kernel_check_scope(PROGRAM lib...)
+# Narrows the check image of vector program PROGRAM to the kernels of the libraries named
+# (default: every library with kernels the program reaches); none of them with kernels: no
+# check image. Only for an image that cannot hold every twin: say why where it is called.
+function(cy_kernel_check_scope program)
+    set_property(GLOBAL PROPERTY CY_VP_${program}_SCOPE "${ARGN}")
+    set_property(GLOBAL PROPERTY CY_VP_${program}_SCOPED ON)
+endfunction()
+
 # cy_kernel_check_must_fail(NAME PROGRAM prog PERTURB wrong.c WRAP NAME_c KERNEL kernel)
 # The proof that a check image can fail: PROGRAM's check image once more, with PERTURB linked
 # in and --wrap=WRAP (PERTURB defines __wrap_WRAP: a C twin made wrong for one input). The
@@ -356,9 +367,21 @@ function(cy_kernel_check_image img name found_out)
     get_property(sources GLOBAL PROPERTY CY_VP_${name}_SOURCES)
     get_property(links GLOBAL PROPERTY CY_VP_${name}_LINK)
     cy_link_closure(libs ${links})
+    get_property(scoped GLOBAL PROPERTY CY_VP_${name}_SCOPED)
+    if(scoped)
+        get_property(scope GLOBAL PROPERTY CY_VP_${name}_SCOPE)
+        set(kept)
+        foreach(l IN LISTS libs)
+            if(l IN_LIST scope)
+                list(APPEND kept ${l})
+            endif()
+        endforeach()
+        set(libs ${kept})
+    endif()
     set(wrappers)
     set(twins)
     set(wraps)
+    set(incs)
     foreach(l IN LISTS libs)
         get_target_property(kernels ${l} CY_KERNELS)
         if(NOT kernels)
@@ -368,6 +391,7 @@ function(cy_kernel_check_image img name found_out)
         get_target_property(twin ${l} CY_KERNEL_TWIN)
         list(APPEND wrappers ${check})
         list(APPEND twins ${twin})
+        list(APPEND incs $<TARGET_PROPERTY:${l},INCLUDE_DIRECTORIES>) # the module's own headers
         foreach(k IN LISTS kernels)
             list(APPEND wraps --wrap=${k})
         endforeach()
@@ -393,7 +417,7 @@ function(cy_kernel_check_image img name found_out)
     if(deps)
         add_dependencies(${img} ${deps})
     endif()
-    target_include_directories(${img} PRIVATE ${PROJECT_SOURCE_DIR}/tests/target/check)
+    target_include_directories(${img} PRIVATE ${PROJECT_SOURCE_DIR}/tests/target/check ${incs})
     target_compile_definitions(${img} PRIVATE CY_KCHECK_IMAGE="${name}")
 endfunction()
 
@@ -458,4 +482,55 @@ function(cy_agvcalc_op)
     set_property(GLOBAL APPEND PROPERTY CY_AGVCALC_HELP "${A_HELP}")
     set_property(GLOBAL APPEND PROPERTY CY_AGVCALC_SOURCES ${A_SOURCE})
     set_property(GLOBAL APPEND PROPERTY CY_AGVCALC_LIBS ${A_LINK})
+endfunction()
+
+# cy_fuzzer(NAME SOURCES src... [LINK lib...] [CORPUS dir] [DICT file] [MAX_LEN bytes])
+# A libFuzzer harness (docs/fuzzing.md), built in the fuzz tree only (preset "fuzz": clang-16,
+# -fsanitize=fuzzer,address,undefined; elsewhere the call does nothing): bin/fuzz_NAME, and
+# the ctest fuzz.NAME (label "fuzz") that runs it for CY_FUZZ_SECONDS seconds with a fixed
+# seed from the seed corpus CORPUS (default tests/fuzz/corpus/NAME). A finding fails the test
+# and stays in the build tree (findings/NAME/, its path printed). tools/fuzz.py runs the
+# harnesses longer (fuzzers.json lists them).
+set(CY_FUZZ_SECONDS 20 CACHE STRING "Seconds each fuzz harness runs under ctest")
+function(cy_fuzzer name)
+    if(NOT CY_FUZZ)
+        return()
+    endif()
+    cmake_parse_arguments(A "" "CORPUS;DICT;MAX_LEN" "SOURCES;LINK" ${ARGN})
+    if(NOT A_CORPUS)
+        set(A_CORPUS ${PROJECT_SOURCE_DIR}/tests/fuzz/corpus/${name})
+    endif()
+    if(NOT IS_DIRECTORY ${A_CORPUS})
+        message(FATAL_ERROR "cy_fuzzer(${name}): no seed corpus at ${A_CORPUS}")
+    endif()
+    if(NOT A_MAX_LEN)
+        set(A_MAX_LEN 4096)
+    endif()
+    add_executable(fuzz_${name} ${A_SOURCES})
+    cy_warnings(fuzz_${name})
+    target_link_libraries(fuzz_${name} PRIVATE ${A_LINK})
+    target_link_options(fuzz_${name} PRIVATE -fsanitize=fuzzer)
+    # built by "all" even when declared in a directory that the fuzz tree builds on demand only
+    set_target_properties(fuzz_${name} PROPERTIES EXCLUDE_FROM_ALL FALSE)
+    set(opts --corpus ${A_CORPUS} --max-len ${A_MAX_LEN})
+    set(entry "\"name\":\"${name}\",\"binary\":\"$<TARGET_FILE:fuzz_${name}>\",\"corpus\":\"${A_CORPUS}\",\"max_len\":${A_MAX_LEN}")
+    if(A_DICT)
+        list(APPEND opts --dict ${A_DICT})
+        string(APPEND entry ",\"dict\":\"${A_DICT}\"")
+    endif()
+    set_property(GLOBAL APPEND PROPERTY CY_FUZZERS "{${entry}}")
+    add_test(NAME fuzz.${name}
+        COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/fuzz.py --build-dir
+            ${CMAKE_BINARY_DIR} --test --seconds ${CY_FUZZ_SECONDS}
+            --binary $<TARGET_FILE:fuzz_${name}> ${opts} ${name})
+    math(EXPR timeout "${CY_FUZZ_SECONDS} * 3 + 60")
+    set_tests_properties(fuzz.${name} PROPERTIES LABELS fuzz TIMEOUT ${timeout})
+endfunction()
+
+# The fuzz tree's list of harnesses for tools/fuzz.py (build/fuzz/fuzzers.json), written once
+# every directory has declared its harnesses.
+function(cy_fuzzers_manifest)
+    get_property(list GLOBAL PROPERTY CY_FUZZERS)
+    string(JOIN ",\n " body ${list})
+    file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/fuzzers.json CONTENT "[\n ${body}\n]\n")
 endfunction()

@@ -9,8 +9,9 @@
  * The rooms: cli (the command line), scenario (the file, checked against its schema), mission
  * (the boards' download and the nominal path), run (the boards on the harness and the loop),
  * drive_board (the drive board and the vehicle's motion), sensors (odometer, gyro and
- * goniometer pulses), telemetry (measurements, logs, LCM, trace), report (the JSON report
- * and the verdict).
+ * goniometer pulses, with their disturbances), telemetry (measurements, logs, LCM, trace),
+ * canbus (the board link's CAN bus: faults, candump log, figures), socketcan (--can), report
+ * (the JSON report and the verdict).
  */
 #include <errno.h>
 #include <inttypes.h>
@@ -18,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sim/canbus.h"
 #include "sim/cli.h"
 #include "sim/mission.h"
 #include "sim/report.h"
@@ -47,10 +49,11 @@ int main(int argc, char **argv)
         return bad_input(NULL, err); /* the loader names the file */
     if (cli.seed >= 0)
         sc.seed = (uint64_t)cli.seed;
-    if (sim_mission_build(&mission, &sc, err, sizeof err))
+    if (sim_canbus_check(&sc, err, sizeof err) || sim_mission_build(&mission, &sc, err, sizeof err))
         return bad_input(cli.scenario, err);
 
-    sim_run_options_t opt = {cli.log_dir, cli.lcm_url, cli.quiet, cli.trace};
+    sim_run_options_t opt = {cli.log_dir, cli.lcm_url, cli.quiet,   cli.trace,
+                             cli.can,     cli.candump, cli.realtime};
     sim_report_t r;
     sim_run_stats_t stats;
     if (sim_run(&sc, &mission, &opt, &r, &stats, err, sizeof err))
@@ -67,13 +70,29 @@ int main(int argc, char **argv)
         puts(text);
         free(text);
     }
-    if (cli.stats)
+    if (cli.stats) {
         fprintf(stderr,
                 "agv-sim: stats {\"sim_time_s\":%.6f,\"events\":%" PRIu64 ",\"samples\":%" PRIu64
                 ",\"pieces\":%" PRIu64 ",\"pieces_indexed\":%" PRIu64
-                ",\"pieces_examined\":%" PRIu64 ",\"cpu_time_s\":%.6f}\n",
+                ",\"pieces_examined\":%" PRIu64 ",\"cpu_time_s\":%.6f",
                 r.sim_time, stats.events, stats.samples, stats.pieces, stats.pieces_indexed,
                 stats.pieces_examined, stats.cpu_time_s);
+        if (cli.lcm_url) {
+            fprintf(stderr, ",\"lcm_published\":{");
+            for (int i = 0; i < SIM_LCM_CHANNELS; i++)
+                fprintf(stderr, "%s\"%s\":%" PRIu64, i ? "," : "", sim_telemetry_channel[i],
+                        stats.lcm_published[i]);
+            fprintf(stderr, "},\"lcm_failed\":%" PRIu64, stats.lcm_failed);
+        }
+        fprintf(stderr, "}\n");
+    }
+    if (cli.lcm_url && !cli.quiet) {
+        uint64_t n = 0;
+        for (int i = 0; i < SIM_LCM_CHANNELS; i++)
+            n += stats.lcm_published[i];
+        fprintf(stderr, "agv-sim: LCM %s: %" PRIu64 " messages published, %" PRIu64 " failed\n",
+                cli.lcm_url, n, stats.lcm_failed);
+    }
 
     char why[512];
     int ok = sim_report_judge(&r, &sc.success, why, sizeof why);

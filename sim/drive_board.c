@@ -62,7 +62,7 @@ static void new_segment(sim_drive_t *d, double t)
     double front = sim_segment_front(&d->seg, t);
     if (d->cur < 2)
         d->alpha = d->arc[d->cur].alpha;
-    double v = d->cur < 2 ? d->v : 0.0;
+    double v = d->cur < 2 || d->dac ? d->v : 0.0;
     d->seg = sim_segment(t, p, front, d->alpha, v, d->wheelbase);
     if (d->on_motion)
         d->on_motion(d->ctx, t);
@@ -164,6 +164,38 @@ void sim_drive_write(sim_drive_t *d, uint8_t reg, uint8_t value)
             d->braking = 0;
             d->v = ev.cmd.speed * lsb;
         }
+        new_segment(d, t);
+    } else if (ev.type == DRIVE_EV_DAC_ANGLE || ev.type == DRIVE_EV_DAC_SPEED ||
+               ev.type == DRIVE_EV_OUTPUTS) {
+        if (d->on_command)
+            d->on_command(d->ctx, t, &ev);
+        double alpha = d->alpha, v = d->v;
+        int braking = d->braking;
+        if (ev.type == DRIVE_EV_DAC_ANGLE) {
+            double lim = atan(L / fx_q16_to_double(d->units.min_radius));
+            double a = (double)(int32_t)ev.alpha * (M_PI / 2147483648.0);
+            alpha = a > lim ? lim : a < -lim ? -lim : a;
+        } else if (ev.type == DRIVE_EV_DAC_SPEED) {
+            d->dac_v = ev.cmd.speed * lsb;
+        } else {
+            d->outputs = ev.value;
+        }
+        int moving = !(d->outputs & DRIVE_OUT_DRIVE_OFF) && (d->outputs & DRIVE_OUT_BRAKE_REL);
+        double want = moving ? d->dac_v : 0.0;
+        if (want == 0.0 && v != 0.0) {
+            braking = 1;
+        } else {
+            braking = 0;
+            v = want;
+        }
+        if (d->dac && d->cur == 2 && alpha == d->alpha && v == d->v && braking == d->braking)
+            return; /* the same motion: nothing to reschedule */
+        arc_progress(d, t);
+        d->dac = 1;
+        d->cur = 2; /* no arcs in this style */
+        d->alpha = alpha;
+        d->v = v;
+        d->braking = braking;
         new_segment(d, t);
     } else if (ev.type == DRIVE_EV_ERROR) {
         fprintf(stderr, "agv-sim: drive board: protocol error %d at t=%.4f s\n", ev.error, t);

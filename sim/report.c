@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 void sim_stat_add(sim_stat_t *s, double x)
 {
@@ -88,10 +89,11 @@ int sim_report_judge(sim_report_t *r, const sim_success_t *c, char *why, size_t 
     if (whylen)
         why[0] = '\0';
     if (c->require_goal && !r->reached_goal)
-        miss(&m, " goal not reached (%s);",
-             r->fault            ? "fault"
-             : r->stop_requested ? "stop request: no fix for too long"
-                                 : "time out");
+        miss(&m, " goal not reached (stopped: %s);", r->stop_reason ? r->stop_reason : "?");
+    if (c->stop_reason[0] &&
+        (r->reached_goal || !r->stop_reason || strcmp(r->stop_reason, c->stop_reason) != 0))
+        miss(&m, " stop reason %s, expected %s;", r->reached_goal ? "none (goal)" : r->stop_reason,
+             c->stop_reason);
     if (sim_stat_mean(&r->cross_track) > c->max_cross_track_mean)
         miss(&m, " cross-track mean %.4f m > %.4f;", sim_stat_mean(&r->cross_track),
              c->max_cross_track_mean);
@@ -112,6 +114,7 @@ void sim_report_free(sim_report_t *r)
     sim_stat_free(&r->fix_error);
     sim_stat_free(&r->heading_error);
     sim_stat_free(&r->cross_track);
+    sim_stat_free(&r->pursuit.true_error);
 }
 
 /* Fixed decimals: the text of a number never depends on float formatting quirks. */
@@ -124,6 +127,98 @@ static json_t *num(double v, int decimals)
     return json_real(r);
 }
 
+static json_t *board_json(const sim_link_board_t *b)
+{
+    json_t *o = json_object();
+    json_object_set_new(o, "tx_frames", json_integer(b->tx_frames));
+    json_object_set_new(o, "rx_frames", json_integer(b->rx_frames));
+    json_object_set_new(o, "tx_errors", json_integer(b->tx_errors));
+    json_object_set_new(o, "rx_errors", json_integer(b->rx_errors));
+    json_object_set_new(o, "rx_overruns", json_integer(b->rx_overruns));
+    json_object_set_new(o, "tx_aborted", json_integer(b->tx_aborted));
+    json_object_set_new(o, "error_passive", json_integer(b->error_passive));
+    json_object_set_new(o, "bus_off", json_integer(b->bus_off));
+    json_object_set_new(o, "recoveries", json_integer(b->recoveries));
+    json_object_set_new(o, "heartbeats_sent", json_integer(b->heartbeats_sent));
+    json_object_set_new(o, "heartbeats_missed", json_integer(b->heartbeats_missed));
+    json_object_set_new(o, "silences", json_integer(b->silences));
+    json_object_set_new(o, "send_refused", json_integer(b->send_refused));
+    json_object_set_new(o, "message_errors", json_integer(b->message_errors));
+    return o;
+}
+
+static json_t *link_json(const sim_link_report_t *l)
+{
+    json_t *o = json_object();
+    json_object_set_new(o, "bus", json_string("can"));
+    json_object_set_new(o, "bitrate_bps", json_integer(l->bitrate_bps));
+    json_object_set_new(o, "frames", json_integer((json_int_t)l->frames));
+    json_object_set_new(o, "bus_load", num(l->bus_load, 6));
+    json_object_set_new(o, "errors", json_integer((json_int_t)l->errors));
+    json_object_set_new(o, "lost", json_integer((json_int_t)l->lost));
+    json_object_set_new(o, "bus_off", json_integer(l->bus_off));
+    json_object_set_new(o, "recoveries", json_integer(l->recoveries));
+    json_object_set_new(o, "recovery_ms_max", num(l->recovery_ms_max, 3));
+    json_t *lat = json_object();
+    for (size_t i = 0; i < l->n_latency; i++)
+        json_object_set_new(lat, l->latency_name[i], num(l->latency_ms[i], 3));
+    json_object_set_new(o, "latency_ms", lat);
+    json_t *boards = json_object();
+    json_object_set_new(boards, "main", board_json(&l->board[0]));
+    json_object_set_new(boards, "nav", board_json(&l->board[1]));
+    json_object_set_new(o, "boards", boards);
+    return o;
+}
+
+static json_t *mean_max(double mean, double max)
+{
+    json_t *o = json_object();
+    json_object_set_new(o, "mean", num(mean, 6));
+    json_object_set_new(o, "max", num(max, 6));
+    return o;
+}
+
+/* Set the counts @p v, named @p names, in @p o; returns @p o. */
+static json_t *counts(json_t *o, const char *const *names, const uint32_t *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        json_object_set_new(o, names[i], json_integer(v[i]));
+    return o;
+}
+
+static json_t *pursuit_json(sim_pursuit_report_t *p)
+{
+    json_t *o = json_object();
+    json_object_set_new(o, "updates", json_integer(p->updates));
+    json_object_set_new(o, "path_error_m", mean_max(p->error_mean, p->error_max));
+    json_object_set_new(
+        o, "true_path_error_m",
+        mean_max(sim_stat_mean(&p->true_error), p->true_error.n ? p->true_error.max : 0.0));
+    json_object_set_new(o, "speed_mps", num(p->moving > 0 ? p->distance / p->moving : 0.0, 4));
+    json_t *rx = json_array();
+    for (uint32_t k = 0; k < p->n_receivers && k < 2; k++) {
+        static const char *const names[] = {"framed",      "resyncs", "skipped_bytes",
+                                            "error_bytes", "dropped", "overruns"};
+        static const char *const reasons[] = {"accepted", "zero", "jump", "too_close", "pair"};
+        const uint32_t v[] = {p->rx[k].framed,      p->rx[k].resyncs, p->rx[k].skipped,
+                              p->rx[k].error_bytes, p->rx[k].dropped, p->rx[k].overruns};
+        json_t *one = counts(json_object(), reasons, p->rx[k].reason, 5);
+        json_array_append_new(rx, counts(one, names, v, 6));
+    }
+    json_object_set_new(o, "receivers", rx);
+    static const char *const src[] = {"updates",       "sent",         "outage", "dropouts",
+                                      "no_sight",      "line_busy",    "zeros",  "wilds",
+                                      "garbage_bytes", "corrupt_bytes"};
+    json_object_set_new(o, "source", counts(json_object(), src, p->src, 10));
+    static const char *const law[] = {"corrections",  "goal_switches", "slowdowns",
+                                      "stops",        "resumes",       "regulations",
+                                      "pair_rejects", "unpaired",      "nav_timeouts"};
+    const uint32_t lv[] = {p->corrections,  p->goals,    p->slowdowns,
+                           p->stops,        p->resumes,  p->regulations,
+                           p->pair_rejects, p->unpaired, p->nav_timeouts};
+    return counts(o, law, lv, 9);
+}
+
 char *sim_report_json(sim_report_t *r)
 {
     json_t *root = json_object();
@@ -132,6 +227,10 @@ char *sim_report_json(sim_report_t *r)
     json_object_set_new(root, "mode", json_string(r->mode));
     json_object_set_new(root, "sim_time_s", num(r->sim_time, 6));
     json_object_set_new(root, "wall_time_s", num(r->wall_time, 6));
+    json_object_set_new(root, "outcome", json_string(r->reached_goal ? "goal" : "stopped"));
+    if (!r->reached_goal)
+        json_object_set_new(root, "stop_reason",
+                            json_string(r->stop_reason ? r->stop_reason : "unknown"));
 
     json_t *fixes = json_object();
     json_object_set_new(fixes, "attempted", json_integer(r->fixes_attempted));
@@ -157,10 +256,22 @@ char *sim_report_json(sim_report_t *r)
     json_object_set_new(path, "final_error_m", num(r->final_error, 6));
     json_object_set_new(root, "path", path);
 
+    json_object_set_new(root, "outcome", json_string(r->reached_goal ? "goal" : "stopped"));
+    if (!r->reached_goal) {
+        json_object_set_new(root, "stop_reason", json_string(r->stop_reason));
+        json_object_set_new(root, "stop_at_s", num(r->stop_at, 6));
+        if (r->standstill_at >= 0)
+            json_object_set_new(root, "standstill_at_s", num(r->standstill_at, 6));
+    }
+
+    if (r->pursuit.on)
+        json_object_set_new(root, "pursuit", pursuit_json(&r->pursuit));
+
     json_t *isr = json_object();
     for (size_t i = 0; i < r->n_isr; i++)
         json_object_set_new(isr, r->isr_name[i], json_integer((json_int_t)r->isr_count[i]));
     json_object_set_new(root, "isr", isr);
+    json_object_set_new(root, "link", link_json(&r->link));
 
     char *s = json_dumps(root, JSON_INDENT(1) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(12));
     json_decref(root);

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "fx/fx_host.h"
 #include "hal/cpu.h"
 #include "hal/irq.h"
 #include "hal/pinmap.h"
@@ -15,19 +16,31 @@
 #include "hal_posix/harness.h"
 #include "main_board.h"
 #include "nav_board.h"
+#include "sim/canbus.h"
 #include "sim/clock.h"
 #include "sim/drive_board.h"
+#include "sim/pace.h"
 #include "sim/path_index.h"
+#include "sim/possrc.h"
 #include "sim/sensors.h"
+#include "sim/socketcan.h"
 #include "sim/telemetry.h"
+
+/* The report's stop_reason of each main_board_stop_t (main_board.h has the one list). */
+#define STOP_NAME(name, text) text,
+static const char *const stop_names[] = {MAIN_BOARD_STOP_REASONS(STOP_NAME)};
+#undef STOP_NAME
 
 /* Everything of one run; the harness and the boards' firmware are single instances anyway. */
 typedef struct {
     int main_b, nav_b;
     sim_drive_t drive;
     sim_sensors_t sensors;
+    sim_possrc_t src; /* mode pursuit: the laser positioning system */
     sim_telemetry_t tm;
     sim_path_index_t nominal;
+    sim_canbus_t bus;
+    sim_socketcan_t sock;
 } run_t;
 
 static run_t R;
@@ -74,13 +87,21 @@ static int boards_up(const sim_scenario_t *sc, sim_mission_t *m, char *err, size
     hal_cpu_init();
     int rc = nav_board_init(&m->nav);
     if (rc != 0) {
-        snprintf(err, errlen, "the nav board refuses the vehicle: %s", gnav_strerror(rc));
+        if (rc == NAV_BOARD_E_LINK)
+            snprintf(err, errlen, "the nav board refuses its link configuration");
+        else
+            snprintf(err, errlen, "the nav board refuses the vehicle: %s", gnav_strerror(rc));
         return -1;
     }
     posix_board_select(R.main_b);
     hal_cpu_init();
     posix_drive_port_set_sink(R.main_b, drive_sink, &R.drive);
     drive_status_t ds = main_board_init(&m->main);
+    if (ds != DRIVE_OK && m->main.pursuit) {
+        snprintf(err, errlen, "the main board refuses pursuit mode's configuration: %s",
+                 drive_status_text(ds));
+        return -1;
+    }
     if (ds != DRIVE_OK) {
         const drive_path_t *pp = main_board_path();
         snprintf(err, errlen, "the main board refuses the path: leg %u piece %u: %s", pp->bad_leg,
@@ -88,7 +109,8 @@ static int boards_up(const sim_scenario_t *sc, sim_mission_t *m, char *err, size
         return -1;
     }
     static main_board_observer_t obs;
-    obs = (main_board_observer_t){&R.tm, sim_telemetry_fix, 0, sim_telemetry_state};
+    obs = (main_board_observer_t){&R.tm, sim_telemetry_fix, 0, sim_telemetry_state,
+                                  sim_telemetry_pursuit};
     main_board_set_observer(&obs);
     posix_signal_connect(R.main_b, HAL_SIGNAL_COORD_REQUEST, R.nav_b, HAL_EDGE_COORD_REQUEST);
     return 0;
@@ -128,14 +150,17 @@ static void count_isrs(sim_report_t *r)
          posix_source_find(R.main_b, (int)hal_capture_vector(HAL_CAPTURE_BEACON),
                            HAL_CAPTURE_BEACON)},
         {"main.delta_s", R.main_b, posix_edge_source(R.main_b, HAL_EDGE_DELTA_S)},
-        {"main.link_rx", R.main_b, posix_source_find(R.main_b, HAL_VEC_LINK_RX, 0)},
+        {"main.can_rx", R.main_b, posix_source_find(R.main_b, HAL_CAN0_VECTOR, HAL_CAN0_INT_PIN)},
         {"main.clock_tick", R.main_b, posix_source_find(R.main_b, HAL_VEC_TIMERB0, 0)},
+        {"main.uart0_rx", R.main_b, posix_uart_source(R.main_b, 0)},
+        {"main.uart1_rx", R.main_b, posix_uart_source(R.main_b, 1)},
         {"nav.delta_l", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_DELTA_L)},
         {"nav.gyro_up", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_GYRO_UP)},
         {"nav.gyro_down", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_GYRO_DOWN)},
         {"nav.beacon_sighted", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_BEACON_SIGHTED)},
         {"nav.coord_request", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_COORD_REQUEST)},
-        {"nav.link_rx", R.nav_b, posix_source_find(R.nav_b, HAL_VEC_LINK_RX, 0)},
+        {"nav.can_rx", R.nav_b, posix_source_find(R.nav_b, HAL_CAN0_VECTOR, HAL_CAN0_INT_PIN)},
+        {"nav.clock_tick", R.nav_b, posix_source_find(R.nav_b, HAL_VEC_TIMERB0, 0)},
     };
     for (size_t i = 0; i < sizeof isrs / sizeof isrs[0] && i < SIM_MAX_ISR_NAMES; i++) {
         r->isr_name[r->n_isr] = isrs[i].name;
@@ -144,12 +169,55 @@ static void count_isrs(sim_report_t *r)
     }
 }
 
+/* Mode pursuit: the main board's counters and the positioning system's (main board selected). */
+static void pursuit_report(sim_pursuit_report_t *p)
+{
+    main_pursuit_stats_t ps;
+    main_pursuit_stats(&ps);
+    p->updates = ps.law.updates;
+    p->error_mean = ps.law.updates ? (double)ps.law.err_sum / 65536.0 / ps.law.updates : 0.0;
+    p->error_max = fx_q16_to_double(ps.law.err_max);
+    p->n_receivers = (uint32_t)R.src.n_rcv;
+    for (int k = 0; k < 2; k++) {
+        p->rx[k].framed = ps.rx[k].framed;
+        for (int i = 0; i < POSRX_REASON_COUNT; i++)
+            p->rx[k].reason[i] = ps.rx[k].reason[i];
+        p->rx[k].resyncs = ps.rx[k].resyncs;
+        p->rx[k].skipped = ps.rx[k].skipped;
+        p->rx[k].error_bytes = ps.rx[k].error_bytes;
+        p->rx[k].dropped = ps.rx[k].dropped;
+        p->rx[k].overruns = ps.overruns[k];
+    }
+    /* refused by the pair check: framed and judged by neither rule of the receiver */
+    p->rx[0].reason[4] = ps.law.pair_rejects;
+    const sim_possrc_stats_t *s = &R.src.st;
+    const uint32_t src[10] = {s->updates,       s->sent,         s->outage, s->dropouts,
+                              s->no_sight,      s->line_busy,    s->zeros,  s->wilds,
+                              s->garbage_bytes, s->corrupt_bytes};
+    memcpy(p->src, src, sizeof src);
+    p->corrections = ps.law.corrections;
+    p->goals = ps.law.goals;
+    p->slowdowns = ps.law.slowdowns;
+    p->stops = ps.law.stops;
+    p->resumes = ps.law.resumes;
+    p->regulations = ps.law.regulations;
+    p->pair_rejects = ps.law.pair_rejects;
+    p->unpaired = ps.unpaired;
+    p->nav_timeouts = ps.nav_timeouts;
+}
+
 int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t *o, sim_report_t *r,
             sim_run_stats_t *stats, char *err, size_t errlen)
 {
     memset(r, 0, sizeof *r);
     memset(stats, 0, sizeof *stats);
     memset(&R, 0, sizeof R);
+    sim_pace_t check;
+    if (sim_pace_start(&check, o->realtime, 0)) {
+        snprintf(err, errlen, "--realtime: %g is not a factor from 0 to %g", o->realtime,
+                 SIM_PACE_MAX_FACTOR);
+        return -1;
+    }
     if (boards_up(sc, m, err, errlen))
         return -1;
     sim_sensors_init(&R.sensors, sc, &R.drive.seg, R.main_b, R.nav_b);
@@ -158,10 +226,22 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
         return -1;
     }
     R.tm.trace = o->trace;
+    R.sock.fd = -1;
     if (sim_telemetry_open(&R.tm, o->log_dir, o->lcm_url, sc, &m->nominal, err, errlen)) {
         sim_path_index_free(&R.nominal);
         return -1;
     }
+    if ((o->can && sim_socketcan_open(&R.sock, o->can, err, errlen)) ||
+        sim_canbus_start(&R.bus, sc, R.main_b, R.nav_b, o->candump, o->can ? o->can : "vcan0",
+                         o->trace, err, errlen)) {
+        sim_canbus_close(&R.bus);
+        sim_socketcan_close(&R.sock);
+        sim_telemetry_close(&R.tm);
+        sim_path_index_free(&R.nominal);
+        return -1;
+    }
+    if (o->can)
+        posix_can_set_carrier(sim_socketcan_carry, &R.sock);
 
     struct timespec w0, c0, c1;
     clock_gettime(CLOCK_MONOTONIC, &w0);
@@ -173,17 +253,33 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     sim_telemetry_start(&R.tm, &R.drive, &R.sensors, &R.nominal, R.nav_b, r);
     sim_sensors_motion(&R.sensors);
     sim_drive_schedule(&R.drive, sim_clock_now());
+    int pursuit = m->main.pursuit != NULL;
+    if (pursuit) {
+        sim_possrc_init(&R.src, sc, &R.drive, R.main_b);
+        sim_telemetry_pursuit_start(&R.tm, &R.src, sc);
+        sim_possrc_start(&R.src);
+    }
     main_board_start();
 
-    uint64_t end_ns = sim_clock_ns(sc->duration);
-    double done_at = -1, next_progress = 0.1, wall_next = 0;
-    while (posix_next_event_ns() <= end_ns) {
-        stats->events += posix_run_until(posix_next_event_ns());
+    uint64_t end_ns = sim_clock_ns(sc->duration), next_ns;
+    double done_at = -1, standstill_at = -1, next_progress = 0.1, wall_next = 0;
+    sim_pace_t pace;
+    sim_pace_start(&pace, o->realtime, posix_now_ns()); /* the factor was checked above */
+    while ((next_ns = posix_next_event_ns()) <= end_ns) {
+        sim_pace_wait(&pace, next_ns); /* --realtime: the wall clock catches up (waits only) */
+        stats->events += posix_run_until(next_ns);
         poll_boards();
+        if (R.sock.failed)
+            break;
         double now = sim_clock_now();
         drive_state_t st = main_board_state();
-        if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT) && done_at < 0)
+        if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT || st == DRIVE_ST_STOPPED) &&
+            done_at < 0) {
             done_at = now;
+            R.tm.travel_done = pursuit; /* pursuit stops when it is done: no more samples */
+        }
+        if (done_at >= 0 && standstill_at < 0 && sim_drive_standing(&R.drive))
+            standstill_at = now;
         if (done_at >= 0 && sim_drive_standing(&R.drive) && now > done_at + 0.5)
             break; /* finished and standing */
         if (!o->quiet) {
@@ -191,7 +287,8 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
             if (frac >= next_progress || wall >= wall_next) {
                 fprintf(stderr, "agv-sim: %s t=%.1f/%.0f s, fixes %u/%u accepted, state %s\n",
                         sc->name, now, sc->duration, r->fixes_accepted, r->fixes_attempted,
-                        drive_seq_state_name(st));
+                        pursuit ? (st == DRIVE_ST_DONE ? "done" : "pursuit")
+                                : drive_seq_state_name(st));
                 while (next_progress <= frac)
                     next_progress += 0.1;
                 wall_next = wall + 2.0;
@@ -200,7 +297,22 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     }
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
     stats->cpu_time_s = (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
+    memcpy(stats->lcm_published, R.tm.lcm_published, sizeof stats->lcm_published);
+    stats->lcm_failed = R.tm.lcm_failed;
     sim_telemetry_close(&R.tm);
+    link_stats_t main_link, nav_link;
+    posix_board_select(R.main_b);
+    main_board_link_stats(&main_link);
+    posix_board_select(R.nav_b);
+    nav_board_link_stats(&nav_link);
+    sim_canbus_report(&R.bus, &main_link, &nav_link, sim_clock_now(), r);
+    int closed = sim_canbus_close(&R.bus);
+    sim_socketcan_close(&R.sock);
+    if (R.sock.failed || closed) {
+        snprintf(err, errlen, "%s", R.sock.failed ? R.sock.err : "--candump: writing failed");
+        sim_path_index_free(&R.nominal);
+        return -1;
+    }
 
     snprintf(r->scenario, sizeof r->scenario, "%s", sc->name);
     r->seed = sc->seed;
@@ -210,12 +322,21 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     main_board_stats_t ms;
     posix_board_select(R.main_b);
     main_board_stats(&ms);
-    r->fault = ms.fault;
-    r->stop_requested = ms.stop_requested;
-    r->reached_goal = ms.done && !ms.fault && !ms.stop_requested;
+    r->reached_goal = ms.done && !ms.fault && ms.stop_reason == MAIN_BOARD_STOP_NONE;
+    r->stop_reason = "";
+    r->stop_at = r->standstill_at = -1;
+    if (!r->reached_goal) {
+        /* The main board's reason; a travel still going at the end ran out of time. */
+        r->stop_reason =
+            ms.stop_reason != MAIN_BOARD_STOP_NONE ? stop_names[ms.stop_reason] : SIM_STOP_DURATION;
+        r->stop_at = done_at >= 0 ? done_at : r->sim_time;
+        r->standstill_at = standstill_at;
+    }
     sim_pose_t end = sim_drive_pose(&R.drive, r->sim_time);
     const sim_waypoint_t *goal = &sc->path[sc->n_path - 1];
     r->final_error = hypot(end.x - goal->x, end.y - goal->y);
+    if (pursuit)
+        pursuit_report(&r->pursuit);
     count_isrs(r);
 
     stats->samples = R.nominal.queries;

@@ -26,11 +26,15 @@ void sim_sensors_init(sim_sensors_t *s, const sim_scenario_t *sc, const sim_segm
     s->gyro_drift = sc->gyro_drift;
     s->heading0 = sc->start_heading;
     s->world = &sc->world;
+    s->sc = sc;
     s->gonio.rev_per_s = sc->rev_per_s;
     s->gonio.counts = sc->counts;
     s->gonio.noise_rad = sc->gonio_noise;
     s->gonio.max_range = sc->gonio_range;
+    s->gonio_off = sc->mode == SIM_SCENARIO_MODE_PURSUIT;
     sim_rng_seed(&s->rng_gonio, sc->seed, 1);
+    sim_rng_seed(&s->rng_index, sc->seed, 3);
+    sim_rng_seed(&s->rng_odo, sc->seed, 4);
     sim_photo_init(&s->photo);
     s->front_next = s->dl;
     sim_rng_t rng_phase;
@@ -49,7 +53,45 @@ int sim_sensors_latch(const sim_sensors_t *s, uint16_t latch, double *t, sim_pos
     return 0;
 }
 
+int sim_sensors_beacons(const sim_sensors_t *s, uint16_t last, int n)
+{
+    uint8_t seen[SIM_MAX_BEACONS] = {0};
+    int count = 0;
+    for (int i = 0; i < n; i++) {
+        double t;
+        sim_pose_t p;
+        uint16_t latch = (uint16_t)(last - i);
+        if (sim_sensors_latch(s, latch, &t, &p) != 0)
+            continue;
+        int k = s->rise_target[latch % SIM_SENSORS_LATCHES];
+        if (k >= 0 && k < SIM_MAX_BEACONS && !seen[k]) {
+            seen[k] = 1;
+            count++;
+        }
+    }
+    return count;
+}
+
+/* In one of @p n windows at @p t? */
+static int in_window(const sim_window_t *w, size_t n, double t)
+{
+    for (size_t i = 0; i < n; i++)
+        if (t >= w[i].t && t < w[i].t + w[i].duration)
+            return 1;
+    return 0;
+}
+
 /* ------------------------------------------------------------------ odometer */
+
+/* A spurious pulse, a little after a real one (the handler's flag would merge the two). */
+#define GLITCH_DELAY_S 20e-6
+
+static void on_glitch(void *ctx, uint64_t t_ns)
+{
+    sim_sensors_t *s = ctx;
+    (void)t_ns;
+    posix_edge_raise(s->nav_board, HAL_EDGE_DELTA_L);
+}
 
 static void schedule_dl(sim_sensors_t *s, double after)
 {
@@ -62,7 +104,16 @@ static void on_dl(void *ctx, uint64_t t_ns)
 {
     sim_sensors_t *s = ctx;
     s->ev_dl = 0;
-    posix_edge_raise(s->nav_board, HAL_EDGE_DELTA_L);
+    /* Glitches: a pulse lost, or a spurious one with it (both raise the same handler). */
+    if (s->sc->odo_missed > 0 && sim_rng_uniform(&s->rng_odo) < s->sc->odo_missed) {
+        s->odo_missed++;
+    } else {
+        posix_edge_raise(s->nav_board, HAL_EDGE_DELTA_L);
+        if (s->sc->odo_extra > 0 && sim_rng_uniform(&s->rng_odo) < s->sc->odo_extra) {
+            s->odo_extra++;
+            sim_clock_schedule(sim_clock_s(t_ns) + GLITCH_DELAY_S, on_glitch, s);
+        }
+    }
     s->front_next += s->dl;
     schedule_dl(s, sim_clock_s(t_ns));
 }
@@ -130,6 +181,18 @@ static void on_gonio(void *ctx, uint64_t t_ns)
     if (s->next_edge < s->n_edges) {
         const sim_gonio_event_t *e = &s->edges[s->next_edge++];
         int rising = e->edge == SIM_GEV_RISE;
+        /* Dropout windows: a pulse that begins in one is not seen, both its edges. */
+        int tg = e->target >= 0 ? e->target : SIM_MAX_BEACONS - 1 - e->target;
+        if (tg >= 0 && tg < SIM_PHOTO_TARGETS) {
+            if (rising && in_window(s->sc->dropout, s->sc->n_dropouts, t))
+                s->dark[tg] = 1;
+            if (s->dark[tg]) {
+                if (!rising)
+                    s->dark[tg] = 0;
+                schedule_gonio(s);
+                return;
+            }
+        }
         if (!sim_photo_feed(&s->photo, e)) {
             schedule_gonio(s); /* overlapping pulses: the photodetector stays lit */
             return;
@@ -141,13 +204,17 @@ static void on_gonio(void *ctx, uint64_t t_ns)
             uint32_t k = s->rises++ % SIM_SENSORS_LATCHES;
             s->rise_t[k] = t;
             s->rise_pose[k] = sim_segment_pose(s->seg, t);
+            s->rise_target[k] = e->target;
         }
         schedule_gonio(s);
         return;
     }
-    /* Index pulse: a new revolution. */
+    /* Index pulse: a new revolution (the main board may not see it). */
     s->t_index = t;
-    posix_capture_raise(s->main_board, HAL_CAPTURE_INDEX, count, 1);
+    if (s->sc->index_loss > 0 && sim_rng_uniform(&s->rng_index) < s->sc->index_loss)
+        s->index_lost++;
+    else
+        posix_capture_raise(s->main_board, HAL_CAPTURE_INDEX, count, 1);
     gonio_recompute(s, t + 1e-9);
 }
 
@@ -159,5 +226,6 @@ void sim_sensors_motion(sim_sensors_t *s)
     sim_clock_cancel(&s->ev_dl);
     schedule_dl(s, t);
     schedule_gyro(s, t);
-    gonio_recompute(s, t + 1e-9);
+    if (!s->gonio_off)
+        gonio_recompute(s, t + 1e-9);
 }

@@ -25,6 +25,18 @@
 /* A quality in Q16 m per mrad to m per count of a 50,000-count goniometer. */
 #define SIM_PER_COUNT (2.0 * M_PI / 50000.0 * 1000.0 / 65536.0)
 
+const char *const sim_telemetry_channel[SIM_LCM_CHANNELS] = {
+    "CYCLOPION_TRUTH", "CYCLOPION_POSE", "CYCLOPION_FIX", "CYCLOPION_SIGHTINGS", "CYCLOPION_DRIVE"};
+
+/* A publish call's result (0: handed to LCM) counted for channel @p ch. */
+static void published(sim_telemetry_t *tm, int ch, int rc)
+{
+    if (rc == 0)
+        tm->lcm_published[ch]++;
+    else
+        tm->lcm_failed++;
+}
+
 static double wrap_deg(double d)
 {
     d = fmod(d, 360.0);
@@ -76,7 +88,7 @@ static FILE *open_log(const char *dir, const char *name, const char *header, cha
     return f;
 }
 
-/* beacons.csv and path.csv: what does not change during the run. */
+/* beacons.csv, glints.csv, walls.csv and path.csv: what does not change during the run. */
 static int write_static_logs(const char *dir, const sim_scenario_t *sc, const sim_path_t *nominal,
                              char *err, size_t errlen)
 {
@@ -87,6 +99,20 @@ static int write_static_logs(const char *dir, const sim_scenario_t *sc, const si
         fprintf(f, "%.4f,%.4f,%.4f,%s\n", sc->world.beacon[i].x, sc->world.beacon[i].y,
                 sc->world.beacon[i].diameter,
                 sc->world.beacon[i].kind == SIM_BEACON_KIND_FLAT ? "flat" : "cylinder");
+    fclose(f);
+    f = open_log(dir, "glints.csv", "x_m,y_m,width_deg\n", err, errlen);
+    if (!f)
+        return -1;
+    for (size_t i = 0; i < sc->world.n_spurious; i++)
+        fprintf(f, "%.4f,%.4f,%.5f\n", sc->world.spurious[i].x, sc->world.spurious[i].y,
+                sc->world.spurious[i].width / DEG);
+    fclose(f);
+    f = open_log(dir, "walls.csv", "x1_m,y1_m,x2_m,y2_m\n", err, errlen);
+    if (!f)
+        return -1;
+    for (size_t i = 0; i < sc->world.n_occluders; i++)
+        fprintf(f, "%.4f,%.4f,%.4f,%.4f\n", sc->world.occluder[i].x1, sc->world.occluder[i].y1,
+                sc->world.occluder[i].x2, sc->world.occluder[i].y2);
     fclose(f);
     f = open_log(dir, "path.csv", "s_m,x_m,y_m\n", err, errlen);
     if (!f)
@@ -123,7 +149,7 @@ int sim_telemetry_open(sim_telemetry_t *tm, const char *log_dir, const char *lcm
         tm->f_fix = tm->f_est ? open_log(log_dir, "fixes.csv",
                                          "t_s,ref_t_s,accepted,x_m,y_m,heading_deg,error_m,"
                                          "heading_error_deg,quality,err_m,gate_m,jump_m,"
-                                         "resid_deg,agree,dropped,used,status,reason\n",
+                                         "resid_deg,agree,dropped,used,status,reason,beacons\n",
                                          err, errlen)
                               : NULL;
         tm->f_cmd = tm->f_fix ? open_log(log_dir, "commands.csv",
@@ -131,6 +157,19 @@ int sim_telemetry_open(sim_telemetry_t *tm, const char *log_dir, const char *lcm
                                          "length2_m,speed_mps\n",
                                          err, errlen)
                               : NULL;
+        if (tm->f_cmd && sc->mode == SIM_SCENARIO_MODE_PURSUIT) {
+            tm->f_pos = open_log(log_dir, "positions.csv",
+                                 "t_s,receiver,x_m,y_m,z_m,accepted,reason,true_x_m,true_y_m,"
+                                 "error_m\n",
+                                 err, errlen);
+            tm->f_err = tm->f_pos ? open_log(log_dir, "path_error.csv",
+                                             "t_s,segment,error_m,true_error_m\n", err, errlen)
+                                  : NULL;
+            if (!tm->f_err) {
+                sim_telemetry_close(tm);
+                return -1;
+            }
+        }
         if (!tm->f_cmd || write_static_logs(log_dir, sc, nominal, err, errlen)) {
             sim_telemetry_close(tm);
             return -1;
@@ -149,7 +188,10 @@ int sim_telemetry_open(sim_telemetry_t *tm, const char *log_dir, const char *lcm
 
 void sim_telemetry_close(sim_telemetry_t *tm)
 {
-    FILE **files[] = {&tm->f_truth, &tm->f_est, &tm->f_fix, &tm->f_cmd};
+    if (tm->f_err) /* the seed's error file ends with the average */
+        fprintf(tm->f_err, "average,,%.6f,%.6f\n", tm->err_n ? tm->err_sum / tm->err_n : 0.0,
+                tm->err_n ? tm->true_sum / tm->err_n : 0.0);
+    FILE **files[] = {&tm->f_truth, &tm->f_est, &tm->f_fix, &tm->f_cmd, &tm->f_pos, &tm->f_err};
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
         if (*files[i])
             fclose(*files[i]);
@@ -169,7 +211,12 @@ static void sample(void *ctx, uint64_t t_ns)
     double t = sim_clock_s(t_ns);
     sim_pose_t p = sim_drive_pose(tm->drive, t);
     double ct = sim_path_index_distance(tm->nominal, p.x, p.y);
-    if (hypot(p.x - tm->last_sample.x, p.y - tm->last_sample.y) >= 1e-3 && !tm->done) {
+    if (tm->src && !tm->done && !tm->travel_done && tm->drive->seg.v != 0) {
+        tm->report->pursuit.distance += fabs(tm->drive->seg.v) * SIM_TELEMETRY_SAMPLE;
+        tm->report->pursuit.moving += SIM_TELEMETRY_SAMPLE;
+    }
+    if (hypot(p.x - tm->last_sample.x, p.y - tm->last_sample.y) >= 1e-3 && !tm->done &&
+        !tm->travel_done) {
         sim_stat_add(&tm->report->cross_track, ct); /* while moving: the mean is over distance */
         tm->last_sample = p;
     }
@@ -189,12 +236,15 @@ static void sample(void *ctx, uint64_t t_ns)
         if (tm->lcm) {
             cyclopion_truth_t tmsg = {
                 (int64_t)(t_ns / 1000), p.x, p.y, wrap_deg(p.th / DEG), v, steer, ct};
-            cyclopion_truth_t_publish(tm->lcm, "CYCLOPION_TRUTH", &tmsg);
+            published(
+                tm, SIM_LCM_TRUTH,
+                cyclopion_truth_t_publish(tm->lcm, sim_telemetry_channel[SIM_LCM_TRUTH], &tmsg));
             int src = posix_source_find(tm->nav_board, (int)hal_edge_vector(HAL_EDGE_DELTA_L),
                                         (int)hal_edge_pin(HAL_EDGE_DELTA_L));
             cyclopion_pose_t pm = {(int64_t)(t_ns / 1000), ex, ey, eh,
                                    src >= 0 ? (int64_t)posix_source_count(tm->nav_board, src) : 0};
-            cyclopion_pose_t_publish(tm->lcm, "CYCLOPION_POSE", &pm);
+            published(tm, SIM_LCM_POSE,
+                      cyclopion_pose_t_publish(tm->lcm, sim_telemetry_channel[SIM_LCM_POSE], &pm));
         }
     }
     posix_schedule(t_ns + sim_clock_ns(SIM_TELEMETRY_SAMPLE), sample, tm);
@@ -282,7 +332,8 @@ static void publish_fix(sim_telemetry_t *tm, const main_board_fix_event_t *ev, d
     char reason[16];
     snprintf(reason, sizeof reason, "%s", optical_status_name(ev->status));
     m.reason = reason;
-    cyclopion_fix_t_publish(tm->lcm, "CYCLOPION_FIX", &m);
+    published(tm, SIM_LCM_FIX,
+              cyclopion_fix_t_publish(tm->lcm, sim_telemetry_channel[SIM_LCM_FIX], &m));
 
     cyclopion_sightings_t sg;
     double ang[OPTICAL_MAX_SIGHTINGS], wid[OPTICAL_MAX_SIGHTINGS];
@@ -299,7 +350,9 @@ static void publish_fix(sim_telemetry_t *tm, const main_board_fix_event_t *ev, d
     sg.width_deg = wid;
     sg.identified = idn;
     sg.truth = tru;
-    cyclopion_sightings_t_publish(tm->lcm, "CYCLOPION_SIGHTINGS", &sg);
+    published(
+        tm, SIM_LCM_SIGHTINGS,
+        cyclopion_sightings_t_publish(tm->lcm, sim_telemetry_channel[SIM_LCM_SIGHTINGS], &sg));
 }
 
 void sim_telemetry_fix(void *ctx, const main_board_fix_event_t *ev)
@@ -333,12 +386,13 @@ void sim_telemetry_fix(void *ctx, const main_board_fix_event_t *ev)
         fix_quality_t q = quality_of(ev);
         fprintf(tm->f_fix,
                 "%.6f,%.6f,%d,%.6f,%.6f,%.5f,%.6f,%.5f,%.6f,%.6f,%.6f,%.6f,%.4f,%u,%u,%d;%d;%d,%d,"
-                "%s\n",
+                "%s,%d\n",
                 t, tref, accepted, fx_q16_to_double(ev->fix.pose.x),
                 fx_q16_to_double(ev->fix.pose.y), fx_angle_to_deg(ev->fix.pose.heading), err, herr,
                 q.quality, q.err, q.gate, q.jump, q.resid_deg, ev->fix.n_agree, ev->fix.n_dropped,
                 accepted ? ev->fix.used[0] : -1, accepted ? ev->fix.used[1] : -1,
-                accepted ? ev->fix.used[2] : -1, ev->status, optical_status_name(ev->status));
+                accepted ? ev->fix.used[2] : -1, ev->status, optical_status_name(ev->status),
+                ev->n > 0 ? sim_sensors_beacons(tm->sensors, ev->ref_latch, ev->n) : 0);
     }
     if (tm->lcm)
         publish_fix(tm, ev, tref, accepted, err);
@@ -361,6 +415,15 @@ void sim_telemetry_command(void *ctx, double t, const drive_event_t *ev)
     double steer[2], len[2], speed;
     sim_drive_command_si(tm->drive, &ev->cmd, steer, len, &speed);
     int load = ev->type == DRIVE_EV_LOAD;
+    if (ev->type == DRIVE_EV_DAC_ANGLE || ev->type == DRIVE_EV_OUTPUTS) {
+        /* seed 002's DAC style: the steering DAC, the digital outputs */
+        double a = (double)(int32_t)ev->alpha * (180.0 / 2147483648.0);
+        if (tm->f_cmd && ev->type == DRIVE_EV_DAC_ANGLE)
+            fprintf(tm->f_cmd, "%.6f,steer,%.4f,,,,\n", t, a);
+        else if (tm->f_cmd)
+            fprintf(tm->f_cmd, "%.6f,outputs,,,,,\n", t);
+        return;
+    }
     if (tm->f_cmd) {
         if (load)
             fprintf(tm->f_cmd, "%.6f,load,%.4f,%.4f,%.4f,%.4f,%.4f\n", t, steer[0], len[0],
@@ -377,6 +440,64 @@ void sim_telemetry_command(void *ctx, double t, const drive_event_t *ev)
         m.steering_deg = steer;
         m.length_m = len;
         m.speed_mps = speed;
-        cyclopion_drive_command_t_publish(tm->lcm, "CYCLOPION_DRIVE", &m);
+        published(
+            tm, SIM_LCM_DRIVE,
+            cyclopion_drive_command_t_publish(tm->lcm, sim_telemetry_channel[SIM_LCM_DRIVE], &m));
     }
+}
+
+/* ------------------------------------------------------------------ pursuit mode */
+
+void sim_telemetry_pursuit_start(sim_telemetry_t *tm, const sim_possrc_t *src,
+                                 const sim_scenario_t *sc)
+{
+    tm->src = src;
+    tm->sc = sc;
+    tm->report->pursuit.on = true;
+}
+
+/* Goal point @p i of the pursuit: the start, then the path's positions. */
+static void goal_point(const sim_scenario_t *sc, unsigned i, double *x, double *y)
+{
+    *x = i == 0 ? sc->start_x : sc->path[i - 1].x;
+    *y = i == 0 ? sc->start_y : sc->path[i - 1].y;
+}
+
+void sim_telemetry_pursuit(void *ctx, const main_pursuit_event_t *ev)
+{
+    static const char *const reasons[] = {"ok", "zero", "jump", "too_close", "pair"};
+    sim_telemetry_t *tm = ctx;
+    double t = sim_clock_now();
+    sim_xy_t tr = sim_possrc_truth(tm->src, ev->receiver, t);
+    double x = ev->pos.x / 1000.0, y = ev->pos.y / 1000.0;
+    const char *why = ev->reason < 5 ? reasons[ev->reason] : "?";
+    if (tm->f_pos)
+        fprintf(tm->f_pos, "%.4f,%d,%.3f,%.3f,%.3f,%d,%s,%.4f,%.4f,%.4f\n", t, ev->receiver + 1, x,
+                y, ev->pos.z / 1000.0, ev->reason == POSRX_OK, why, tr.x, tr.y,
+                hypot(x - tr.x, y - tr.y));
+    if (tm->trace)
+        fprintf(stderr, "t=%.3f receiver %d (%.3f %.3f) %s%s\n", t, ev->receiver + 1, x, y, why,
+                ev->used ? "" : ", not used");
+    if (!ev->used)
+        return;
+    /* the seed's error: perpendicular distance to the line of the segment it was measured on,
+     * for the position used and for the receiver's true position at that instant */
+    double ax, ay, bx, by;
+    goal_point(tm->sc, (unsigned)ev->rec.segment - 1u, &ax, &ay);
+    goal_point(tm->sc, ev->rec.segment, &bx, &by);
+    double len = hypot(bx - ax, by - ay);
+    double true_err = fabs(((tr.x - ax) * (by - ay) - (tr.y - ay) * (bx - ax)) / len);
+    double err = fx_q16_to_double(ev->rec.err);
+    sim_stat_add(&tm->report->pursuit.true_error, true_err);
+    tm->err_sum += err;
+    tm->true_sum += true_err;
+    tm->err_n++;
+    if (tm->f_err)
+        fprintf(tm->f_err, "%.4f,%u,%.6f,%.6f\n", t, ev->rec.segment, err, true_err);
+    if (tm->trace)
+        fprintf(stderr,
+                "  segment %u error %.4f m (true %.4f), goal %u, heading %.2f, heading error "
+                "%.2f deg\n",
+                ev->rec.segment, err, true_err, ev->rec.goal, fx_angle_to_deg(ev->rec.heading),
+                (double)(int32_t)ev->rec.dphi * (180.0 / 2147483648.0));
 }

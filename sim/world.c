@@ -36,5 +36,15 @@ bool sim_world_visible(const sim_world_t *w, double ax, double ay, double bx, do
         if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)))
             return false;
     }
+    double dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
+    for (size_t i = 0; i < w->n_pillars; i++) {
+        const sim_pillar_t *c = &w->pillar[i];
+        /* The point of the segment nearest to the centre. */
+        double u = len2 > 0 ? ((c->x - ax) * dx + (c->y - ay) * dy) / len2 : 0.0;
+        u = u < 0 ? 0 : u > 1 ? 1 : u;
+        double r = 0.5 * c->diameter;
+        if (hypot(ax + u * dx - c->x, ay + u * dy - c->y) < r)
+            return false;
+    }
     return true;
 }

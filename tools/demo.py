@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """`make demo`: the main job, the closed-loop simulation of the default scenario, and a
 readable summary: fix accuracy, path error, how they compare with seed 000's Table 6-1 (the
-1987 Cyclopion run) and with seed 002's reported path errors (the 1993 laser AGV), and where
-the plot and the logs went.
+1987 Cyclopion run); seed 002's three test paths side by side: its reported path errors (the
+1993 laser AGV), ours in its goal-point pursuit on the simulated laser positioning system, ours
+in the double-arc travel; and where the plot and the logs went.
 
   tools/demo.py [--build build/host] [--out build/demo] [--scenario sim/scenarios/...json]
 """
@@ -94,6 +95,57 @@ def table_6_1(log_dir):
     return rows
 
 
+def side_by_side(agv, out_dir):
+    """Seed 002's three paths at its conditions (1 m/s, one receiver) in goal-point pursuit on
+    the simulated laser positioning system, and the same drawn paths in our double-arc travel,
+    beside the average path errors of 1993."""
+    print("\nSeed 002 (1993 laser-positioned AGV) side by side: its three test paths as drawn "
+          "(sim/paths/*.dxf -> tools/dxf2path.py, 1 m segments), 1 m/s")
+    print(f"  {'path':<34} {'1993 average':>13} | {'ours: goal-point pursuit':^34} | "
+          f"{'ours: double arcs':^20}")
+    print(f"  {'':<34} {'path error':>13} | {'path error':>11} {'cross-track mean, max':>22} | "
+          f"{'cross-track mean, max':>20}")
+    for sc, (label, errs) in SEED_002.items():
+        pursuit = os.path.join(ROOT, "sim", "scenarios", f"{sc}_pursuit.json")
+        _, rp, okp, _ = run(agv, pursuit, out_dir, False)
+        with open(pursuit) as f:
+            full = json.load(f)
+        full.update(name=f"{sc}_double_arc", mode="full", success={})
+        full.pop("pursuit", None)
+        full.pop("position_source", None)
+        full_file = os.path.join(out_dir, f"{sc}_double_arc_scenario.json")
+        with open(full_file, "w") as f:
+            json.dump(full, f, indent=1)
+        _, rf, okf, _ = run(agv, full_file, out_dir, False)
+        pe, cp, cf = rp["pursuit"]["path_error_m"], rp["path"]["cross_track_m"], \
+            rf["path"]["cross_track_m"]
+        print(f"  {label:<34} {min(errs):5.1f}-{max(errs):4.1f} cm | {pe['mean'] * 100:8.1f} cm "
+              f"{cp['mean'] * 100:10.1f}, {cp['max'] * 100:5.1f} cm | {cf['mean'] * 1000:9.1f}, "
+              f"{cf['max'] * 1000:5.1f} mm{'' if okp and okf else '  (criteria missed)'}")
+    with open(os.path.join(ROOT, "sim", "scenarios", "seed002_two_segment_pursuit.json")) as f:
+        src = json.load(f)["position_source"]
+    print(f"  pursuit: K 1.0, 0.4 s activation, 50 % threshold, 5 cm minimum update (the seed's "
+          f"tests); the positioning system at {src['rate_hz']} Hz, {src['lag_s']} s lag, "
+          f"1 part in {1 / src['noise_rel']:,.0f}; path error: the seed's (its ERR file, the "
+          f"measured position's perpendicular distance to the segment); cross-track: the true "
+          f"rear-axle position to the drawn path until the stop (docs/pursuit.md)")
+
+
+def table_6_1_points(log_dir):
+    """Table 6-1's points for tools/plot_run.py --points: prescribed, where the 1987 vehicle
+    actually was, and where ours passed closest (metres)."""
+    pts = []
+    for n, (px, py, ph, m, act, off87, e, t, off) in enumerate(table_6_1(log_dir), 1):
+        pts.append({"label": "Table 6-1: prescribed", "x": px * IN, "y": py * IN,
+                    "marker": "+", "color": "k", "ms": 12, "text": str(n)})
+        pts.append({"label": "Table 6-1: 1987 vehicle (actual)", "x": act[0] * IN,
+                    "y": act[1] * IN, "marker": "s", "color": "#D55E00", "ms": 7,
+                    "magnify": False})  # 60-159 mm off: far outside the magnified map
+        pts.append({"label": "ours: closest approach", "x": t["x_m"], "y": t["y_m"],
+                    "marker": "D", "color": "#0072B2", "ms": 6})
+    return pts
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -144,23 +196,20 @@ def main():
               f"approach). 1987: {min(offs87) * 25.4:.0f}-{max(offs87) * 25.4:.0f} mm; "
               f"ours: {min(offs) * 25.4:.1f}-{max(offs) * 25.4:.1f} mm")
 
-    print("\nSeed 002 (1993 laser AGV) reported average path errors, and ours on the same paths "
-          "at 1 m/s:")
-    for sc, (label, errs) in SEED_002.items():
-        f = os.path.join(ROOT, "sim", "scenarios", f"{sc}.json")
-        _, r2, ok2, _ = run(agv, f, a.out, False)
-        print(f"  {label:<34} 1993: {min(errs):.1f}-{max(errs):.1f} cm   ours: mean "
-              f"{r2['path']['cross_track_m']['mean'] * 1000:.1f} mm, max "
-              f"{r2['path']['cross_track_m']['max'] * 1000:.1f} mm"
-              f"{'' if ok2 else '  (criteria missed)'}")
+    side_by_side(agv, a.out)
 
     png = os.path.join(a.out, f"{name}.png")
-    p = subprocess.run([sys.executable, os.path.join(HERE, "plot_run.py"), "--log-dir", log_dir,
-                        "-o", png, "--title", f"{name}: truth, estimate, fixes"],
-                       capture_output=True, text=True)
+    plot = [sys.executable, os.path.join(HERE, "plot_run.py"), "--log-dir", log_dir, "-o", png,
+            "--title", f"{name}: truth, estimate, fixes"]
+    if name.startswith("table_6_1"):
+        points = os.path.join(a.out, f"{name}_points.json")
+        with open(points, "w") as f:
+            json.dump(table_6_1_points(log_dir), f, indent=1)
+        plot += ["--points", points]
+    p = subprocess.run(plot, capture_output=True, text=True)
     print(f"\nPlot: {png if p.returncode == 0 else '(not drawn: ' + p.stderr.strip() + ')'}")
     print(f"Logs: {log_dir}/ (truth.csv, estimate.csv, fixes.csv, commands.csv, path.csv, "
-          f"beacons.csv); report: {os.path.join(a.out, name + '.json')}")
+          f"beacons.csv, glints.csv, walls.csv); report: {os.path.join(a.out, name + '.json')}")
     return 0 if ok else 1
 
 

@@ -15,7 +15,11 @@ Exit 2 when two beacons coincide (their posts would overlap), naming both.
 import argparse
 import json
 import math
+import os
 import sys
+
+SCHEMA = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "docs",
+                      "schema", "scenario.schema.json")
 
 
 def q16(v):
@@ -61,6 +65,14 @@ def read_path(filename):
             [pose(x, f"path[{i}]", True) for i, x in enumerate(d["path"])])
 
 
+def blind_distance(sc):
+    """The scenario's blind_distance_m, or the schema's default (the one the simulator takes)."""
+    if "blind_distance_m" in sc:
+        return sc["blind_distance_m"]
+    with open(SCHEMA) as f:
+        return json.load(f)["properties"]["blind_distance_m"]["default"]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -69,8 +81,23 @@ def main():
     ap.add_argument("--path", metavar="PATH.json",
                     help="take start and path from this tools/dxf2path.py result")
     a = ap.parse_args()
-    with open(a.scenario) as f:
-        sc = json.load(f)
+    try:
+        with open(a.scenario) as f:
+            sc = json.load(f)
+    except OSError as e:
+        sys.exit(f"gen_mission: {a.scenario}: {e.strerror}")
+    except ValueError as e:
+        sys.exit(f"gen_mission: {a.scenario}: not JSON: {e}")
+    try:
+        return write(a, sc)
+    except (KeyError, IndexError, TypeError) as e:
+        # the scenario follows docs/schema/scenario.schema.json when agv-sim takes it
+        sys.exit(f"gen_mission: {a.scenario}: a key missing or of the wrong type: {e!r} "
+                 f"(check it with build/host/bin/agv-sim --scenario {a.scenario})")
+
+
+def write(a, sc):
+    """The header of scenario @p sc (a.scenario) into a.output."""
     b, p, v, st, sen = sc["beacons"], sc["path"], sc["vehicle"], sc["start"], sc["sensors"]
     src = a.scenario
     if a.path:
@@ -106,6 +133,7 @@ def main():
            # the optical fix's bearing error bounds come from these (OPTICAL_CONFIG)
            f"#define MISSION_GONIO_NOISE {angle(sen['goniometer']['noise_deg'])}ul",
            f"#define MISSION_GYRO_STEP {angle(sen['gyro']['step_deg'])}ul",
+           f"#define MISSION_BLIND_DISTANCE {q16(blind_distance(sc))}l",
            f"#define MISSION_START {{{q16(st['x'])}l, {q16(st['y'])}l, "
            f"{angle(st['heading_deg'])}ul}}",
            f"#define MISSION_N_BEACONS {len(b)}u",

@@ -33,7 +33,8 @@ def sections(readelf, elf):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__)
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("elf", nargs="+")
     ap.add_argument("--readelf", default="llvm-readelf-16")
     ap.add_argument("--flash-limit", type=int, required=True, help="bytes")
@@ -67,7 +68,8 @@ def main():
                 json.dump({"name": name, "kind": args.kind, "text": s.get(".text", 0)
                            + s.get(".rodata", 0), "data": s.get(".data", 0),
                            "bss": s.get(".bss", 0) + s.get(".noinit", 0), "flash": flash,
-                           "ram": ram}, f)
+                           "ram": ram, "flash_limit": args.flash_limit,
+                           "ram_limit": args.ram_limit}, f)
     return bad
 
 

@@ -6,9 +6,28 @@
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 
-debs="clang-16 lld-16 llvm-16 clang-format-16 mspdebug cmake ninja-build make \
-libgtest-dev libeigen3-dev liblcm-dev liblcm-bin libjansson-dev pkg-config python3 python3-pip gdb \
-qemu-system-x86 busybox-static can-utils iproute2"
+case "${1:-}" in
+-h | --help)
+    echo "usage: tools/install-deps.sh"
+    echo "Installs the Debian packages and the Python packages (tools/requirements.txt) that"
+    echo "cyclopion needs to build and test; nothing when all is there. As root on Debian 12;"
+    echo "without root it lists what is missing and exits 1. make deps, make test and make demo"
+    echo "run it first."
+    exit 0
+    ;;
+"") ;;
+*)
+    echo "install-deps: unknown argument \"$1\" (tools/install-deps.sh --help)" >&2
+    exit 2
+    ;;
+esac
+
+# libclang-rt-16-dev: libFuzzer and the sanitizers' runtimes for clang-16 (the fuzz preset)
+# liblcm-java, libjchart2d-java, openjdk-17-jdk-headless: lcm-spy and the Java types it decodes
+# our channels with (lcm-gen -j, compiled by javac; make lcm-spy)
+debs="clang-16 lld-16 llvm-16 clang-format-16 libclang-rt-16-dev mspdebug cmake ninja-build make \
+libgtest-dev libeigen3-dev liblcm-dev liblcm-bin liblcm-java libjchart2d-java openjdk-17-jdk-headless \
+libjansson-dev pkg-config python3 python3-pip gdb qemu-system-x86 busybox-static can-utils iproute2"
 
 missing=""
 for p in $debs; do

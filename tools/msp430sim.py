@@ -36,14 +36,14 @@ the wall-clock --timeout passes, or mspdebug itself misbehaves.
 Simulated devices (tools/mspdebug-f2618.cfg): the MSP430F2618's Timer_A3 at 0x160 (vectors
 0xFFF2/0xFFF0), Timer_B7 at 0x180 (0xFFFA/0xFFF8), ports P1 (0x20, 0xFFE4) and P2 (0x28,
 0xFFE6) with interrupts, ports P3-P6, the 16 x 16 hardware multiplier, the watchdog, the
-console and the tracer; stand-ins that make SVSCTL, the clock registers and USCI_A0's
-status and buffers readable.
+console and the tracer; stand-ins that make SVSCTL, the clock registers and USCI_A0's and
+USCI_B0's status and buffers readable.
 
 Where the simulator differs from the chip the runner emulates the chip (class Chip below,
 docs/hardware.md): the reset state of the transmit flags, the DCO calibration data, NMI
 entry (NMIIE cleared, NMIIFG kept), and on request USCI_A0's transmitter (--uart), the
-supply voltage supervisor (--vcc) and an event between two instructions (@sim-on-read,
-@sim-on-write).
+supply voltage supervisor (--vcc), an MCP2515 CAN controller on USCI_B0 (--mcp2515) and an
+event between two instructions (@sim-on-read, @sim-on-write).
 """
 import argparse
 import fcntl
@@ -301,11 +301,99 @@ NMIIE = NMIIFG = 0x10
 UCA0TXIFG = UCA1TXIFG = 0x02
 UCA0STAT, UCA0TXBUF, UCBUSY = 0x0065, 0x0067, 0x01
 SVSCTL, SVSOP, SVSON, PORON = 0x0055, 0x02, 0x04, 0x08
+# USCI_B0 in SPI mode and the MCP2515's /CS on P3.0 (hal/msp430/spi_usci_b0.c, docs/can.md).
+UCB0RXBUF, UCB0TXBUF, UCB0RXIFG, P3OUT, CS_BIT = 0x006E, 0x006F, 0x04, 0x0019, 0x01
 # SVSCTL's VLDx levels, V (SLAU144, supply voltage supervisor, SVSCTL register).
 VLD_VOLTS = {1: 1.9, 2: 2.1, 3: 2.2, 4: 2.3, 5: 2.4, 6: 2.5, 7: 2.65, 8: 2.8, 9: 2.9,
              10: 3.05, 11: 3.2, 12: 3.35, 13: 3.5, 14: 3.7}
 NMI_VECTOR_WORD = 0xFFFC
 SET_BP_RE = re.compile(r"Set breakpoint (\d+)")
+
+
+class Mcp2515:
+    """The MCP2515 CAN controller behind USCI_B0 for board images (--mcp2515): its SPI
+    instructions (DS20001801 Table 12-1: RESET, READ, WRITE, READ RX BUFFER, LOAD TX BUFFER,
+    RTS, READ STATUS, RX STATUS, BIT MODIFY) on a register file with the power-on values of
+    Table 11-1 (CANCTRL 0x87, CANSTAT 0x80, the rest 0), REQOP taking effect at once. There is
+    no CAN bus: requested frames stay pending, nothing is received, INT stays high. (The
+    register-level model the driver's tests use is tests/support/mcp2515_model.c.)"""
+
+    def __init__(self):
+        self.power_on()
+        self.selected = False
+
+    def power_on(self):
+        self.reg = [0] * 128
+        self.reg[0x0F], self.reg[0x0E] = 0x87, 0x80
+
+    @staticmethod
+    def canonical(addr):
+        addr &= 0x7F
+        return 0x0E if addr & 0x0F == 0x0E else 0x0F if addr & 0x0F == 0x0F else addr
+
+    def write(self, addr, value):
+        a = self.canonical(addr)
+        self.reg[a] = value
+        if a == 0x0F and value >> 5 <= 4:  # CANCTRL.REQOP -> CANSTAT.OPMOD
+            self.reg[0x0E] = (value & 0xE0) | (self.reg[0x0E] & 0x1F)
+
+    def status(self):
+        f, s = self.reg[0x2C], self.reg[0x2C] & 0x03
+        for n in range(3):
+            s |= (0x04 << 2 * n) if self.reg[0x30 + 16 * n] & 0x08 else 0
+            s |= (0x08 << 2 * n) if f & (0x04 << n) else 0
+        return s
+
+    def select(self):
+        self.selected, self.phase, self.instr, self.clear, self.reset = True, 0, None, 0, False
+
+    def deselect(self):
+        if self.selected and self.reset:
+            self.power_on()
+        elif self.selected:
+            self.reg[0x2C] &= ~self.clear & 0xFF
+        self.selected = False
+
+    def exchange(self, mosi):
+        """One byte while selected: @mosi in, the byte the MCP2515 shifts out returned."""
+        if not self.selected:
+            return 0xFF
+        phase, self.phase = self.phase, self.phase + 1
+        if phase == 0:
+            self.instr = mosi
+            if mosi == 0xC0:
+                self.reset = True
+            elif mosi & 0xF9 == 0x90:  # READ RX BUFFER 1001 0nm0
+                nm = mosi >> 1 & 3
+                self.addr, self.clear = (0x61, 0x66, 0x71, 0x76)[nm], 0x02 if nm & 2 else 0x01
+            elif mosi & 0xF8 == 0x40 and mosi & 7 < 6:  # LOAD TX BUFFER 0100 0abc
+                self.addr = (0x31, 0x36, 0x41, 0x46, 0x51, 0x56)[mosi & 7]
+            elif mosi & 0xF8 == 0x80:  # RTS 1000 0nnn
+                for n in range(3):
+                    if mosi >> n & 1:
+                        self.reg[0x30 + 16 * n] |= 0x08
+            return 0xFF
+        i = self.instr
+        if i in (0x02, 0x03, 0x05) and phase == 1:
+            self.addr = mosi & 0x7F
+            return 0xFF
+        if i == 0x03 or (i & 0xF9) == 0x90:
+            a = self.canonical(self.addr)
+            self.addr = (self.addr + 1) & 0x7F
+            return self.reg[a]
+        if i == 0x02 or (i & 0xF8 == 0x40 and i & 7 < 6):
+            self.write(self.addr, mosi)
+            self.addr = (self.addr + 1) & 0x7F
+        elif i == 0x05 and phase == 2:
+            self.mask = mosi
+        elif i == 0x05 and phase == 3:
+            a = self.canonical(self.addr)
+            self.write(a, (self.reg[a] & ~self.mask & 0xFF) | (mosi & self.mask))
+        elif i == 0xA0:
+            return self.status()
+        elif i == 0xB0:
+            return 0x00  # RX STATUS: never a message
+        return 0xFF
 
 
 class Chip:
@@ -326,6 +414,9 @@ class Chip:
     - --vcc: the supply voltage supervisor (not modelled): after each write of SVSCTL, SVSOP
       reads 1 when the supply is below the selected VLDx level; PORON with the supply below
       the level would reset the part (reported as a failure).
+    - --mcp2515: USCI_B0 (not modelled) with an MCP2515 behind it (class Mcp2515): P3.0 is
+      its /CS; a byte written to UCB0TXBUF goes to it and its answer appears in UCB0RXBUF
+      with UCB0RXIFG set (at once: the shift time is not modelled).
     """
 
     def __init__(self, sim, args, syms, elf_words):
@@ -339,6 +430,8 @@ class Chip:
         self.uart_busy = False
         self.uart_txifg = True
         self.failures = []
+        self.mcp = Mcp2515() if getattr(args, "mcp2515", False) else None
+        self.cs = 1
 
     def setbreak(self, cmd, addr):
         for line in self.sim.cmd(f"{cmd} 0x{addr:04x}"):
@@ -361,6 +454,9 @@ class Chip:
                 self.watch[self.setbreak(cmd, addr)] = ("uart",)
         if self.args.vcc is not None:
             self.watch[self.setbreak("setwatch_w", SVSCTL)] = ("svs",)
+        if self.mcp is not None:
+            for addr in (UCB0TXBUF, P3OUT):
+                self.watch[self.setbreak("setwatch_w", addr)] = ("mcp",)
 
     def byte(self, addr):
         for line in self.sim.cmd(f"md 0x{addr:04x} 1"):
@@ -411,7 +507,9 @@ class Chip:
                 del self.watch[i]
                 return
         kinds = {w[0] for w in self.watch.values()}
-        if "svs" in kinds and new and ev[:2] == ("write", SVSCTL):
+        if "mcp" in kinds and new and ev[:2] in (("write", UCB0TXBUF), ("write", P3OUT)):
+            self.spi(ev[1], ev[2])
+        elif "svs" in kinds and new and ev[:2] == ("write", SVSCTL):
             self.svs()
         elif "uart" in kinds:
             if new and ev[:2] == ("write", UCA0TXBUF):
@@ -431,6 +529,18 @@ class Chip:
                 if self.uart_polls["ifg2"] >= 2:
                     self.uart_txifg = True
                     self.set_bits(IFG2, UCA0TXIFG, True)
+
+    def spi(self, addr, value):
+        if addr == P3OUT:
+            cs = value & CS_BIT
+            if cs and not self.cs:
+                self.mcp.deselect()
+            elif not cs and self.cs:
+                self.mcp.select()
+            self.cs = cs
+            return
+        self.sim.cmd(f"mw 0x{UCB0RXBUF:04x} 0x{self.mcp.exchange(value):02x}")
+        self.set_bits(IFG2, UCB0RXIFG, True)
 
     def svs(self):
         v = self.byte(SVSCTL)
@@ -623,6 +733,9 @@ def main():
     ap.add_argument("--uart", action="store_true",
                     help="emulate USCI_A0's transmitter; its bytes are the console (board "
                          "images' console_uart)")
+    ap.add_argument("--mcp2515", action="store_true",
+                    help="emulate USCI_B0 with an MCP2515 CAN controller behind it (no CAN "
+                         "bus): board images set up their CAN link")
     ap.add_argument("--sim-nmi", action="store_true",
                     help="keep mspdebug's NMI entry (NMIIE left set, NMIIFG cleared) instead "
                          "of the chip's")

@@ -7,6 +7,7 @@ turn, the seed's continuation (previous interval's curvature kept) against the f
       --gtest_filter='*StraightContinuation*'
   tools/plot_groundnav.py /tmp/gnav.csv docs/groundnav_straight.svg
 """
+import argparse
 import csv
 import sys
 
@@ -17,7 +18,21 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def main():
-    rows = list(csv.DictReader(open(sys.argv[1])))
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("csv", help="the figure's CSV (GNAV_FIGURE_CSV of groundnav_test)")
+    ap.add_argument("svg", help="the figure to write")
+    a = ap.parse_args()
+    try:
+        with open(a.csv, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        sys.exit(f"plot_groundnav: {a.csv}: {e.strerror}")
+    need = ("travel_m", "fw_err_mm", "seed_err_mm")
+    missing = [k for k in need if rows and k not in rows[0]]
+    if not rows or missing:
+        sys.exit(f"plot_groundnav: {a.csv}: no rows, or no column {', '.join(missing)} "
+                 f"(columns: {', '.join(rows[0]) if rows else 'none'})")
     t = [float(r["travel_m"]) for r in rows]
     fw = [max(float(r["fw_err_mm"]), 1e-3) for r in rows]
     seed = [max(float(r["seed_err_mm"]), 1e-3) for r in rows]
@@ -35,7 +50,8 @@ def main():
     ax.grid(True, which="both", lw=0.3)
     ax.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
-    fig.savefig(sys.argv[2])
+    fig.savefig(a.svg)
+    print(f"plot_groundnav: wrote {a.svg}")
 
 
 if __name__ == "__main__":

@@ -2,7 +2,8 @@
 """Static worst-case stack bound of an MSP430 image (docs/stack.md).
 
   stack_bound.py ELF [--objdump llvm-objdump-16] [--limit BYTES] [--ram-budget BYTES]
-                 [--ram-end ADDR] [--json OUT]
+                 [--ram-end ADDR] [--indirect SITE=F,...] [--no-mpy-in-isr] [--no-mpy-in-nmi]
+                 [--json OUT]
 
 Disassembles the linked ELF and, per function, follows its control flow from the entry with
 the stack depth it has pushed (push/pop, sub/add #N,r1, pushm/popm, decd/incd r1): its frame
@@ -21,6 +22,13 @@ restores of a state saved inside the handler keep it off); the NMI can come on t
 maskable handler, and the NMI handler may set NMIIE again only as its last instruction before
 RETI (checked), where a second request lands on the first one's 4 bytes. Worst case = reset +
 the deepest maskable handler + the NMI handler (+ 4 bytes when it re-arms itself).
+
+Multiplier rules: --no-mpy-in-isr fails when a maskable handler reaches code that names a
+hardware multiplier register (0x130-0x13F): its main line then may use the multiplier with
+interrupts enabled. --no-mpy-in-nmi fails when the NMI handler reaches such code or a
+compiler multiply helper (__mspabi_mpy*): DINT does not hold the NMI off, so an NMI that
+multiplies corrupts any multiply it lands in (in the main line, in a handler, in a helper's
+DINT section). Each finding names the call path from the handler.
 
 Prints the table (root, bound, deepest chain as function(frame) names), the worst case and
 the RAM left free (RAM end, __stack_top unless --ram-end, minus __noinit_end) and exits 1 when
@@ -521,6 +529,23 @@ class Bounds:
                 self.reach(t, seen)
         return seen
 
+    def paths(self, root):
+        """{function: [root, ..., function]}: a shortest call path to each function root
+        reaches (breadth first, calls and tail calls and indirect targets alike)."""
+        path = {root: [root]}
+        todo = [root]
+        while todo:
+            nxt = []
+            for name in todo:
+                f = self.image.funcs[name]
+                for e in f.edges:
+                    for t in self.image.targets(f, e):
+                        if t not in path:
+                            path[t] = path[name] + [t]
+                            nxt.append(t)
+            todo = nxt
+        return path
+
 
 def chain_text(chain):
     return " > ".join(f"{n}({fr})" for n, fr in chain)
@@ -608,13 +633,33 @@ def nmi_rearm(image, root, reach):
         "the first one's 4 bytes", errors
 
 
+MPY_HELPER_PREFIX = "__mspabi_mpy"
+
+
+def nmi_multiplies(image, bounds, name):
+    """The findings of --no-mpy-in-nmi for the NMI handler name: every function it reaches
+    that is a compiler multiply helper or names a multiplier register, with the path."""
+    out = []
+    paths = bounds.paths(name)
+    for fn in sorted(paths):
+        via = " > ".join(paths[fn])
+        if fn.startswith(MPY_HELPER_PREFIX):
+            out.append(f"the NMI handler {name} reaches the multiply helper {fn}: {via}")
+            continue
+        for insn in mpy_operands(image, fn):
+            out.append(f"the NMI handler {name} reaches the hardware multiplier: {fn} {insn}: "
+                       f"{via}")
+    return out
+
+
 def report(image, vectors, free_ram, limit, restorers=GIE_RESTORERS, no_mpy_in_isr=False,
-           static_ram=None, ram_budget=None):
+           static_ram=None, ram_budget=None, no_mpy_in_nmi=False):
     """The analysis of an image as a dict; vectors: {vector number: function name}.
     static_ram, ram_budget: the image's static data (bytes) and the budget it and the worst
     case must fit together.
     no_mpy_in_isr: no maskable handler may reach code that names a multiplier register (its
-    main line then uses the multiplier with interrupts enabled)."""
+    main line then uses the multiplier with interrupts enabled).
+    no_mpy_in_nmi: the NMI handler may reach neither such code nor a __mspabi_mpy* helper."""
     errors = []
     for f in image.funcs.values():
         errors += [f"{f.name}: {e}" for e in f.errors]
@@ -649,6 +694,8 @@ def report(image, vectors, free_ram, limit, restorers=GIE_RESTORERS, no_mpy_in_i
             for fn in sorted(bounds.reach(name)):
                 for insn in mpy_operands(image, fn):
                     errors.append(f"{name} reaches the hardware multiplier: {fn} {insn}")
+        if no_mpy_in_nmi and NMI_VECTOR in vecs:
+            errors += nmi_multiplies(image, bounds, name)
         roots.append({"root": "reset" if reset else "isr", "function": name,
                       "vectors": vecs, "bound": b + entry, "entry": entry,
                       "chain": [{"function": n, "frame": fr} for n, fr in chain],
@@ -789,6 +836,9 @@ def main(argv=None):
     ap.add_argument("--no-mpy-in-isr", action="store_true",
                     help="fail when a maskable interrupt handler reaches code that names a "
                          "hardware multiplier register (0x130-0x13F)")
+    ap.add_argument("--no-mpy-in-nmi", action="store_true",
+                    help="fail when the NMI handler reaches code that names a hardware "
+                         "multiplier register or a compiler multiply helper (__mspabi_mpy*)")
     ap.add_argument("--json", help="write the analysis here")
     args = ap.parse_args(argv)
 
@@ -810,7 +860,7 @@ def main(argv=None):
     ram_start = elf.symbol("__ram_start")
     static = static_end - ram_start if static_end is not None and ram_start is not None else None
     r = report(image, vectors, free, args.limit, no_mpy_in_isr=args.no_mpy_in_isr,
-               static_ram=static, ram_budget=args.ram_budget)
+               static_ram=static, ram_budget=args.ram_budget, no_mpy_in_nmi=args.no_mpy_in_nmi)
     r["image"] = args.elf
     r["ram_end"] = ram_end
     r["static_end"] = static_end

@@ -22,6 +22,8 @@
 #define G_PENDING_LAST 12 /* timer: the pending double arc goes to the last point   */
 #define G_FIX_RETRY    13 /* fix failed: still within the tolerated failures        */
 #define G_FIX_GIVE_UP  14 /* fix failed: too many in a row                          */
+#define G_BLIND        15 /* pose: the last fix failed and the blind distance is up */
+#define G_RUNNING      16 /* stop: the travel has not ended yet                     */
 
 /* Internal actions, translated by the step (above the public DRIVE_ACT_* bits). */
 #define X_TIMER_SETTLE 0x1000 /* DRIVE_ACT_TIMER with settle_ms   */
@@ -59,8 +61,9 @@ static const drive_seq_row_t drive_seq_rows[] = {
     ROW(DRIVE_ST_F_SETTLE,     DRIVE_EVT_TIMER,      G_ANY,          DRIVE_ST_F_WAIT_INDEX, 0),
     ROW(DRIVE_ST_F_WAIT_INDEX, DRIVE_EVT_INDEX,      G_ANY,          DRIVE_ST_F_FIX,        DRIVE_ACT_REQUEST_FIX),
     ROW(DRIVE_ST_F_FIX,        DRIVE_EVT_FIX_READY,  G_ANY,          DRIVE_ST_F_PREDICT,    DRIVE_ACT_CORRECT_NAV | X_POSE_PREDICT),
-    ROW(DRIVE_ST_F_FIX,        DRIVE_EVT_FIX_FAILED, G_FIX_RETRY,    DRIVE_ST_F_PREDICT,    X_POSE_PREDICT),
-    ROW(DRIVE_ST_F_FIX,        DRIVE_EVT_FIX_FAILED, G_FIX_GIVE_UP,  DRIVE_ST_FAULT,        DRIVE_ACT_STOP | DRIVE_ACT_FAULT),
+    /* ... no fix: on dead reckoning (slower as the blind distance nears), stop at its end */
+    ROW(DRIVE_ST_F_FIX,        DRIVE_EVT_FIX_FAILED, G_ANY,          DRIVE_ST_F_PREDICT,    X_POSE_PREDICT),
+    ROW(DRIVE_ST_F_PREDICT,    DRIVE_EVT_POSE,       G_BLIND,        DRIVE_ST_STOPPED,      DRIVE_ACT_STOP | DRIVE_ACT_DONE),
     ROW(DRIVE_ST_F_PREDICT,    DRIVE_EVT_POSE,       G_ARRIVED,      DRIVE_ST_DONE,         DRIVE_ACT_STOP | DRIVE_ACT_DONE),
     ROW(DRIVE_ST_F_PREDICT,    DRIVE_EVT_POSE,       G_SOLVED_LAST,  DRIVE_ST_F_LOAD,       X_TIMER_LOAD),
     ROW(DRIVE_ST_F_PREDICT,    DRIVE_EVT_POSE,       G_SOLVED,       DRIVE_ST_F_LOAD,       X_TIMER_LOAD),
@@ -95,8 +98,8 @@ static const drive_seq_row_t drive_seq_rows[] = {
     ROW(DRIVE_ST_S_ARC2,       DRIVE_EVT_DELTA_S,    G_PULSE_FINAL,  DRIVE_ST_S_SKIP_INDEX, DRIVE_ACT_STOP | DRIVE_ACT_INDEX_ON | X_NEXT_TARGET),
     /* expected pulses of the loaded double arc that need no action */
     ROW(DRIVE_ST_ANY,          DRIVE_EVT_DELTA_S,    G_PULSE_MORE,   SAME,                  0),
-    /* stop request */
-    ROW(DRIVE_ST_ANY,          DRIVE_EVT_STOP,       G_ANY,          DRIVE_ST_DONE,         DRIVE_ACT_STOP | DRIVE_ACT_DONE),
+    /* stop request (after the end of the travel it is ignored) */
+    ROW(DRIVE_ST_ANY,          DRIVE_EVT_STOP,       G_RUNNING,      DRIVE_ST_STOPPED,      DRIVE_ACT_STOP | DRIVE_ACT_DONE),
 };
 /* clang-format on */
 #define DRIVE_SEQ_ROWS (sizeof drive_seq_rows / sizeof drive_seq_rows[0])
@@ -124,7 +127,8 @@ const char *drive_seq_state_name(drive_state_t st)
                                                       "simple/arc1",
                                                       "simple/arc2",
                                                       "done",
-                                                      "fault"};
+                                                      "fault",
+                                                      "stopped"};
     return (unsigned)st < DRIVE_ST_COUNT ? names[st] : "?";
 }
 
@@ -145,9 +149,30 @@ static int32_t along(const drive_pose_t *pose, const drive_pose_t *target, bool 
     return u;
 }
 
+fx_q16_t drive_blind_speed(fx_q16_t speed, fx_q16_t blind, fx_q16_t limit, fx_q16_t slowest)
+{
+    int32_t f = FX_Q16_ONE / 4, r; /* the factor, Q16 */
+    if (limit > 0 && fx_div_shift(blind, limit, 16, &r) && r < FX_Q16_ONE)
+        f = r <= FX_Q16_ONE / 4 ? FX_Q16_ONE : 5 * FX_Q16_ONE / 4 - r;
+    fx_q16_t v = fx_mul_q16(speed, f), least = speed < slowest ? speed : slowest;
+    return v < least ? least : v;
+}
+
+/* The travel since the last accepted fix grows by the chord from the last pose to @p pose
+ * (the poses come once a revolution: the chord of a 0.5 m arc of 0.8 m radius is 1.6 % short). */
+static void blind_add(drive_seq_t *seq, const drive_pose_t *pose)
+{
+    int32_t dx = (int32_t)((uint32_t)pose->x - (uint32_t)seq->blind_from.x);
+    int32_t dy = (int32_t)((uint32_t)pose->y - (uint32_t)seq->blind_from.y);
+    uint32_t d = fx_hypot(dx, dy) + (uint32_t)seq->blind;
+    seq->blind = d > (uint32_t)FX_Q16_MAX ? FX_Q16_MAX : (fx_q16_t)d;
+    seq->blind_from = *pose;
+}
+
 /* Solve from @p pose toward the secondary point @p cur and build its command into
  * seq->pending (the status in seq->solve_status too); *reached: nothing left to drive there
- * (too close, behind, or arcs too short for a pulse). */
+ * (too close, behind, or arcs too short for a pulse). Full travel drives slower the longer
+ * it has been without a fix (drive_blind_speed()). */
 static drive_status_t solve_toward(drive_seq_t *seq, const drive_pose_t *pose,
                                    drive_path_cursor_t cur, bool *reached)
 {
@@ -156,6 +181,9 @@ static drive_status_t solve_toward(drive_seq_t *seq, const drive_pose_t *pose,
     fx_q16_t speed;
     drive_solution_t sol;
     drive_status_t st = drive_path_target(path, cur, &tp, &speed);
+    if (seq->cfg.mode == DRIVE_MODE_FULL)
+        speed =
+            drive_blind_speed(speed, seq->blind, seq->cfg.blind_distance, path->board->speed_lsb);
     if (st == DRIVE_OK)
         st = drive_solve(pose, &tp, path->board->min_radius, path->cfg.reverse, &sol, NULL);
     if (st == DRIVE_OK)
@@ -210,9 +238,9 @@ static uint8_t pick(drive_seq_t *seq, const drive_pose_t *pose)
 }
 
 /* The guards that hold (bit G_*) in the state the event left. */
-static uint16_t guards(const drive_seq_t *seq, uint8_t picked)
+static uint32_t guards(const drive_seq_t *seq, uint8_t picked, bool blind_out)
 {
-    uint16_t g = 1u << G_ANY;
+    uint32_t g = 1ul << G_ANY;
     if (!seq->path->ready)
         g |= 1u << G_NOT_READY;
     else
@@ -235,6 +263,11 @@ static uint16_t guards(const drive_seq_t *seq, uint8_t picked)
             g |= 1u << G_FINAL_PLAST;
     }
     g |= seq->fix_failures <= seq->cfg.max_fix_failures ? 1u << G_FIX_RETRY : 1u << G_FIX_GIVE_UP;
+    if (blind_out)
+        g |= 1u << G_BLIND;
+    if (seq->state != DRIVE_ST_DONE && seq->state != DRIVE_ST_FAULT &&
+        seq->state != DRIVE_ST_STOPPED)
+        g |= 1ul << G_RUNNING;
     return g;
 }
 
@@ -244,7 +277,19 @@ void drive_seq_step(drive_seq_t *seq, const drive_seq_event_t *ev, drive_seq_out
 
     /* Effects of the event that guards look at. */
     uint8_t picked = PICK_NONE, e = (uint8_t)ev->type, st = (uint8_t)seq->state;
-    if ((e == DRIVE_EVT_POSE && (st == DRIVE_ST_F_START || st == DRIVE_ST_F_PREDICT)) ||
+    bool blind_out = false;
+    if ((e == DRIVE_EVT_START && st == DRIVE_ST_IDLE) ||
+        (e == DRIVE_EVT_FIX_READY && (st == DRIVE_ST_F_FIX || st == DRIVE_ST_S_FIX))) {
+        seq->blind = 0; /* the initial vector, or an accepted fix */
+        seq->blind_from = ev->pose;
+    }
+    if (e == DRIVE_EVT_POSE && (st == DRIVE_ST_F_START || st == DRIVE_ST_F_PREDICT)) {
+        blind_add(seq, &ev->pose);
+        blind_out = st == DRIVE_ST_F_PREDICT && seq->fix_failures > 0 &&
+                    seq->blind >= seq->cfg.blind_distance;
+    }
+    if ((e == DRIVE_EVT_POSE && (st == DRIVE_ST_F_START || st == DRIVE_ST_F_PREDICT) &&
+         !blind_out) ||
         (e == DRIVE_EVT_FIX_READY && st == DRIVE_ST_S_FIX))
         picked = pick(seq, &ev->pose);
     if (e == DRIVE_EVT_DELTA_S && seq->pulses_seen < 255u)
@@ -254,10 +299,10 @@ void drive_seq_step(drive_seq_t *seq, const drive_seq_event_t *ev, drive_seq_out
     if (e == DRIVE_EVT_FIX_READY)
         seq->fix_failures = 0;
 
-    uint16_t g = guards(seq, picked);
+    uint32_t g = guards(seq, picked, blind_out);
     const drive_seq_row_t *row = drive_seq_rows;
     while (!((row->state == st || row->state == DRIVE_ST_ANY) && row->event == e &&
-             ((g >> row->guard) & 1u))) {
+             ((g >> row->guard) & 1ul))) {
         if (++row == drive_seq_rows + DRIVE_SEQ_ROWS) {
             if (seq->ignored < UINT16_MAX)
                 seq->ignored++;
@@ -293,6 +338,10 @@ void drive_seq_step(drive_seq_t *seq, const drive_seq_event_t *ev, drive_seq_out
                      : row->guard == G_FIX_GIVE_UP ? DRIVE_FAULT_FIXES
                                                    : DRIVE_FAULT_SOLVE;
         out->status = seq->solve_status;
+    }
+    if (row->next == DRIVE_ST_STOPPED) {
+        seq->stop = e == DRIVE_EVT_STOP ? DRIVE_STOP_REQUEST : DRIVE_STOP_BLIND;
+        out->stop = seq->stop;
     }
     out->actions = (uint16_t)(act & PUBLIC_ACTIONS);
     if (row->next != SAME)

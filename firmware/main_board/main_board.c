@@ -15,9 +15,8 @@
 #include "hal/drive_port.h"
 #include "hal/edge.h"
 #include "hal/irq.h"
-#include "hal/link.h"
 #include "hal/signal.h"
-#include "link/linkmsg.h"
+#include "link/link.h"
 
 /* Waiting for the nav board: latches, the fix's acknowledgement, the pose. */
 #define LATCH_TIMEOUT_MS 100u
@@ -36,7 +35,7 @@ static struct {
     drive_ds_t ds;
     drive_path_t path;
     drive_seq_t seq;
-    linkmsg_rx_t rx;
+    link_t link;
     main_board_observer_t obs;
     main_board_stats_t stats;
     /* handlers -> main loop */
@@ -47,7 +46,7 @@ static struct {
     int8_t ack_status;
     uint8_t pose_in; /* POSE received */
     optical_pose_t pose;
-    uint8_t stop_in;
+    uint8_t stop_in; /* STOP received: its main_board_stop_t */
     /* the fix in progress */
     uint8_t fix_state;
     uint32_t fix_deadline;
@@ -120,36 +119,36 @@ static optical_pose_t *latched_at(uint16_t i)
     return (optical_pose_t *)(void *)((uint8_t *)mb.latched + i8 + (uint16_t)(i << 2));
 }
 
-static void on_frame(void *arg, const hal_link_frame_t *f)
+/* A message from the nav board (the link's receive interrupt). */
+static void on_msg(void *arg, const linkmsg_t *m)
 {
     (void)arg;
-    linkmsg_t m;
-    if (!linkmsg_rx_feed(&mb.rx, f, &m))
-        return;
-    switch (m.type) {
+    switch (m->type) {
     case LINKMSG_LATCH: {
-        uint16_t i = (uint16_t)(m.u.latch.seq - mb.latch_first);
-        if (mb.fix_state == FIX_WAIT_LATCHES && i < mb.n && m.u.latch.status == 0) {
+        uint16_t i = (uint16_t)(m->u.latch.seq - mb.latch_first);
+        if (mb.fix_state == FIX_WAIT_LATCHES && i < mb.n && m->u.latch.status == 0) {
             optical_pose_t *p = latched_at(i);
-            p->x = m.u.latch.pose.x;
-            p->y = m.u.latch.pose.y;
-            p->heading = m.u.latch.pose.heading;
+            p->x = m->u.latch.pose.x;
+            p->y = m->u.latch.pose.y;
+            p->heading = m->u.latch.pose.heading;
             mb.latch_have |= (uint16_t)(1u << i);
         }
         break;
     }
     case LINKMSG_FIX_ACK:
         mb.ack_in = 1;
-        mb.ack_status = m.u.fix_ack.status;
+        mb.ack_status = m->u.fix_ack.status;
         break;
     case LINKMSG_POSE:
-        mb.pose.x = m.u.pose.pose.x;
-        mb.pose.y = m.u.pose.pose.y;
-        mb.pose.heading = m.u.pose.pose.heading;
+        mb.pose.x = m->u.pose.pose.x;
+        mb.pose.y = m->u.pose.pose.y;
+        mb.pose.heading = m->u.pose.pose.heading;
         mb.pose_in = 1;
         break;
     case LINKMSG_STOP:
-        mb.stop_in = 1;
+        mb.stop_in = m->u.stop.reason == LINKMSG_STOP_REASON_MAIN_SILENT
+                         ? MAIN_BOARD_STOP_NAV_LINK_SILENT
+                         : MAIN_BOARD_STOP_BLIND_DISTANCE;
         break;
     default:
         return;
@@ -285,7 +284,7 @@ static void fix_start(void)
     m.type = LINKMSG_LATCH_REQ;
     m.u.latch_req.first = first;
     m.u.latch_req.count = (uint8_t)mb.n;
-    linkmsg_send(&m);
+    link_send(&mb.link, &m);
 }
 
 /* Rising edge of capture-order sighting i, counts after its revolution's index pulse. */
@@ -424,7 +423,7 @@ static void correct_nav(void)
     hal_critical_enter();
     mb.ack_in = 0;
     hal_critical_exit();
-    linkmsg_send(&m);
+    link_send(&mb.link, &m);
 }
 
 static void request_pose(void)
@@ -494,7 +493,7 @@ static __attribute__((noinline)) void execute(const drive_seq_out_t *out)
             linkmsg_t m;
             m.type = LINKMSG_DIR;
             m.u.dir.reverse = reverse;
-            linkmsg_send(&m);
+            link_send(&mb.link, &m);
             mb.reverse = reverse;
         }
         port(PORT_LOAD, &out->cmd, 0);
@@ -515,13 +514,30 @@ static __attribute__((noinline)) void execute(const drive_seq_out_t *out)
         optical_capture_start(&mb.cap);
     if (a & DRIVE_ACT_INDEX_OFF)
         optical_capture_stop(&mb.cap);
-    if (a & DRIVE_ACT_DONE)
+    if (a & DRIVE_ACT_DONE) {
         mb.stats.done = 1;
+        /* Short of the goal by the sequencer's own blind-distance stop (a stop asked for over
+         * the link has its reason already: stop_travel()). */
+        if (out->stop == DRIVE_STOP_BLIND && mb.stats.stop_reason == MAIN_BOARD_STOP_NONE) {
+            mb.stats.stop_reason = MAIN_BOARD_STOP_BLIND_DISTANCE;
+            link_set_stopped(&mb.link, 1);
+        }
+    }
     if (a & DRIVE_ACT_FAULT) {
         mb.stats.fault = 1;
         mb.stats.fault_why = (uint8_t)out->fault;
+        if (mb.stats.stop_reason == MAIN_BOARD_STOP_NONE)
+            mb.stats.stop_reason =
+                (uint8_t)(MAIN_BOARD_STOP_FAULT_NOT_READY + (out->fault - DRIVE_FAULT_NOT_READY));
+        link_set_stopped(&mb.link, 1);
     }
 }
+
+_Static_assert(MAIN_BOARD_STOP_FAULT_SOLVE - MAIN_BOARD_STOP_FAULT_NOT_READY ==
+                       DRIVE_FAULT_SOLVE - DRIVE_FAULT_NOT_READY &&
+                   MAIN_BOARD_STOP_FAULT_FIXES - MAIN_BOARD_STOP_FAULT_NOT_READY ==
+                       DRIVE_FAULT_FIXES - DRIVE_FAULT_NOT_READY,
+               "the fault stop reasons follow drive_fault_t");
 
 /* Step the queued events in order; an event's actions may queue one follow-up. */
 static void drain(void)
@@ -537,6 +553,18 @@ static void drain(void)
         if (mb.seq.state != before && mb.obs.on_state)
             mb.obs.on_state(mb.obs.ctx, mb.seq.state);
     }
+}
+
+/* Stop the travel for @p reason (main_board_stop_t) unless it has already ended. */
+static void stop_travel(uint8_t reason)
+{
+    if (mb.seq.state == DRIVE_ST_DONE || mb.seq.state == DRIVE_ST_FAULT ||
+        mb.seq.state == DRIVE_ST_STOPPED)
+        return;
+    mb.stats.stop_reason = reason;
+    link_set_stopped(&mb.link, 1);
+    post(DRIVE_EVT_STOP);
+    drain();
 }
 
 static bool due(uint32_t now, uint32_t deadline)
@@ -565,13 +593,17 @@ drive_status_t main_board_init(const main_board_config_t *cfg)
     hal_capture_init(HAL_CAPTURE_BEACON, on_edge, &mb.cap);
     mb.ds.count = 0;
     hal_edge_init(HAL_EDGE_DELTA_S, HAL_EDGE_RISING, on_ds, &mb.ds);
-    linkmsg_rx_init(&mb.rx);
-    hal_link_init(on_frame, 0);
     hal_signal_init(HAL_SIGNAL_COORD_REQUEST);
     hal_clock_init();
+    int rc = link_init(&mb.link, &cfg->link, on_msg, 0);
+    if (rc == LINK_E_CONFIG || rc == HAL_CAN_E_PARAM || rc == HAL_CAN_E_BITRATE)
+        return DRIVE_ERR_PARAM;
+    mb.stats.can_error = (int8_t)rc; /* the controller does not answer: no link */
     hal_drive_port_init();
     port(PORT_INIT, 0, 0);
 
+    if (cfg->pursuit)
+        return main_pursuit_init(cfg);
     drive_status_t st = drive_path_prepare(&mb.path, &cfg->start, cfg->path, cfg->n_path,
                                            &cfg->path_cfg, &cfg->board);
     drive_seq_init(&mb.seq, &mb.path, &cfg->seq_cfg);
@@ -585,12 +617,24 @@ const drive_path_t *main_board_path(void)
 
 void main_board_start(void)
 {
+    if (mb.cfg->pursuit) { /* the position receiver steers: no nav board needed */
+        main_pursuit_start();
+        return;
+    }
+    if (!link_up(&mb.link)) {
+        stop_travel(MAIN_BOARD_STOP_FAULT_CAN); /* no nav board to drive with */
+        return;
+    }
     post(DRIVE_EVT_START);
     drain();
 }
 
 void main_board_poll(void)
 {
+    if (mb.cfg->pursuit) {
+        main_pursuit_poll();
+        return;
+    }
     uint32_t now = hal_clock_ms();
 
     /* delta-S first: a double arc that ends loads the next at once (D1). */
@@ -610,11 +654,10 @@ void main_board_poll(void)
         post(DRIVE_EVT_INDEX);
         drain();
     }
-    if (stop) {
-        mb.stats.stop_requested = 1;
-        post(DRIVE_EVT_STOP);
-        drain();
-    }
+    if (link_poll(&mb.link) == LINK_EV_SILENT)
+        stop_travel(MAIN_BOARD_STOP_LINK_SILENT);
+    if (stop)
+        stop_travel(stop);
 
     if (mb.fix_state == FIX_WAIT_LATCHES) {
         uint16_t all = (uint16_t)((1u << mb.n) - 1u);
@@ -655,18 +698,44 @@ void main_board_set_observer(const main_board_observer_t *obs)
     if (obs)
         mb.obs = *obs;
     else
-        mb.obs = (main_board_observer_t){0, 0, 0, 0};
+        mb.obs = (main_board_observer_t){0};
 }
 
 void main_board_stats(main_board_stats_t *out)
 {
     hal_critical_enter();
     *out = mb.stats;
-    out->link_errors = mb.rx.errors;
+    out->link_errors = mb.link.rx.errors;
     hal_critical_exit();
+    if (mb.cfg && mb.cfg->pursuit)
+        out->done = main_pursuit_done();
+}
+
+void main_board_link_stats(link_stats_t *out)
+{
+    link_stats(&mb.link, out);
 }
 
 drive_state_t main_board_state(void)
 {
+    if (mb.cfg && mb.cfg->pursuit)
+        return main_pursuit_done() ? DRIVE_ST_DONE : DRIVE_ST_IDLE;
     return mb.seq.state;
+}
+
+void main_board_notify_pursuit(const main_pursuit_event_t *ev)
+{
+    if (mb.obs.on_pursuit)
+        mb.obs.on_pursuit(mb.obs.ctx, ev);
+}
+
+bool main_board_pose_take(optical_pose_t *out)
+{
+    hal_critical_enter();
+    bool in = mb.pose_in != 0;
+    if (in)
+        *out = mb.pose;
+    mb.pose_in = 0;
+    hal_critical_exit();
+    return in;
 }

@@ -23,6 +23,8 @@
 #include "drive/drive_cmd.h"
 #include "drive/drive_path.h"
 #include "drive/drive_seq.h"
+#include "link/link.h"
+#include "main_pursuit.h"
 #include "optical/optical.h"
 
 #ifdef __cplusplus
@@ -34,7 +36,7 @@ extern "C" {
 #define MAIN_BOARD_MAX_PATH 254
 
 /** What the board is told before a run (the base station's download, seed 5.1 step 1). */
-typedef struct {
+typedef struct main_board_config {
     optical_map_t map; /**< the beacon map, compiled (optical_map_compile) */
     /** Primary points with their speeds, prepared in place (the board writes each point's
      * nsub and reads the points while it drives): the storage must outlive the run, and
@@ -47,6 +49,10 @@ typedef struct {
     drive_seq_config_t seq_cfg;   /**< travel mode and its times */
     uint16_t counts_per_turn;     /**< goniometer angle clock per mirror turn */
     optical_config_t optical;     /**< identification and checking parameters */
+    link_config_t link;           /**< the board link (node LINKMSG_NODE_MAIN) */
+    /** Pursuit mode (seed 002's goal-point pursuit on the serial position receiver,
+     * main_pursuit.h) with its parameters, or NULL: the travel of seq_cfg.mode. */
+    const main_pursuit_config_t *pursuit;
 } main_board_config_t;
 
 /** One fix attempt, as the observer sees it. */
@@ -65,7 +71,30 @@ typedef struct {
     void (*on_fix)(void *ctx, const main_board_fix_event_t *ev);
     void (*on_load)(void *ctx, const drive_cmd_t *cmd);
     void (*on_state)(void *ctx, drive_state_t state);
+    /** Pursuit mode: every packet the receivers framed, and what became of it. */
+    void (*on_pursuit)(void *ctx, const main_pursuit_event_t *ev);
 } main_board_observer_t;
+
+/**
+ * Why the main board stopped the travel: X(name, report name), one list for the enum below and
+ * for agv-sim's report (its `stop_reason`): adding a reason is one line here and the code that
+ * stops with it.
+ */
+#define MAIN_BOARD_STOP_REASONS(X)                                                                 \
+    X(NONE, "")                           /* not stopped (or the goal reached) */                  \
+    X(BLIND_DISTANCE, "blind_distance")   /* the nav board: too far without a fix (G6) */          \
+    X(LINK_SILENT, "link_silent")         /* nothing heard from the nav board for silence_ms */    \
+    X(NAV_LINK_SILENT, "nav_link_silent") /* the nav board heard nothing from this board */        \
+    X(FAULT_NOT_READY, "fault:not_ready") /* the sequencer: started without a ready path */        \
+    X(FAULT_SOLVE, "fault:solve")         /* the sequencer: no double arc to the target */         \
+    X(FAULT_FIXES, "fault:fixes")         /* the sequencer: too many failed fixes in a row */      \
+    X(FAULT_CAN, "fault:can")             /* the CAN controller did not start: no link */
+
+#define MAIN_BOARD_STOP_ENUM(name, text) MAIN_BOARD_STOP_##name,
+typedef enum {
+    MAIN_BOARD_STOP_REASONS(MAIN_BOARD_STOP_ENUM) MAIN_BOARD_STOP_COUNT
+} main_board_stop_t;
+#undef MAIN_BOARD_STOP_ENUM
 
 /** Counters for diagnostics. */
 typedef struct {
@@ -76,16 +105,19 @@ typedef struct {
     uint16_t loads;          /**< double arcs loaded */
     uint16_t link_errors;
     uint8_t done, fault;
-    uint8_t fault_why;      /**< drive_fault_t */
-    uint8_t stop_requested; /**< the nav board asked for a stop (G6) */
+    uint8_t fault_why;   /**< drive_fault_t */
+    uint8_t stop_reason; /**< main_board_stop_t: why the travel stopped (NONE: it did not) */
+    int8_t can_error;    /**< hal_can_init()'s error when the controller did not start, else 0 */
 } main_board_stats_t;
 
 /**
- * Set the board up for @p cfg, kept by reference (RAM is 2 KB: on the target it is a
- * constant in flash): @p cfg and what it points to must outlive the run. Sets up capture
- * handlers, delta-S line, drive port, link, clock; prepares the
- * path. Interrupts stay disabled. Returns DRIVE_OK, or why the path or the
- * configuration is not acceptable (the board then refuses to start).
+ * Set the board up for @p cfg, kept by reference (on the target it is a constant in flash):
+ * @p cfg and what it points to must outlive the run. Sets up capture handlers, delta-S line,
+ * drive port, the link on CAN (cfg->link), clock; prepares the path. Interrupts stay disabled.
+ * Returns DRIVE_OK, or why the path or the configuration is not acceptable (DRIVE_ERR_PARAM
+ * also for a link configuration link_init() refuses; the board then refuses to start). A CAN
+ * controller that does not answer is no configuration error: the board comes up without its
+ * link (stats can_error), and main_board_start() stops the travel at once (fault:can).
  */
 drive_status_t main_board_init(const main_board_config_t *cfg);
 
@@ -103,6 +135,9 @@ void main_board_set_observer(const main_board_observer_t *obs);
 
 /** A copy of the counters. */
 void main_board_stats(main_board_stats_t *out);
+
+/** A copy of the link's counters (with the CAN controller's). */
+void main_board_link_stats(link_stats_t *out);
 
 /** The travel sequencer's state. */
 drive_state_t main_board_state(void);

@@ -27,9 +27,11 @@ static const main_board_config_t cfg = {
     .start = MISSION_START,
     .board = DRIVE_BOARD_SEED_WITH(MISSION_WHEELBASE, MISSION_MIN_RADIUS),
     .path_cfg = MISSION_PATH_CONFIG(MISSION_MIN_RADIUS),
-    .seq_cfg = MISSION_SEQ_CONFIG(MISSION_FULL_TRAVEL ? DRIVE_MODE_FULL : DRIVE_MODE_SIMPLIFIED),
+    .seq_cfg = MISSION_SEQ_CONFIG(MISSION_FULL_TRAVEL ? DRIVE_MODE_FULL : DRIVE_MODE_SIMPLIFIED,
+                                  MISSION_BLIND_DISTANCE),
     .counts_per_turn = MISSION_COUNTS,
     .optical = OPTICAL_CONFIG(MISSION_GONIO_NOISE, MISSION_GYRO_STEP),
+    .link = MISSION_LINK_CONFIG(LINKMSG_NODE_MAIN),
 };
 
 int main(void)
@@ -38,6 +40,10 @@ int main(void)
     if (main_board_init(&cfg) != DRIVE_OK)
         hal_fault(HAL_FAULT_BAD_ARGUMENT);
     hal_console_puts("cyclopion main board: " MISSION_NAME "\r\n");
+    main_board_stats_t st;
+    main_board_stats(&st);
+    if (st.can_error != 0)
+        hal_console_puts("CAN controller does not answer: no board link, no travel\r\n");
     hal_irq_enable();
     main_board_start();
     for (;;) {

@@ -5,11 +5,9 @@
 
 #include "hal/cpu.h"
 #include "hal/irq.h"
-#include "hal/link.h"
-#include "link/linkmsg.h"
 
 static gnav_t g;
-static linkmsg_rx_t rx;
+static link_t nav_link;
 static nav_board_stats_t stats;
 
 /* Mailboxes from the handlers to the main loop (guarded by critical sections). */
@@ -20,15 +18,16 @@ static linkmsg_t fix_msg;
 static uint8_t latch_pending;
 static uint16_t latch_first;
 static uint8_t latch_count;
-static uint8_t stop_pending;
-static uint16_t send_first; /* latches still to send */
+static uint8_t stop_pending; /* the blind distance was reached (G6) */
+static uint8_t stop_want;    /* stop requests still to send: bit (reason - 1) */
+static uint16_t send_first;  /* latches still to send */
 static uint8_t send_left;
 
-/* Coordinate request (NMI): gnav copied a consistent pose into g.coord; answer it from the
- * main loop, where sending cannot collide with another sender (an NMI is not held off). */
-static void on_coord(const gnav_pose_t *pose, void *ctx)
+/* Coordinate request (NMI): gnav took a consistent pose; answer it from the main loop, where
+ * converting it (gnav_coord multiplies) and sending cannot collide with anything (an NMI is
+ * not held off). */
+static void on_coord(void *ctx)
 {
-    (void)pose;
     (void)ctx;
     coord_pending = 1;
     hal_cpu_wake();
@@ -41,24 +40,22 @@ static void on_stop(void *ctx)
     hal_cpu_wake();
 }
 
-static void on_frame(void *arg, const hal_link_frame_t *f)
+/* A message from the main board (the link's receive interrupt). */
+static void on_msg(void *arg, const linkmsg_t *m)
 {
     (void)arg;
-    linkmsg_t m;
-    if (!linkmsg_rx_feed(&rx, f, &m))
-        return;
-    switch (m.type) {
+    switch (m->type) {
     case LINKMSG_FIX:
-        fix_msg = m; /* a newer fix replaces one not yet applied */
+        fix_msg = *m; /* a newer fix replaces one not yet applied */
         fix_pending = 1;
         break;
     case LINKMSG_LATCH_REQ:
-        latch_first = m.u.latch_req.first;
-        latch_count = m.u.latch_req.count;
+        latch_first = m->u.latch_req.first;
+        latch_count = m->u.latch_req.count;
         latch_pending = 1;
         break;
     case LINKMSG_DIR:
-        gnav_set_reverse(&g, m.u.dir.reverse != 0);
+        gnav_set_reverse(&g, m->u.dir.reverse != 0);
         break;
     default:
         return;
@@ -75,8 +72,10 @@ int nav_board_init(const nav_board_config_t *cfg)
     gnav_set_stop_callback(&g, on_stop, 0);
     if (gnav_attach(&g) != 0)
         return GNAV_ERR_NULL;
-    linkmsg_rx_init(&rx);
-    hal_link_init(on_frame, 0);
+    rc = link_init(&nav_link, &cfg->link, on_msg, 0);
+    if (rc == LINK_E_CONFIG || rc == HAL_CAN_E_PARAM || rc == HAL_CAN_E_BITRATE)
+        return NAV_BOARD_E_LINK;
+    stats.can_error = (int8_t)rc; /* the controller does not answer: no link */
     return 0;
 }
 
@@ -88,7 +87,7 @@ static void send_pose(const gnav_pose_t *p, uint8_t request)
     m.u.pose.pose.y = p->y;
     m.u.pose.pose.heading = p->heading;
     m.u.pose.request = request;
-    linkmsg_send(&m);
+    link_send(&nav_link, &m);
 }
 
 void nav_board_poll(void)
@@ -123,9 +122,9 @@ void nav_board_poll(void)
     /*
      * Latches brought into the current frame, so that one revolution's latches are comparable
      * even when a fix was applied in its middle; as many as the link takes now, the rest on
-     * the next passes (15 latches are 30 frames: more than the UART's queue holds).
+     * the next passes (15 latches are 30 frames: more than the CAN transmit queue holds).
      */
-    while (send_left) {
+    while (send_left && link_tx_room(&nav_link) >= 2) {
         gnav_latch_t l;
         int rc = gnav_latch_read(&g, send_first, &l);
         m.type = LINKMSG_LATCH;
@@ -134,7 +133,7 @@ void nav_board_poll(void)
         m.u.latch.pose.x = rc == GNAV_OK ? l.pose.x : 0;
         m.u.latch.pose.y = rc == GNAV_OK ? l.pose.y : 0;
         m.u.latch.pose.heading = rc == GNAV_OK ? l.pose.heading : 0;
-        if (linkmsg_send(&m) != 0)
+        if (link_send(&nav_link, &m) != 0)
             break;
         stats.latches_sent++;
         send_first++;
@@ -161,14 +160,26 @@ void nav_board_poll(void)
         m.type = LINKMSG_FIX_ACK;
         m.u.fix_ack.status = (int8_t)rc;
         m.u.fix_ack.latch = fix.u.fix.latch;
-        linkmsg_send(&m);
+        link_send(&nav_link, &m);
     }
 
-    if (stop && !stats.stop_sent) {
+    if (stop)
+        stop_want |= 1u << (LINKMSG_STOP_REASON_BLIND_DISTANCE - 1);
+    if (link_poll(&nav_link) == LINK_EV_SILENT)
+        stop_want |= 1u << (LINKMSG_STOP_REASON_MAIN_SILENT - 1);
+    /* Each reason asked once; a request the link cannot take now goes on a later pass. */
+    static const uint8_t reasons[] = {LINKMSG_STOP_REASON_BLIND_DISTANCE,
+                                      LINKMSG_STOP_REASON_MAIN_SILENT};
+    for (uint8_t i = 0; i < sizeof reasons; i++) {
+        uint8_t reason = reasons[i], bit = (uint8_t)(1u << (reason - 1u));
+        if (!(stop_want & bit) || (stats.stop_sent & bit))
+            continue;
         m.type = LINKMSG_STOP;
-        m.u.stop.reason = 1;
-        linkmsg_send(&m);
-        stats.stop_sent = 1;
+        m.u.stop.reason = reason;
+        if (link_send(&nav_link, &m) == 0) {
+            stats.stop_sent |= bit;
+            link_set_stopped(&nav_link, 1);
+        }
     }
 }
 
@@ -181,6 +192,11 @@ void nav_board_stats(nav_board_stats_t *out)
 {
     hal_critical_enter();
     *out = stats;
-    out->link_errors = rx.errors;
+    out->link_errors = nav_link.rx.errors;
     hal_critical_exit();
+}
+
+void nav_board_link_stats(link_stats_t *out)
+{
+    link_stats(&nav_link, out);
 }

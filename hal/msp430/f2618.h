@@ -34,6 +34,7 @@
 #define UCA0TXIFG 0x02u /* IFG2 */
 #define UCA1RXIE  0x01u /* UC1IE */
 #define UCA1TXIE  0x02u /* UC1IE */
+#define UCA1RXIFG 0x01u /* UC1IFG */
 
 /* Watchdog timer+ */
 #define WDTCTL   CY_REG16(0x0120)
@@ -94,15 +95,34 @@
 #define UCA0MCTL  CY_REG8(0x0064)
 #define UCA0STAT  CY_REG8(0x0065)
 #define UCA0TXBUF CY_REG8(0x0067)
+#define UCA1CTL0  CY_REG8(0x00D0)
 #define UCA1CTL1  CY_REG8(0x00D1)
 #define UCA1BR0   CY_REG8(0x00D2)
 #define UCA1BR1   CY_REG8(0x00D3)
 #define UCA1MCTL  CY_REG8(0x00D4)
+#define UCA1STAT  CY_REG8(0x00D5)
 #define UCA1RXBUF CY_REG8(0x00D6)
 #define UCA1TXBUF CY_REG8(0x00D7)
 #define UCSSEL_2  0x80u /* UCAxCTL1: BRCLK = SMCLK */
 #define UCSWRST   0x01u /* UCAxCTL1 */
 #define UCBUSY    0x01u /* UCAxSTAT */
+#define UCRXERR   0x04u /* UCAxSTAT: framing, parity or overrun error */
+#define UCOE      0x20u /* UCAxSTAT: overrun */
+
+/* USCI_B0 in SPI mode (the MCP2515, hal/msp430/spi_usci_b0.c); UCB0CTL1 has UCAxCTL1's
+ * UCSSEL_2 and UCSWRST */
+#define UCB0CTL0  CY_REG8(0x0068)
+#define UCB0CTL1  CY_REG8(0x0069)
+#define UCB0BR0   CY_REG8(0x006A)
+#define UCB0BR1   CY_REG8(0x006B)
+#define UCB0RXBUF CY_REG8(0x006E)
+#define UCB0TXBUF CY_REG8(0x006F)
+#define UCCKPH    0x80u /* UCBxCTL0: data captured on the first UCLK edge */
+#define UCCKPL    0x40u /* UCBxCTL0: clock inactive high */
+#define UCMSB     0x20u /* UCBxCTL0: MSB first */
+#define UCMST     0x08u /* UCBxCTL0: master */
+#define UCSYNC    0x01u /* UCBxCTL0: synchronous mode (UCMODEx = 00b: 3-pin SPI) */
+#define UCB0RXIFG 0x04u /* IFG2 */
 
 /* Timer_A3 */
 #define TAIV        CY_REG16(0x012E)

@@ -78,8 +78,9 @@ void posix_reset(void)
     preempt_ctx = NULL;
     hal_preempt_armed = 0;
     posix_console_redirect(NULL, NULL);
-    posix_link_reset();
+    posix_can_reset();
     posix_clock_signal_reset();
+    posix_uart_reset();
 }
 
 int posix_board_create(const char *name)

@@ -29,6 +29,31 @@ def main():
                                            "heading_deg": 0, "speed_mps": 1}),
             "path[0]")
     variant("too many points", lambda s: s.__setitem__("path", s["path"] * 6), "path")
+    # The board link: what its schema cannot say (sim/canbus.c).
+    variant("bit time not whole ns", lambda s: s.__setitem__("link", {"bitrate_bps": 300000}),
+            "link.bitrate_bps: 300000")
+    variant("silence within a heartbeat",
+            lambda s: s.__setitem__("link", {"heartbeat_ms": 100, "silence_ms": 100}),
+            "link.silence_ms: 100 ms")
+    variant("busoff of any node",
+            lambda s: s.__setitem__("link", {"faults": [{"kind": "busoff", "at_s": 1}]}),
+            "link.faults[0].node")
+    variant("no such frame",
+            lambda s: s.__setitem__("link", {"faults": [{"kind": "drop", "at_s": 1,
+                                                         "frame": "FIX_C"}]}),
+            "link.faults[0].frame: \"FIX_C\" is not a frame of firmware/link/cyclopion.dbc")
+    variant("frame of a babble",
+            lambda s: s.__setitem__("link", {"faults": [{"kind": "babble", "at_s": 1,
+                                                         "frame": "FIX_A"}]}),
+            "link.faults[0].frame")
+    variant("two babblers",
+            lambda s: s.__setitem__("link", {"faults": [{"kind": "babble", "at_s": 1},
+                                                        {"kind": "babble", "at_s": 2}]}),
+            "link.faults[1]")
+    variant("babble of no duration",
+            lambda s: s.__setitem__("link", {"faults": [{"kind": "babble", "at_s": 1,
+                                                         "duration_s": 0}]}),
+            "link.faults[0].duration_s")
     cases.append(("not json", "{ this is not json", "line 1"))
     failures = 0
     with tempfile.TemporaryDirectory() as tmp:
@@ -41,6 +66,9 @@ def main():
             print(f"{'ok ' if ok else 'BAD'} {name}: exit {r.returncode}: {r.stderr.strip()[:160]}")
             failures += not ok
         for args, expect in ((["--scenario", "/nonexistent.json"], "/nonexistent.json"),
+                             (["--scenario", good, "--candump", "/nonexistent/dir/x.log"],
+                              "--candump: cannot write /nonexistent/dir/x.log"),
+                             (["--scenario", good, "--can", "no_such_can9"], "--can no_such_can9"),
                              (["--seed", "x", "--scenario", good], "--seed"),
                              ([], "--scenario is required"),
                              (["--scenario", good, "extra"], "unexpected argument")):

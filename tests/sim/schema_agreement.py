@@ -111,13 +111,31 @@ def main():
         errs = [e.message for e in validator.iter_errors(docs[sc])]
         print(f"{'ok ' if not errs else 'BAD'} {os.path.basename(sc)} follows the schema {errs}")
         failures += bool(errs)
-    # Mutate the richest scenario (it has every optional array).
-    base = max(docs.values(), key=lambda d: len(json.dumps(d)))
+    # Mutate the richest scenario: the one with the most distinct keys (it has every optional
+    # object and array), the longest of those.
+    def keys(d, path=""):
+        if isinstance(d, dict):
+            for k, v in d.items():
+                yield path + "." + k
+                yield from keys(v, path + "." + k)
+        elif isinstance(d, list):
+            for v in d:
+                yield from keys(v, path + "[]")
+
+    base = max(docs.values(), key=lambda d: (len(set(keys(d))), len(json.dumps(d))))
     base = copy.deepcopy(base)
     base.setdefault("start_error", {"x": 0.0, "y": 0.0, "heading_deg": 0.0})
     base.setdefault("success", {})
     base["path"][0].setdefault("speed_mps", 1.0)
     base["spurious"][0].setdefault("width_deg", 0.02)
+    base.setdefault("link", {"bus": "can", "bitrate_bps": 250000, "heartbeat_ms": 50,
+                             "silence_ms": 250,
+                             "faults": [{"kind": "delay", "at_s": 1.0, "duration_s": 1.0,
+                                         "node": "any", "frame": "FIX_B", "count": 1,
+                                         "delay_ms": 1.0, "id": 0, "len": 8, "period_ms": 0}]})
+    # One of each optional array no shipped scenario needs (the disturbances).
+    base.setdefault("pillars", [{"x": 500.0, "y": 500.0, "diameter_m": 0.3}])
+    base["sensors"]["goniometer"].setdefault("dropouts", [{"t_s": 1000.0, "duration_s": 1.0}])
     checked = 0
     with tempfile.TemporaryDirectory() as tmp:
         for path, node, required in leaves(schemas["scenario"], [], True):

@@ -14,10 +14,12 @@ total exceeds --budget bytes.
 """
 import argparse
 import os
-import re
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from linkmap import flash_by_object  # noqa: E402
 
 # An MSP430F2618-like map with more flash than the part has below 64 KB (the RAM moved down
 # to make room): room for any image, so the link does not stop at the budget this script is
@@ -31,27 +33,6 @@ LAYOUT = """MEMORY
 CY_STACK_RESERVE = 384;
 INCLUDE f2618_sections.ld
 """
-
-FLASH_OUTPUTS = (".text", ".rodata", ".data")
-# "VMA LMA Size Align Out In Symbol": an output section line has 5 fields, an input section
-# line has "file(member):(section)" as the fifth.
-LINE_RE = re.compile(r"^\s*([0-9a-f]+)\s+([0-9a-f]+)\s+([0-9a-f]+)\s+\d+\s+(\S+)\s*$")
-
-
-def flash_by_object(map_text):
-    """{object: bytes} of the input sections in the flash output sections."""
-    sizes, out = {}, None
-    for line in map_text.splitlines():
-        m = LINE_RE.match(line)
-        if not m:
-            continue
-        name = m.group(4)
-        if name.startswith("."):
-            out = name
-        elif ":(" in name and out in FLASH_OUTPUTS:
-            obj = name.split(":(", 1)[0]
-            sizes[obj] = sizes.get(obj, 0) + int(m.group(3), 16)
-    return sizes
 
 
 def main():

@@ -32,9 +32,7 @@ WIRING = {
     "Timer_A3 TACCR1-2 TAIFG": "hal_isr_timera1",  # photodetector (CCI1A, P1.2)
     "Timer_B7 TBCCR0": "hal_isr_timerb0",          # the millisecond clock
     "I/O port P1": "hal_isr_port1",                # nav-board pulse inputs P1.4-P1.7
-    "I/O port P2": "hal_isr_port2",                # delta-S (P2.0)
-    "USCI_A1/B1 receive": "hal_isr_link_rx",       # board link (USCI_A1)
-    "USCI_A1/B1 transmit": "hal_isr_link_tx",
+    "I/O port P2": "hal_isr_port2",                # delta-S (P2.0), the MCP2515's /INT (P2.2)
     "NMI": "hal_isr_nmi",                          # coordinate request (RST/NMI pin)
 }
 

@@ -1,6 +1,6 @@
 /*
  * mspabi_test.c - every run-time helper of hal/msp430/mspabi.c on the target, against
- * values the host computes (tools/checks/mspabi.py recomputes each printed line with Python
+ * values the host computes (tests/target/mspabi_check.py recomputes each printed line with Python
  * integers): edge cases (0, +-1, min, max, powers of two, division by zero) crossed with each
  * other, then thousands of random operand pairs.
  *

@@ -19,8 +19,8 @@ gpio devices and a tracer recording every register write. Checks:
     cycle (hal_drive_port_write) when one comes first, is the board's column (in the main
     loop the bus lines then show the last cycle's levels: only their function and direction
     are compared there).
-The write-by-write check ends at the first bus cycle: /WR pulses from then on are bus
-cycles. The state of a pin is what SLAS541's table
+The write-by-write check ends at the first bus cycle, of the drive port or of the SPI bus to
+the MCP2515 (hal_spi_transfer): /WR and /CS pulses from then on are bus cycles. The state of a pin is what SLAS541's table
 names for its PxSEL/PxDIR bits (e.g. P1.1 with SEL = 1, DIR = 0: Timer_A3.CCI0A).
 """
 import argparse
@@ -146,6 +146,8 @@ def run_board(elf, board, preset, plan, functions, log=None):
         stops = {syms[init_sym]: "startup", syms[loop_sym]: "loop", syms["cy_halt"]: "halt"}
         if "hal_drive_port_write" in syms:
             stops[syms["hal_drive_port_write"]] = "bus"
+        if "hal_spi_transfer" in syms:
+            stops[syms["hal_spi_transfer"]] = "spi"
         for a in stops:
             sim.cmd(f"setbreak 0x{a:04x}")
         seen, trace = {}, None
@@ -157,7 +159,7 @@ def run_board(elf, board, preset, plan, functions, log=None):
                 raise msp430sim.SimError(f"stopped at 0x{pc or 0:04x} ({what or 'no stop'}) "
                                          f"before {loop_sym}")
             seen.setdefault(what, states(port_dump(sim), functions))
-            if what in ("bus", "loop") and trace is None:
+            if what in ("bus", "spi", "loop") and trace is None:
                 trace = sim.cmd("simio info pins", check=False, timeout=120)
         events = [msp430sim.TRACE_RE.match(l) for l in trace]
         events = [(m.group(2), int(m.group(4), 16), int(m.group(5) or "0", 16))

@@ -31,7 +31,7 @@ def block(readme):
     if MARK not in text:
         raise SystemExit(f"{readme}: no `{MARK}`")
     body = text.split(MARK, 1)[1].split("```", 2)[1]
-    lines = [l for l in body.splitlines() if l.strip()]
+    lines = [l for l in body.splitlines()[1:] if l.strip()]  # after the info string
     shell = [l[2:] for l in lines if l.startswith("$ ")]
     cmds = [l[len("(mspdebug) "):] for l in lines if l.startswith("(mspdebug) ")]
     if len(shell) != 1 or len(cmds) + 1 != len(lines):

@@ -239,6 +239,72 @@ class Errors(unittest.TestCase):
         # the main line may use it; without the option nothing is reported
         self.assertEqual(sb.report(image(text), vectors, 1000, None)["errors"], [])
 
+    # The nav board's coordinate request before issue 18: the NMI handler converted the pose
+    # to metres, through q4_to_m and the compiler's multiply helper (which holds interrupts
+    # off with DINT: no help against an NMI). --no-mpy-in-nmi names the helper and the path;
+    # the same code in a maskable handler is no NMI finding.
+    NMI_MULTIPLIES = """
+00001000 <reset>:
+    1000:      	mov	#2560, r1
+    1004:      	jmp	$+0
+
+00001100 <nmi>:
+    1100:      	call	#4608
+    1104:      	reti
+
+00001200 <coord_request>:
+    1200:      	call	#4864
+    1204:      	ret
+
+00001300 <q4_to_m>:
+    1300:      	call	#5120
+    1304:      	ret
+
+00001400 <__mspabi_mpyl_hw>:
+    1400:      	push	r2
+    1402:      	dint
+    1404:      	mov	r12, &304
+    1408:      	mov	r14, &312
+    140c:      	mov	&314, r12
+    1410:      	pop	r2
+    1412:      	ret
+
+00001500 <copy_only>:
+    1500:      	mov	@r12+, r13
+    1502:      	ret
+
+00001600 <isr>:
+    1600:      	call	#4608
+    1604:      	reti
+"""
+
+    def test_nmi_reaching_a_multiply_helper_is_reported_with_its_path(self):
+        vectors = {sb.RESET_VECTOR: "reset", sb.NMI_VECTOR: "nmi", 18: "isr"}
+        r = sb.report(image(self.NMI_MULTIPLIES), vectors, 1000, None, no_mpy_in_nmi=True)
+        self.assertEqual(r["errors"], [
+            "the NMI handler nmi reaches the multiply helper __mspabi_mpyl_hw: "
+            "nmi > coord_request > q4_to_m > __mspabi_mpyl_hw"])
+        # without the option, or with the maskable handler alone reaching it: nothing
+        self.assertEqual(sb.report(image(self.NMI_MULTIPLIES), vectors, 1000, None)["errors"], [])
+        no_nmi = {sb.RESET_VECTOR: "reset", 18: "isr"}
+        self.assertEqual(sb.report(image(self.NMI_MULTIPLIES), no_nmi, 1000, None,
+                                   no_mpy_in_nmi=True)["errors"], [])
+
+    def test_nmi_naming_a_multiplier_register_is_reported(self):
+        text = self.NMI_MULTIPLIES.replace("    1100:      	call	#4608\n",
+                                           "    1100:      	mov	r12, &306\n")
+        vectors = {sb.RESET_VECTOR: "reset", sb.NMI_VECTOR: "nmi"}
+        r = sb.report(image(text), vectors, 1000, None, no_mpy_in_nmi=True)
+        self.assertEqual(r["errors"], ["the NMI handler nmi reaches the hardware multiplier: "
+                                       "nmi 1100: mov r12, &306: nmi"])
+
+    def test_nmi_that_only_copies_passes(self):
+        text = self.NMI_MULTIPLIES.replace("    1100:      	call	#4608\n",
+                                           "    1100:      	call	#5376\n")
+        vectors = {sb.RESET_VECTOR: "reset", sb.NMI_VECTOR: "nmi", 18: "isr"}
+        self.assertEqual(sb.report(image(text), vectors, 1000, None, no_mpy_in_nmi=True,
+                                   no_mpy_in_isr=False)["errors"], [])
+
     def test_noreturn_call_does_not_fall_into_the_next_function(self):
         text = """
 00001000 <f>:

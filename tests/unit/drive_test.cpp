@@ -1420,6 +1420,15 @@ struct World {
     } arc[2] = {};
     int cur = 2;
     bool index_on = false, reverse = false, fail_fixes = false;
+    double odo = 0;                        // rear-axle travel so far, m
+    double fail_from = 1e9, fail_to = 1e9; // fixes fail while odo is in [fail_from, fail_to)
+    struct Load {
+        double odo, blind; // odo at the load, and since the last accepted fix
+        int counts;        // its speed
+    };
+    std::vector<Load> load_log;
+    double stop_odo = -1; // odo when the sequencer stopped the vehicle
+    double fix_odo = 0;   // odo at the last accepted fix (the start first)
     double next_index = 0.5, t_fix = -1, t_pose = -1, t_timer = -1, pose_ms = 0;
     std::vector<double> pulses;       // pending delta-S times
     std::vector<Pose> stops;          // where STOP left the vehicle
@@ -1499,6 +1508,7 @@ struct World {
             Arc &a = arc[cur];
             double step = std::min(ds, a.left);
             pose = follow(pose, {{a.k, step}}, v < 0);
+            odo += step;
             a.left -= step;
             ds -= step;
             if (!a.pulse && a.left <= margin) {
@@ -1553,6 +1563,8 @@ struct World {
             drive_ppi_speed(0, &s);
             send(s);
             stops.push_back(pose);
+            if (seq.state == DRIVE_ST_STOPPED && stop_odo < 0)
+                stop_odo = odo;
         }
         if (out.actions & DRIVE_ACT_REQUEST_FIX)
             t_fix = t + 0.017;
@@ -1563,6 +1575,7 @@ struct World {
         if (out.actions & DRIVE_ACT_LOAD) {
             drive_ppi_load(&out.cmd, &s);
             send(s);
+            load_log.push_back({odo, odo - fix_odo, out.cmd.speed});
         }
         if (out.actions & DRIVE_ACT_SET_SPEED) {
             drive_ppi_speed(out.speed, &s);
@@ -1585,7 +1598,7 @@ struct World {
         }
     }
 
-    // Run until done, a fault or the time limit.
+    // Run until done (or stopped), a fault or the time limit.
     void run(double limit)
     {
         drive_wseq_t s;
@@ -1610,7 +1623,10 @@ struct World {
             }
             if (t_fix >= 0 && t >= t_fix) {
                 t_fix = -1;
-                step(fail_fixes ? DRIVE_EVT_FIX_FAILED : DRIVE_EVT_FIX_READY, pose);
+                bool fail = fail_fixes || (odo >= fail_from && odo < fail_to);
+                if (!fail)
+                    fix_odo = odo;
+                step(fail ? DRIVE_EVT_FIX_FAILED : DRIVE_EVT_FIX_READY, pose);
             }
             if (t_pose >= 0 && t >= t_pose) {
                 t_pose = -1;
@@ -1644,9 +1660,15 @@ std::vector<Pose> nominal_of(drive_path_t *path)
     return v;
 }
 
-drive_seq_config_t seq_cfg(drive_mode_t mode)
+drive_seq_config_t seq_cfg(drive_mode_t mode, double blind = 8.0)
 {
-    return {mode, 35, 50, fx_q16_from_double(0.15), fx_q16_from_double(0.4), 3};
+    return {mode,
+            35,
+            50,
+            fx_q16_from_double(0.15),
+            fx_q16_from_double(0.4),
+            3,
+            fx_q16_from_double(blind)};
 }
 
 } // namespace
@@ -1802,17 +1824,18 @@ TEST(DriveSeq, RejectedPathFixFailuresAndSpuriousEvents)
     EXPECT_EQ(out.fault, DRIVE_FAULT_NOT_READY);
     EXPECT_EQ(seq.state, DRIVE_ST_FAULT);
 
-    // Every fix fails: dead reckoning carries the run for max_fix_failures, then it stops.
+    // Simplified travel, every fix fails: it retries max_fix_failures times, then faults.
     pts = seed_path(0.5, &start);
     ASSERT_EQ(drive_path_prepare(&path, &start, pts.data(), (uint8_t)pts.size(), &cfg, &kSeedBoard),
               DRIVE_OK);
     World w;
-    w.begin(&path, start, sc);
+    drive_seq_config_t simple = seq_cfg(DRIVE_MODE_SIMPLIFIED);
+    w.begin(&path, start, simple);
     w.fail_fixes = true;
     w.run(60);
     EXPECT_TRUE(w.fault);
     EXPECT_EQ(w.fault_why, DRIVE_FAULT_FIXES);
-    EXPECT_TRUE(w.braking || w.v == 0.0);
+    EXPECT_EQ(w.seq.loads, 0u);
 
     // Events that have no row in the current state are ignored: nothing happens.
     uint16_t nrows;
@@ -1877,14 +1900,19 @@ TEST(DriveSeq, RejectedPathFixFailuresAndSpuriousEvents)
     EXPECT_TRUE(z.done);
     EXPECT_GT(injected, 100);
 
-    // A stop request ends any running state.
+    // A stop request ends any running state, and is ignored once the travel has ended.
     drive_seq_init(&seq, &path, &sc);
     ev = {DRIVE_EVT_START, start};
     drive_seq_step(&seq, &ev, &out);
     ev.type = DRIVE_EVT_STOP;
     drive_seq_step(&seq, &ev, &out);
     EXPECT_EQ(out.actions, DRIVE_ACT_STOP | DRIVE_ACT_DONE);
-    EXPECT_EQ(seq.state, DRIVE_ST_DONE);
+    EXPECT_EQ(out.stop, DRIVE_STOP_REQUEST);
+    EXPECT_EQ(seq.state, DRIVE_ST_STOPPED);
+    uint16_t ignored = seq.ignored;
+    drive_seq_step(&seq, &ev, &out);
+    EXPECT_EQ(out.actions, 0);
+    EXPECT_EQ(seq.ignored, ignored + 1);
 }
 
 // D7 in the stopping routine: when the last double arc's second arc is too short for a
@@ -1910,6 +1938,146 @@ TEST(DriveSeq, ShortSecondArcStopsAtTheOnlyPulse)
     double miss = std::hypot(w.pose.x - end.x, w.pose.y - end.y);
     std::printf("short second arc: stopped %.1f mm from the point\n", miss * 1e3);
     EXPECT_LT(miss, 0.01);
+}
+
+// The speed law of blind travel against its formula in double precision: speed * clamp(5/4 -
+// blind / limit, 1/4, 1), never below the board's one speed count unless the path's speed is.
+TEST(DriveSeq, BlindSpeedLawIsItsFormula)
+{
+    auto q = [](double v) { return fx_q16_from_double(v); };
+    const fx_q16_t lsb = kSeedBoard.speed_lsb;
+    const double lsb_m = fx_q16_to_double(lsb);
+    std::mt19937_64 rng(16);
+    std::uniform_real_distribution<double> u(0, 1);
+    double worst = 0;
+    for (int i = 0; i < 200000; i++) {
+        double speed = u(rng) * 2.2, limit = 0.2 + u(rng) * 60, b = u(rng) * 1.5 * limit;
+        if (i % 8 == 0)
+            b = limit * (i % 48) / 32.0; // on and around the breakpoints
+        fx_q16_t vs = q(speed), bs = q(b), ls = q(limit);
+        double f = std::clamp(1.25 - fx_q16_to_double(bs) / fx_q16_to_double(ls), 0.25, 1.0);
+        double v = fx_q16_to_double(vs);
+        double want = std::max(v * f, std::min(v, lsb_m));
+        double got = fx_q16_to_double(drive_blind_speed(vs, bs, ls, lsb));
+        worst = std::max(worst, std::fabs(got - want) * 65536);
+        // The factor is rounded to 2^-16 (up to 2.2 LSB of the speed), the product to 1/2 LSB.
+        ASSERT_LE(std::fabs(got - want) * 65536, 3.0)
+            << "speed " << speed << " blind " << b << " limit " << limit;
+    }
+    std::printf("blind speed law: worst difference from the formula %.2f LSB\n", worst);
+    EXPECT_EQ(drive_blind_speed(q(1), q(2), q(8), lsb), q(1));       // full up to a quarter
+    EXPECT_EQ(drive_blind_speed(q(1), q(4), q(8), lsb), q(0.75));    // 5/4 - 1/2
+    EXPECT_EQ(drive_blind_speed(q(1), q(8), q(8), lsb), q(0.25));    // a quarter at the limit
+    EXPECT_EQ(drive_blind_speed(q(1), q(800), q(8), lsb), q(0.25));  // and beyond
+    EXPECT_EQ(drive_blind_speed(q(1), 0, 0, lsb), q(0.25));          // no blind distance
+    EXPECT_EQ(drive_blind_speed(q(0.04), q(8), q(8), lsb), lsb);     // not below one count...
+    EXPECT_EQ(drive_blind_speed(q(0.01), q(8), q(8), lsb), q(0.01)); // ...unless the path is
+}
+
+namespace
+{
+
+// A straight route of 30 m at 1 m/s in full travel (points every 10 m).
+drive_status_t straight_route(drive_path_t *path, std::vector<drive_path_point_t> *pts,
+                              drive_pose_t *start)
+{
+    *start = to_fx({0, 0, 0});
+    *pts = {{to_fx({10, 0, 0}), fx_q16_from_double(1.0), 0},
+            {to_fx({20, 0, 0}), fx_q16_from_double(1.0), 0},
+            {to_fx({30, 0, 0}), fx_q16_from_double(1.0), 0}};
+    drive_path_config_t cfg = path_cfg(0.5, 0.8, false);
+    return drive_path_prepare(path, start, pts->data(), (uint8_t)pts->size(), &cfg, &kSeedBoard);
+}
+
+// The speed counts the law gives @p blind metres after the last fix at 1 m/s (the World's own
+// odometer, a reference independent of the sequencer's chords).
+int law_counts(double blind, double limit)
+{
+    double v = std::clamp(1.25 - blind / limit, 0.25, 1.0);
+    return (int)std::lround(v / fx_q16_to_double(kSeedBoard.speed_lsb));
+}
+
+} // namespace
+
+// Every fix fails from 2 m on: the vehicle drives on dead reckoning, slower as the blind
+// distance (4 m) nears, and stops when it is up (a controlled stop, not a fault).
+TEST(DriveSeq, BlindTravelSlowsDownAndStopsAtTheBlindDistance)
+{
+    drive_path_t path;
+    std::vector<drive_path_point_t> pts;
+    drive_pose_t start;
+    ASSERT_EQ(straight_route(&path, &pts, &start), DRIVE_OK);
+    const double limit = 4.0;
+    World w;
+    drive_seq_config_t sc = seq_cfg(DRIVE_MODE_FULL, limit);
+    w.begin(&path, start, sc);
+    w.fail_from = 2.0;
+    w.run(60);
+    ASSERT_TRUE(w.done) << drive_seq_state_name(w.seq.state);
+    EXPECT_FALSE(w.fault);
+    EXPECT_EQ(w.seq.state, DRIVE_ST_STOPPED);
+    EXPECT_EQ(w.seq.stop, DRIVE_STOP_BLIND);
+    EXPECT_EQ(w.v, 0.0); // braked to a standstill
+    double blind = w.stop_odo - w.fix_odo;
+    std::printf("blind travel: last fix at %.2f m, stopped at %.2f m (%.2f m blind of %.1f m), "
+                "at rest at %.2f m\n",
+                w.fix_odo, w.stop_odo, blind, limit, w.odo);
+    // The stop comes at the first pose past the limit: at most one cycle at a quarter speed
+    // later; the pose it judges is predicted 35 ms ahead.
+    EXPECT_GE(blind, limit - 0.05);
+    EXPECT_LE(blind, limit + 0.2);
+    // Each double arc's speed follows the law of the travel since the fix.
+    int prev = 1000, slowed = 0;
+    for (const World::Load &l : w.load_log) {
+        EXPECT_NEAR(l.counts, law_counts(l.blind, limit), 1) << "blind " << l.blind;
+        if (l.odo > w.fix_odo) {
+            EXPECT_LE(l.counts, prev);
+            prev = l.counts;
+            slowed += l.counts < law_counts(0, limit);
+        }
+    }
+    EXPECT_GT(slowed, 4);
+}
+
+// A 2.5 m gap without fixes on the way (blind distance 4 m): the vehicle slows down in it,
+// takes full speed again at the first fix after it and reaches its goal.
+TEST(DriveSeq, BlindTravelThroughAGapReachesTheGoal)
+{
+    drive_path_t path;
+    std::vector<drive_path_point_t> pts;
+    drive_pose_t start;
+    ASSERT_EQ(straight_route(&path, &pts, &start), DRIVE_OK);
+    const double limit = 4.0;
+    World w;
+    drive_seq_config_t sc = seq_cfg(DRIVE_MODE_FULL, limit);
+    w.begin(&path, start, sc);
+    w.fail_from = 8.0;
+    w.fail_to = 10.5;
+    w.run(90);
+    ASSERT_TRUE(w.done) << drive_seq_state_name(w.seq.state);
+    EXPECT_EQ(w.seq.state, DRIVE_ST_DONE);
+    EXPECT_EQ(w.seq.stop, DRIVE_STOP_NONE);
+    EXPECT_NEAR(w.pose.x, 30.0, 0.01);
+    int slowest = 1000, after = 0;
+    double longest = 0;
+    for (const World::Load &l : w.load_log) {
+        if (l.odo < 27.0) { // before the stopping routine
+            EXPECT_NEAR(l.counts, law_counts(l.blind, limit), 1)
+                << "at " << l.odo << " m, blind " << l.blind;
+        }
+        if (l.odo > 8.0 && l.odo < 12.0 && l.counts < slowest) {
+            slowest = l.counts;
+            longest = l.blind;
+        }
+        after += l.odo > 12.0 && l.odo < 27.0 && l.counts == law_counts(0, limit);
+    }
+    std::printf(
+        "a 2.5 m gap: slowest %d counts %.2f m after the last fix (full speed %d), %d loads "
+        "at full speed after it\n",
+        slowest, longest, law_counts(0, limit), after);
+    EXPECT_LT(slowest, law_counts(0, limit));
+    EXPECT_GT(longest, 2.5);
+    EXPECT_GT(after, 10);
 }
 
 TEST(DriveSeq, TableIsConsistent)

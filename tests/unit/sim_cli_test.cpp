@@ -59,6 +59,20 @@ TEST(Cli, EveryOption)
     ASSERT_EQ(p.rc, -1);
     EXPECT_EQ(p.cli.seed, -1);
     EXPECT_EQ(p.cli.report, nullptr);
+    EXPECT_EQ(p.cli.realtime, 0.0); // not paced unless asked
+}
+
+TEST(Cli, RealtimeTakesAnOptionalFactor)
+{
+    Parsed p = parse({"--scenario", "s", "--realtime"});
+    ASSERT_EQ(p.rc, -1) << p.err;
+    EXPECT_EQ(p.cli.realtime, 1.0);
+    p = parse({"--scenario", "s", "--realtime=10"});
+    ASSERT_EQ(p.rc, -1) << p.err;
+    EXPECT_EQ(p.cli.realtime, 10.0);
+    p = parse({"--scenario", "s", "--realtime=0.5"});
+    ASSERT_EQ(p.rc, -1) << p.err;
+    EXPECT_EQ(p.cli.realtime, 0.5);
 }
 
 TEST(Cli, HelpAndVersionGoToStdoutAndExitZero)
@@ -89,6 +103,14 @@ TEST(Cli, BadCommandLinesNameTheOption)
         {{"--scenario", "s", "extra"}, "unexpected argument \"extra\""},
         {{"--scenario", "s", "--frobnicate"}, "unknown option \"--frobnicate\""},
         {{"--scenario"}, "--scenario needs a value"},
+        {{"--scenario", "s", "--realtime=0"}, "--realtime: \"0\" is not a factor above 0"},
+        {{"--scenario", "s", "--realtime=-2"}, "--realtime: \"-2\""},
+        {{"--scenario", "s", "--realtime=fast"}, "--realtime: \"fast\""},
+        {{"--scenario", "s", "--realtime=nan"}, "--realtime: \"nan\""},
+        {{"--scenario", "s", "--realtime=1e7"}, "--realtime: \"1e7\""},
+        {{"--scenario", "s", "--realtime", "10"},
+         "--realtime takes its factor after '=': "
+         "--realtime=10"},
     };
     for (auto &c : cases) {
         Parsed p = parse(c.args);

@@ -1,7 +1,9 @@
 // sim/drive_board: the drive board fed the 8255 writes the firmware's port code makes
 // (drive_ppi_*): it drives each arc for its length at its speed in the seed's units
 // (4.4 counts per inch of front wheel, 1.755 cm/s per speed count), raises delta-S 2 cm
-// before an arc's end, stops after the double arc, and brakes at 0.5 m/s^2.
+// before an arc's end, stops after the double arc, and brakes at 0.5 m/s^2; fed seed 002's
+// DAC style (drive_dac_*), it steers and drives at once (the wheel within the vehicle's range),
+// only with the drive motor enabled and the brake released.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +11,7 @@
 extern "C" {
 #include "drive/drive_cmd.h"
 #include "drive/drive_proto.h"
+#include "fx/fx_host.h"
 #include "hal/irq.h"
 #include "hal/pinmap.h"
 #include "hal_posix/harness.h"
@@ -139,6 +142,46 @@ TEST(DriveBoard, SpeedZeroBrakesAtHalfAMetrePerSecondSquared)
         dist += 0.01 * (v - 0.005 * k);
     sim_pose_t p = sim_drive_pose(&b.d, 0.5 + v / 0.5 + 0.05);
     EXPECT_NEAR(p.x, dist, 1e-6);
+}
+
+TEST(DriveBoard, DacStyleSteersAndDrivesAtOnce)
+{
+    Bench b;
+    drive_wseq_t s;
+    drive_dac_start(132, &s); // seed 002's Init_AGV: motors on, brake released
+    b.send(s);
+    // 20 degrees left: 132 - 20/90 x 123 = 104.7 -> 105; 57 counts: 1.0 m/s
+    uint8_t angle = drive_dac_angle_byte(fx_angle_from_deg(20.0), 132);
+    EXPECT_EQ(angle, 105);
+    drive_dac_set(angle, drive_dac_speed_byte(57), &s);
+    b.send(s);
+    double alpha = (132.0 - 105.0) / 123.0 * M_PI / 2, v = 57 * kSpeedLsb, L = 0.762;
+    EXPECT_NEAR(b.d.alpha, alpha, 1e-9);
+    b.run_until(2.0);
+    // a circle of radius L / tan(alpha) from (0, 0) heading east, for 2 s
+    double k = std::tan(alpha) / L, th = k * v * 2.0;
+    sim_pose_t p = sim_drive_pose(&b.d, 2.0);
+    EXPECT_NEAR(p.x, std::sin(th) / k, 1e-9);
+    EXPECT_NEAR(p.y, (1 - std::cos(th)) / k, 1e-9);
+    EXPECT_NEAR(p.th, th, 1e-9);
+    // beyond the vehicle's steering range (atan(L / r_min), r_min 10 in): held at the limit
+    drive_dac_set(drive_dac_angle_byte(fx_angle_from_deg(-85.0), 132), drive_dac_speed_byte(57),
+                  &s);
+    b.send(s);
+    EXPECT_NEAR(b.d.alpha, -std::atan(0.762 / 0.254), 1e-4);
+    // the brake: the board brakes to a stop at 0.5 m/s^2 whatever the speed DAC says
+    drive_dac_outputs(DRIVE_OUT_DRIVE_OFF | DRIVE_OUT_STEER_OFF, &s);
+    b.send(s);
+    b.run_until(2.0 + v / 0.5 + 0.05);
+    EXPECT_TRUE(sim_drive_standing(&b.d));
+    drive_dac_outputs(DRIVE_OUT_BRAKE_REL, &s);
+    b.send(s);
+    EXPECT_NEAR(b.d.v, v, 1e-12) << "released: on at the speed DAC's speed";
+    drive_dac_stop(132, &s); // seed 002's End_Path
+    b.send(s);
+    b.run_until(10.0);
+    EXPECT_TRUE(sim_drive_standing(&b.d));
+    EXPECT_EQ(b.d.alpha, 0.0);
 }
 
 } // namespace

@@ -1,6 +1,7 @@
 // sim/mission: a scenario turned into the boards' download: the values the seed and the
 // mission header document, the start in the firmware's formats, a nominal path that is a
-// connected chain of arcs through every prescribed pose, and refusals naming key and value.
+// connected chain of arcs through every prescribed pose, and refusals naming key and value;
+// pursuit mode's download (seed 002's parameters in the firmware's formats) and its refusals.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,7 +26,7 @@ const char *kScenario = R"({
           {"x":6,"y":6,"heading_deg":0}],
  "sensors": {"goniometer":{"rev_per_s":2,"counts":50000,"noise_deg":0},
              "odometer":{"dl_m":0.000254},"gyro":{"step_deg":0.25,"drift_deg_per_s":0}},
- "seed": 7, "duration_s": 20})";
+ "seed": 7, "duration_s": 20, "blind_distance_m": 6.5})";
 
 long q16(double v)
 {
@@ -65,7 +66,9 @@ TEST(Mission, DownloadHoldsTheScenarioInTheFirmwaresFormats)
     EXPECT_EQ(mc.seq_cfg.stop_speed, q16(0.15));
     EXPECT_EQ(mc.seq_cfg.advance, q16(0.4));
     EXPECT_EQ(mc.seq_cfg.max_fix_failures, 3);
-    EXPECT_EQ(m.nav.gnav.stop_distance, q16(5.0));
+    // The blind distance: one value for both boards.
+    EXPECT_EQ(mc.seq_cfg.blind_distance, q16(6.5));
+    EXPECT_EQ(m.nav.gnav.stop_distance, mc.seq_cfg.blind_distance);
     // The nav board: odometer pulse in Q40 m, gyro step in Q48 turns, start plus its error.
     EXPECT_EQ(m.nav.gnav.dl_q40, (uint32_t)std::llround(0.000254 * std::ldexp(1.0, 40)));
     EXPECT_EQ(m.nav.gnav.gyro_step_q48, (uint64_t)std::llround(0.25 / 360 * std::ldexp(1.0, 48)));
@@ -124,6 +127,92 @@ TEST(Mission, RefusalsNameTheKeyAndTheValue)
     wide.world.beacon[1].x = 300;
     EXPECT_EQ(sim_mission_build(&m, &wide, err, sizeof err), -1);
     EXPECT_NE(std::string(err).find("beacons: 3 of them"), std::string::npos) << err;
+}
+
+// The same scenario in pursuit mode, its parameters written out and defaulted.
+std::string pursuit_scenario(const std::string &pursuit, const std::string &source)
+{
+    std::string s = kScenario;
+    s.replace(s.find("\"simplified\""), 12, "\"pursuit\"");
+    return s.substr(0, s.rfind('}')) + ", \"pursuit\": " + pursuit +
+           ", \"position_source\": " + source + "}";
+}
+
+TEST(Mission, PursuitDownloadHoldsTheSeedsParameters)
+{
+    static sim_scenario_t sc;
+    static sim_mission_t m;
+    char err[256];
+    ASSERT_EQ(sim_scenario_parse(
+                  pursuit_scenario("{\"threshold_pct\": 70, \"activation_s\": 0.4}", "{}").c_str(),
+                  &sc, err, sizeof err),
+              0)
+        << err;
+    ASSERT_EQ(sim_mission_build(&m, &sc, err, sizeof err), 0) << err;
+    ASSERT_NE(m.main.pursuit, nullptr);
+    const main_pursuit_config_t &p = *m.main.pursuit;
+    // the seed's defaults (docs/pursuit.md): 1 m/s, K = 1, 5 cm; 127 x 1.755 cm/s at DAC 255
+    EXPECT_EQ(p.law.speed, q16(1.0));
+    EXPECT_EQ(p.law.max_speed, q16(2.229));
+    EXPECT_EQ(p.law.k, q16(1.0));
+    EXPECT_EQ(p.law.activation_ms, 400);
+    EXPECT_EQ(p.law.threshold, q16(0.7));
+    EXPECT_EQ(p.law.slow_after_ms, 1000);
+    EXPECT_EQ(p.law.stop_after_ms, 3000);
+    EXPECT_FALSE(p.law.regulate);
+    EXPECT_NEAR(p.law.max_steer / 4294967296.0 * 360.0, std::atan(0.762 / 0.5) * 180 / M_PI, 1e-6);
+    EXPECT_EQ(p.rx.min_update_mm, 50);
+    EXPECT_EQ(p.rx.max_speed_mm_s, 2229);
+    EXPECT_EQ(p.baud, 9600u);
+    EXPECT_EQ(p.receivers, 1);
+    EXPECT_EQ(p.heading, MAIN_HEADING_POSITIONS);
+    // two receivers 0.3 m apart along the vehicle, 0.1 m across
+    ASSERT_EQ(sim_scenario_parse(
+                  pursuit_scenario("{\"heading\": \"receivers\"}",
+                                   "{\"receivers\": [{\"forward_m\": 0.3, \"left_m\": 0.1}, "
+                                   "{\"forward_m\": 0, \"left_m\": 0}], \"baud\": 115200}")
+                      .c_str(),
+                  &sc, err, sizeof err),
+              0)
+        << err;
+    ASSERT_EQ(sim_mission_build(&m, &sc, err, sizeof err), 0) << err;
+    EXPECT_EQ(m.pursuit.receivers, 2);
+    EXPECT_EQ(m.pursuit.heading, MAIN_HEADING_RECEIVERS);
+    EXPECT_EQ(m.pursuit.baud, 115200u);
+    EXPECT_EQ(m.pursuit.law.pair_sep, q16(std::hypot(0.3, 0.1)));
+    EXPECT_NEAR(m.pursuit.law.pair_angle / 4294967296.0 * 360.0, std::atan2(0.1, 0.3) * 180 / M_PI,
+                1e-6);
+}
+
+TEST(Mission, PursuitRefusalsNameTheKeyAndTheValue)
+{
+    static sim_scenario_t sc;
+    static sim_mission_t m;
+    char err[256];
+    const struct {
+        const char *pursuit, *source, *want;
+    } bad[] = {
+        {"{\"speed_mps\": 3}", "{}", "pursuit.speed_mps: 3 is above max_speed_mps (2.229)"},
+        {"{\"slow_after_s\": 2, \"stop_after_s\": 1}", "{}",
+         "pursuit.stop_after_s: 1 is not after slow_after_s (2)"},
+        {"{\"heading\": \"receivers\"}", "{}", "pursuit.heading: \"receivers\" needs two"},
+        {"{}", "{\"baud\": 19200}", "position_source.baud: 19200"},
+        {"{}", "{\"outages\": [{\"from_s\": 5, \"to_s\": 4}]}",
+         "position_source.outages[0].to_s: 4 is before from_s (5)"},
+    };
+    for (const auto &b : bad) {
+        ASSERT_EQ(
+            sim_scenario_parse(pursuit_scenario(b.pursuit, b.source).c_str(), &sc, err, sizeof err),
+            0)
+            << err;
+        EXPECT_EQ(sim_mission_build(&m, &sc, err, sizeof err), -1) << b.want;
+        EXPECT_NE(std::string(err).find(b.want), std::string::npos) << err;
+    }
+    // a goal point on the one before
+    ASSERT_EQ(sim_scenario_parse(pursuit_scenario("{}", "{}").c_str(), &sc, err, sizeof err), 0);
+    sc.path[1] = sc.path[0];
+    sc.path[1].heading = sc.path[0].heading;
+    EXPECT_EQ(sim_mission_build(&m, &sc, err, sizeof err), -1);
 }
 
 } // namespace

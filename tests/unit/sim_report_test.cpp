@@ -75,18 +75,41 @@ TEST(Report, EachCriterionIsJudgedWithItsFigure)
         void (*spoil)(sim_report_t *);
         const char *text;
     } cases[] = {
-        {[](sim_report_t *x) { x->reached_goal = false; }, "goal not reached (time out)"},
         {[](sim_report_t *x) {
              x->reached_goal = false;
-             x->stop_requested = true;
+             x->stop_reason = "duration";
          },
-         "stop request"},
+         "goal not reached (stopped: duration)"},
+        {[](sim_report_t *x) {
+             x->reached_goal = false;
+             x->stop_reason = "link_silent";
+         },
+         "(stopped: link_silent)"},
         {[](sim_report_t *x) { sim_stat_add(&x->cross_track, 0.2); }, "cross-track max 0.2000"},
         {[](sim_report_t *x) { sim_stat_add(&x->cross_track, 0.05); }, "cross-track mean 0.0275"},
         {[](sim_report_t *x) { x->final_error = 0.06; }, "final error 0.0600 m > 0.0500"},
         {[](sim_report_t *x) { sim_stat_add(&x->fix_error, 0.07); }, "fix error max 0.0700"},
         {[](sim_report_t *x) { x->fixes_accepted = 4; }, "40% of fixes accepted < 50%"},
     };
+    // A scenario that must end stopped for a reason: met by that stop only.
+    sim_success_t cs = c;
+    cs.require_goal = false;
+    snprintf(cs.stop_reason, sizeof cs.stop_reason, "blind_distance");
+    r = fresh();
+    EXPECT_EQ(sim_report_judge(&r, &cs, why, sizeof why), 0);
+    EXPECT_NE(std::string(why).find("stop reason none (goal), expected blind_distance"),
+              std::string::npos)
+        << why;
+    r.reached_goal = false;
+    r.stop_reason = "duration";
+    EXPECT_EQ(sim_report_judge(&r, &cs, why, sizeof why), 0);
+    EXPECT_NE(std::string(why).find("stop reason duration, expected blind_distance"),
+              std::string::npos)
+        << why;
+    r.stop_reason = "blind_distance";
+    EXPECT_EQ(sim_report_judge(&r, &cs, why, sizeof why), 1) << why;
+    sim_report_free(&r);
+
     for (const Case &k : cases) {
         r = fresh();
         k.spoil(&r);
@@ -110,15 +133,52 @@ TEST(Report, JsonHasEveryKeyRounded)
     r.isr_name[0] = "nav.delta_l";
     r.isr_count[0] = 7;
     r.n_isr = 1;
+    r.stop_reason = "link_silent";
+    r.stop_at = 2.5;
+    r.standstill_at = 4.0000004;
+    r.link.bitrate_bps = 250000;
+    r.link.frames = 12;
+    r.link.bus_load = 0.1234564;
+    r.link.latency_name[0] = "FIX";
+    r.link.latency_ms[0] = 1.0804;
+    r.link.n_latency = 1;
+    r.link.board[1].heartbeats_missed = 3;
     char *s = sim_report_json(&r);
     std::string j(s);
     free(s);
-    for (const char *k : {"\"scenario\": \"unit\"", "\"seed\": 42", "\"mode\": \"full\"",
-                          "\"sim_time_s\": 1.234568", "\"max\": 0.001234", "\"nav.delta_l\": 7",
-                          "\"reached_goal\": false", "\"cross_track_m\"", "\"final_error_m\"",
-                          "\"heading_error_deg\"", "\"p95\"", "\"wall_time_s\""})
+    for (const char *k : {"\"scenario\": \"unit\"",
+                          "\"seed\": 42",
+                          "\"mode\": \"full\"",
+                          "\"sim_time_s\": 1.234568",
+                          "\"max\": 0.001234",
+                          "\"nav.delta_l\": 7",
+                          "\"reached_goal\": false",
+                          "\"cross_track_m\"",
+                          "\"final_error_m\"",
+                          "\"heading_error_deg\"",
+                          "\"p95\"",
+                          "\"wall_time_s\"",
+                          "\"outcome\": \"stopped\"",
+                          "\"stop_reason\": \"link_silent\"",
+                          "\"stop_at_s\": 2.5",
+                          "\"standstill_at_s\": 4.0",
+                          "\"bitrate_bps\": 250000",
+                          "\"frames\": 12",
+                          "\"bus_load\": 0.123456",
+                          "\"FIX\": 1.08",
+                          "\"heartbeats_missed\": 3"})
         EXPECT_NE(j.find(k), std::string::npos) << k << " in " << j;
     sim_report_free(&r);
+    // At the goal: no stop keys.
+    sim_report_t g = {};
+    g.mode = "full";
+    g.reached_goal = true;
+    s = sim_report_json(&g);
+    j = s;
+    free(s);
+    EXPECT_NE(j.find("\"outcome\": \"goal\""), std::string::npos) << j;
+    EXPECT_EQ(j.find("stop_reason"), std::string::npos) << j;
+    EXPECT_EQ(j.find("standstill_at_s"), std::string::npos) << j;
 }
 
 } // namespace

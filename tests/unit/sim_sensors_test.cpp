@@ -1,12 +1,16 @@
 // sim/sensors: odometer pulses every dl of front-wheel travel and gyro steps at each step
 // boundary of the measured heading, counted on a nav board of the harness against the
-// closed-form travel and turn.
+// closed-form travel and turn; the disturbances: odometer glitches and lost index pulses
+// (binomial counts), photodetector dropout windows (no edge inside), the truth of which
+// beacons lit a revolution.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 extern "C" {
+#include "hal/capture.h"
 #include "hal/edge.h"
 #include "hal/irq.h"
 #include "hal_posix/harness.h"
@@ -18,7 +22,8 @@ extern "C" {
 namespace
 {
 
-int g_dl, g_up, g_down;
+int g_dl, g_up, g_down, g_index;
+std::vector<double> g_edges; // beacon capture times, s
 void on_dl(void *)
 {
     g_dl++;
@@ -31,13 +36,22 @@ void on_down(void *)
 {
     g_down++;
 }
+void on_index(void *, uint16_t, uint8_t)
+{
+    g_index++;
+}
+void on_edge(void *, uint16_t, uint8_t)
+{
+    g_edges.push_back(posix_now_ns() * 1e-9);
+}
 
 struct Bench {
     int main_b, nav_b;
     sim_scenario_t sc;
     sim_segment_t seg;
     sim_sensors_t s;
-    Bench(double alpha, double v, double drift_deg_per_s)
+    Bench(double alpha, double v, double drift_deg_per_s,
+          void (*disturb)(sim_scenario_t *) = nullptr)
     {
         posix_reset();
         main_b = posix_board_create("main");
@@ -47,7 +61,12 @@ struct Bench {
         hal_edge_init(HAL_EDGE_GYRO_UP, HAL_EDGE_RISING, on_up, nullptr);
         hal_edge_init(HAL_EDGE_GYRO_DOWN, HAL_EDGE_RISING, on_down, nullptr);
         hal_irq_enable();
-        g_dl = g_up = g_down = 0;
+        posix_board_select(main_b);
+        hal_capture_init(HAL_CAPTURE_INDEX, on_index, nullptr);
+        hal_capture_init(HAL_CAPTURE_BEACON, on_edge, nullptr);
+        hal_irq_enable();
+        g_dl = g_up = g_down = g_index = 0;
+        g_edges.clear();
         std::memset(&sc, 0, sizeof sc);
         sc.dl = 0.000254;
         sc.odo_scale = 1.0;
@@ -57,6 +76,11 @@ struct Bench {
         sc.rev_per_s = 2;
         sc.counts = 50000;
         sc.gonio_range = 60;
+        sc.seed = 3;
+        sc.world.n_beacons = 1;
+        sc.world.beacon[0] = {5.0, 1.0, 0.1, SIM_BEACON_KIND_CYLINDER};
+        if (disturb)
+            disturb(&sc);
         seg = sim_segment(0.0, {0.0, 0.0, 0.3}, 0.0, alpha, v, 0.75);
         sim_sensors_init(&s, &sc, &seg, main_b, nav_b);
         sim_sensors_motion(&s);
@@ -86,6 +110,65 @@ TEST(Sensors, GyroStepsAtEachBoundaryOfTheMeasuredHeading)
     posix_run_until(1'000'000'000ull);
     EXPECT_EQ(g_down, (int)std::floor(0.8 * std::tan(0.3) / 0.75 / step + 0.5));
     EXPECT_EQ(g_up, 0);
+}
+
+// Glitches: every pulse lost with probability `missed`, or followed by an extra one with
+// probability `extra`; the handler sees what is left.
+TEST(Sensors, OdometerGlitchesLoseAndAddPulses)
+{
+    Bench b(0.0, 1.0, 0.0, [](sim_scenario_t *sc) {
+        sc->odo_missed = 0.01;
+        sc->odo_extra = 0.02;
+    });
+    posix_run_until(2'000'000'000ull);
+    int n = (int)std::floor(2.0 / 0.000254); // pulses of the wheel
+    EXPECT_EQ(g_dl, n - (int)b.s.odo_missed + (int)b.s.odo_extra);
+    double m = n * 0.01, sm = std::sqrt(n * 0.01 * 0.99);
+    double k = (n - m) * 0.02, sk = std::sqrt((n - m) * 0.02 * 0.98);
+    EXPECT_LT(std::fabs(b.s.odo_missed - m), 5 * sm) << b.s.odo_missed;
+    EXPECT_LT(std::fabs(b.s.odo_extra - k), 5 * sk) << b.s.odo_extra;
+}
+
+TEST(Sensors, IndexPulsesAreLostWithTheirProbability)
+{
+    Bench b(0.0, 0.0, 0.0, [](sim_scenario_t *sc) { sc->index_loss = 0.25; });
+    posix_run_until(100'000'000'000ull); // 200 mirror turns
+    int turns = g_index + (int)b.s.index_lost;
+    EXPECT_GE(turns, 199);
+    EXPECT_LE(turns, 200);
+    double sd = std::sqrt(turns * 0.25 * 0.75);
+    EXPECT_LT(std::fabs(b.s.index_lost - turns * 0.25), 5 * sd) << b.s.index_lost;
+}
+
+// Blinded from 1 s to 3 s: the beacon's pulse (two edges a turn) is not seen in the window.
+TEST(Sensors, DropoutWindowsBlindThePhotodetector)
+{
+    Bench b(0.0, 0.0, 0.0, [](sim_scenario_t *sc) {
+        sc->n_dropouts = 1;
+        sc->dropout[0] = {1.0, 2.0};
+    });
+    posix_run_until(5'000'000'000ull);
+    int before = 0, after = 0;
+    for (double t : g_edges) {
+        EXPECT_FALSE(t >= 1.0 && t < 3.0) << t;
+        before += t < 1.0;
+        after += t >= 3.0;
+    }
+    EXPECT_GE(before, 2 * 1);
+    EXPECT_GE(after, 2 * 3);
+    EXPECT_EQ(before % 2, 0); // whole pulses
+}
+
+TEST(Sensors, BeaconsCountTheDistinctBeaconsOfTheLatches)
+{
+    Bench b(0.0, 0.0, 0.0);
+    const int16_t targets[] = {0, 1, 1, -1, 2, 5};
+    b.s.rises = 6;
+    for (int i = 0; i < 6; i++)
+        b.s.rise_target[i] = targets[i];
+    EXPECT_EQ(sim_sensors_beacons(&b.s, 5, 6), 4); // 0, 1, 2, 5; the glint is none
+    EXPECT_EQ(sim_sensors_beacons(&b.s, 4, 3), 2); // latches 2..4: 1, glint, 2
+    EXPECT_EQ(sim_sensors_beacons(&b.s, 1, 4), 2); // latches 0, 1 only: older ones unknown
 }
 
 TEST(Sensors, LatchesAreRememberedWhileRecent)

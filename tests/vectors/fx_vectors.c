@@ -289,13 +289,14 @@ static void units(void)
 }
 
 /*
- * Every root value r with the first and the last input that give it (r^2, (r + 1)^2 - 1):
- * checked on the spot (an exact floor is the same on both worlds), nothing printed.
+ * Root values r with the first and the last input that give it (r^2, (r + 1)^2 - 1): every
+ * 16th and the last 16 (4,112; the host's fx_test takes every one), checked on the spot (an
+ * exact floor is the same on both worlds), nothing printed.
  */
 static void sqrt32_boundaries(void)
 {
     uint16_t bad = 0;
-    for (uint32_t r = 0; r <= 0xFFFFu; r++) {
+    for (uint32_t r = 0; r <= 0xFFFFu; r += r < 0xFFF0u ? 16u : 1u) {
         uint32_t sq = r * r;
         if (fx_sqrt32(sq) != r || fx_sqrt32(sq + 2u * r) != r)
             bad++;
@@ -303,7 +304,7 @@ static void sqrt32_boundaries(void)
     cy_print("sqrt32-boundaries ");
     cy_print_dec(bad);
     cy_println();
-    cy_check(bad == 0, "fx_sqrt32 at every root boundary");
+    cy_check(bad == 0, "fx_sqrt32 at 4112 root boundaries");
 }
 
 /*

@@ -6,7 +6,8 @@
  * kinematics) is delivered through the real interrupt path: on the MSP430 each odometer
  * pulse and gyro edge sets its port-1 flag with interrupts off and the ISR runs when they
  * are enabled again (HAL shim + portable handler, measured: @cycles isr_delta_l, the worst
- * case includes every kind of arc closing); the coordinate request sets the NMI flag; in the
+ * case includes every kind of arc closing; it and isr_gyro_step are checked against the
+ * floor of 1,000 cycles); the coordinate request sets the NMI flag; in the
  * host build the harness raises the same lines. Then: latches read back, a fix applied for
  * an earlier latch, and closings after straights long enough for every branch of the
  * deficit (up to 262,144 pulses, delivered as direct calls).
@@ -313,6 +314,11 @@ int main(void)
     const cy_stack_stat_t *sk[] = {&sk_dl, &sk_gyro, &sk_sighted, &sk_coord, &sk_fix, &sk_latch};
     for (unsigned i = 0; i < sizeof sk / sizeof sk[0]; i++)
         cy_stack_report(sk[i]);
+    /* The floors of issue 13 on the worst case (a check image runs every kernel twice) */
+    if (!cy_kernel_check_mode()) {
+        cy_check(st_dl.max <= 1000u, "isr_delta_l at most 1,000 cycles");
+        cy_check(st_gyro.max <= 1000u, "isr_gyro_step at most 1,000 cycles");
+    }
     cy_test_end();
     return 0;
 }

@@ -28,6 +28,16 @@ static drive_pose_t to_pose(const ac_pose_t *p)
     return d;
 }
 
+/* --help: the fields and their units. */
+const char agvcalc_fields_doublearc[] =
+    "    from, to      {x, y, heading_deg}: rear-axle poses, m (within +-16000) and degrees\n"
+    "    min_radius_m  smallest turn radius allowed, m [0.125, 100]\n"
+    "    wheelbase_m   rear axle to front wheel, m [0.01, 10]\n"
+    "    reverse?      true: drive backwards (default false)\n"
+    "    -> case: \"1\"..\"5\" or \"straight\"; segments: [{turn: left|right|straight,\n"
+    "       radius_m: signed m (left positive) or null, length_m: rear-axle path, m}, ...];\n"
+    "       steering_deg: [a1, a2], atan(wheelbase / radius), degrees, left positive\n";
+
 int agvcalc_op_doublearc(json_t *req, json_t *resp, char *err, size_t errlen);
 
 int agvcalc_op_doublearc(json_t *req, json_t *resp, char *err, size_t errlen)

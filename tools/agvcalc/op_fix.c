@@ -264,6 +264,21 @@ static void set_quality(json_t *resp, const optical_fix_t *f)
     json_object_set_new(resp, "agree", json_integer(f->n_agree));
     json_object_set_new(resp, "dropped", json_integer(f->n_dropped));
 }
+/* --help: the fields and their units. */
+const char agvcalc_fields_fix[] =
+    "    map           [[x, y] | [x, y, diameter_m] | {x, y, diameter_m?, kind?}, ...]: 3 to\n"
+    "                  32 beacons, m (within +-8191); kind \"cylinder\" (a post) or \"flat\"\n"
+    "    approx        {x, y, heading_deg}: the dead-reckoning pose, m and degrees\n"
+    "    uncertainty?  {pos_m?, heading_deg?, travel_m?, turn_deg?}: what approx is worth\n"
+    "                  (default jump_max_m, turn_max_deg), grown over travel and turn\n"
+    "    sightings     [{angle_deg, width_deg, pose?}, ...]: up to 15; angle: degrees CCW\n"
+    "                  from the heading; width: apparent angular width, degrees [0, 180];\n"
+    "                  pose: the pose latched at the sighting (all sightings or none)\n"
+    "    config?       {name: value}: thresholds (docs/optical.md: beacon_diameter_m 0.08,\n"
+    "                  window_deg, window_pos_m, range_m, jump_max_m, err_max_m, ...)\n"
+    "    -> x, y: m; heading_deg: [0, 360); used: [i, j, k] map indices; identified: the map\n"
+    "       index per sighting (-1: none); quality: m per count; widened: widenings used;\n"
+    "       err_m, gate_m: the error bound and the gate; resid_deg, agree, dropped, status\n";
 
 int agvcalc_op_fix(json_t *req, json_t *resp, char *err, size_t errlen);
 

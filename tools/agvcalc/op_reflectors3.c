@@ -34,6 +34,19 @@ static int read_xy(json_t *req, const char *key, optical_xy_t *p, bool *given, c
     return 0;
 }
 
+/* --help: the fields and their units. */
+const char agvcalc_fields_reflectors3[] =
+    "    reflectors    [[x, y], [x, y], [x, y]]: the three reflectors, m (within +-8191)\n"
+    "    field?        [[x, y], ...]: polygon bounding where the vehicle can be, m\n"
+    "    events_s      [t_click, t_r1, t_r2, t_r3, t_click_next]: seconds (within 4000 s\n"
+    "                  after t_click)\n"
+    "    expected_period_s  revolution time, s [0.001, 4000]\n"
+    "    period_tol?   accepted relative deviation of the revolution time (default 0.05)\n"
+    "    approx?       {x, y}: picks the nearest of several candidates, m\n"
+    "    goal?         {x, y}: adds goal_distance_m and goal_turn_deg, m and degrees\n"
+    "    -> x, y: m; heading_deg: [0, 360); first: index of the reflector seen first;\n"
+    "       quality: m per count; ok:false with candidates: [[x, y], ...] when ambiguous\n";
+
 int agvcalc_op_reflectors3(json_t *req, json_t *resp, char *err, size_t errlen);
 
 int agvcalc_op_reflectors3(json_t *req, json_t *resp, char *err, size_t errlen)

@@ -17,6 +17,14 @@
 /* Q16 m per mrad -> m per count of a 50,000-count goniometer. */
 #define PER_COUNT (2.0 * M_PI / 50000.0 * 1000.0 / 65536.0)
 
+/* --help: the fields and their units. */
+const char agvcalc_fields_triangulate[] =
+    "    beacons       [[x, y], [x, y], [x, y]]: three beacon positions, m (within +-8191)\n"
+    "    angles_deg    [a1, a2, a3]: their sighting angles, degrees CCW from the heading\n"
+    "    quality_max?  largest accepted quality, m per count (default and maximum 0.2513)\n"
+    "    -> x, y: position, m; heading_deg: [0, 360); quality: predicted RMS position error,\n"
+    "       m per count (one count = 360/50000 degrees of bearing error on each sighting)\n";
+
 int agvcalc_op_triangulate(json_t *req, json_t *resp, char *err, size_t errlen);
 
 int agvcalc_op_triangulate(json_t *req, json_t *resp, char *err, size_t errlen)

@@ -1,8 +1,9 @@
 /*
- * fx_arith.S - MSP430 versions of the fx_internal.h helpers the multiplies, divides and
- * roots are built on (firmware/fx/fx_arith.c holds the portable C; the results are exact,
- * so both worlds agree by definition, and tests/vectors/fx_vectors.c checks it).
- * Conventions and the multiplier as in fx_trig.S.
+ * fx_arith.S - the arithmetic kernels (docs/kernels.md): fx_umul64, fx_udiv32_16,
+ * fx_mul_q30, fx_mul_q16 and fx_div_shift. Their C twins are firmware/fx/fx_arith_k.c (the
+ * results are exact, so both agree by definition; the check images compare every call).
+ * Conventions and the multiplier as in fx_trig.S. Calls between these kernels go to local
+ * labels, so that a check image's wrappers see only the calls from outside.
  */
     .set MPY,   0x0130
     .set OP2,   0x0138
@@ -18,6 +19,7 @@
     .global fx_umul64
     .type fx_umul64,@function
 fx_umul64:
+.Lumul64:
     push    r10
     push    r2
     dint
@@ -102,20 +104,17 @@ udiv64_core:
 
 /*
  * bool fx_div_shift(int32_t num, int32_t den, uint8_t shift, int32_t *out): R13:R12 = num,
- * R15:R14 = den, 2(SP) = shift, 4(SP) = out; bool fx_div32(num, den, out): 2(SP) = out, the
- * same with shift 0 (fx_arith.c defines both so). -> R12 = 1 and *out = num 2^shift / den
+ * R15:R14 = den, 2(SP) = shift, 4(SP) = out -> R12 = 1 and *out = num 2^shift / den
  * rounded to nearest (ties away from zero), or R12 = 0 (den = 0 or the quotient does not
- * fit int32). Steps of fx_div_shift(): the magnitudes n, d; n = 0 gives 0; shift >= 64
- * fails; the dividend n 2^shift as hi:lo by fx_shl64 (for shift > 32 as n 2^(shift-32),
- * failing if that does not fit 32 bits); hi >= d fails; the division core; + 1 when the
- * remainder is at least d - remainder; the sign. Frame: R10, R9, R8, R7 pushed; R8 = shift,
- * R7 = out, R9 bit 15 = the sign of the result, R11:R10 = d.
+ * fit int32). Steps of fx_div_shift() in fx_arith_k.c: the magnitudes n, d; n = 0 gives 0;
+ * shift >= 64 fails; the dividend n 2^shift as hi:lo by shl64 (for shift > 32 as
+ * n 2^(shift-32), failing if that does not fit 32 bits); hi >= d fails; the division core;
+ * + 1 when the remainder is at least d - remainder; the sign. Frame: R10, R9, R8, R7
+ * pushed; R8 = shift, R7 = out, R9 bit 15 = the sign of the result, R11:R10 = d.
  */
     .section .text.fx_div_shift,"ax",@progbits
     .global fx_div_shift
     .type fx_div_shift,@function
-    .global fx_div32
-    .type fx_div32,@function
 fx_div_shift:
     push    r10
     push    r9
@@ -123,15 +122,7 @@ fx_div_shift:
     push    r7
     mov.b   10(r1), r8
     mov     12(r1), r7
-    jmp     1f
-fx_div32:
-    push    r10
-    push    r9
-    push    r8
-    push    r7
-    clr     r8
-    mov     10(r1), r7
-1:  mov     r14, r10                ; den = 0 fails
+    mov     r14, r10                ; den = 0 fails
     bis     r15, r10
     tst     r10
     jz      .Ldiv_fail
@@ -159,14 +150,14 @@ fx_div32:
     jhs     .Ldiv_fail
     clr     r14
     clr     r15
-    push    r11                     ; d across fx_shl64 (it clobbers R11)
+    push    r11                     ; d across shl64 (it clobbers R11)
     push    r10
     mov     r8, r10                 ; n 2^shift, or n 2^(shift - 32) for shift > 32
     cmp     #33, r8
     jlo     4f
     sub     #32, r10
 4:  push    r10
-    call    #fx_shl64
+    call    #shl64
     pop     r10
     pop     r10
     pop     r11
@@ -204,50 +195,8 @@ fx_div32:
     br      #fx_fail
 
 /*
- * bool fx_mul_shift(int32_t a, int32_t b, uint8_t shift, int32_t *out): R13:R12 = a,
- * R15:R14 = b, 2(SP) = shift, 4(SP) = out -> R12 = 1 and *out = a b / 2^shift rounded to
- * nearest (ties away from zero), or R12 = 0 when it does not fit int32. Steps of
- * fx_mul_shift() in fx_arith.c: p = |a| |b| (<= 2^62), 0 for shift >= 64, else for shift > 0
- * ((p >> (shift - 1)) + 1) >> 1, then the shared tail (frame as fx_div_shift).
- */
-    .section .text.fx_mul_shift,"ax",@progbits
-    .global fx_mul_shift
-    .type fx_mul_shift,@function
-fx_mul_shift:
-    push    r10
-    push    r9
-    push    r8
-    push    r7
-    mov.b   10(r1), r8
-    mov     12(r1), r7
-    call    #mul_magnitudes         ; R15:R14:R13:R12 = p, R9 bit 15 = sign
-    cmp     #64, r8
-    jlo     1f
-    clr     r12                     ; shift >= 64: 0
-    clr     r13
-    jmp     fx_store
-1:  tst     r8
-    jz      2f
-    sub     #1, r8
-    push    r8
-    call    #fx_shr64
-    pop     r8
-    add     #1, r12                 ; + 1, then >> 1 (p + 1 < 2^63: bit 63 is 0)
-    adc     r13
-    adc     r14
-    adc     r15
-    rra     r15
-    rrc     r14
-    rrc     r13
-    rrc     r12
-2:  tst     r15                     ; must fit 32 bits
-    jnz     fx_fail
-    tst     r14
-    jnz     fx_fail
-    jmp     fx_store
-/*
- * Shared tail (plain labels, not functions: the callers jump here with their frame pushed)
- * of fx_div_shift, fx_div32 and fx_mul_shift: R13:R12 = the magnitude m,
+ * Tail of fx_div_shift (plain labels, not functions: it jumps here with its frame pushed):
+ * R13:R12 = the magnitude m,
  * R9 bit 15 = the sign -> *out = +-m and R12 = 1 when it fits int32 (m <= 2^31 - 1, or
  * 2^31 for a negative result), else R12 = 0 (fx_fail); pops the frame.
  */
@@ -309,68 +258,13 @@ fx_udiv32_16:
     ret
 
 /*
- * uint64_t fx_shr64(uint64_t v, uint8_t n), fx_shl64(v, n): R15:R14:R13:R12 = v, 2(SP) = n
- * (n < 64) -> v >> n, v << n: word moves for 32 and 16, byte swaps for 8, then up to seven
- * bit steps (the compiler's own 64-bit shifts by a few bits are long sequences here).
+ * shl64 (local, for fx_div_shift): R15:R14:R13:R12 = v, 2(SP) = n (n < 64) -> v << n: word
+ * moves for 32 and 16, byte swaps for 8, then up to seven bit steps (the compiler's own
+ * 64-bit shifts by a few bits are long sequences here).
  */
-    .section .text.fx_shr64,"ax",@progbits
-    .global fx_shr64
-    .type fx_shr64,@function
-fx_shr64:
-    mov.b   2(r1), r11
-    bit     #32, r11
-    jz      1f
-    mov     r14, r12
-    mov     r15, r13
-    clr     r14
-    clr     r15
-1:  bit     #16, r11
-    jz      2f
-    mov     r13, r12
-    mov     r14, r13
-    mov     r15, r14
-    clr     r15
-2:  bit     #8, r11
-    jz      3f
-    swpb    r12                     ; each word: its own high byte low, the next one's low byte high
-    mov.b   r12, r12
-    swpb    r13
-    mov.b   r13, r11
-    xor     r11, r13
-    bis     r13, r12
-    mov     r11, r13
-    swpb    r14
-    mov.b   r14, r11
-    xor     r11, r14
-    bis     r14, r13
-    mov     r11, r14
-    swpb    r15
-    mov.b   r15, r11
-    xor     r11, r15
-    bis     r15, r14
-    mov     r11, r15
-    mov.b   2(r1), r11
-3:  and     #7, r11
-    jz      5f
-    clrc                            ; the first step shifts a 0 in, the others keep it
-    rrc     r15
-    rrc     r14
-    rrc     r13
-    rrc     r12
-    dec     r11
-    jz      5f
-4:  rra     r15
-    rrc     r14
-    rrc     r13
-    rrc     r12
-    dec     r11
-    jnz     4b
-5:  ret
-
-    .section .text.fx_shl64,"ax",@progbits
-    .global fx_shl64
-    .type fx_shl64,@function
-fx_shl64:
+    .section .text.shl64,"ax",@progbits
+    .type shl64,@function
+shl64:
     mov.b   2(r1), r11
     bit     #32, r11
     jz      1f
@@ -508,4 +402,4 @@ mul_magnitudes:
     subc    r15, r11
     mov     r10, r14
     mov     r11, r15
-2:  br      #fx_umul64
+2:  br      #.Lumul64

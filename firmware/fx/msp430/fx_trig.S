@@ -1,8 +1,8 @@
 /*
- * fx_trig.S - MSP430 versions of fx_sin, fx_cos, fx_atan2, fx_atan_ratio and the
- * first-quadrant arctangent fx_atan_q1 (firmware/fx/fx_trig.c holds the portable C that
- * defines the results; these perform the very same integer steps, which
- * tests/vectors/fx_vectors.c checks bit for bit).
+ * fx_trig.S - the trigonometry kernels (docs/kernels.md): fx_sin, fx_cos and the
+ * first-quadrant arctangent fx_atan_q1. Their C twins (firmware/fx/fx_trig_k.c) define the
+ * results; these perform the very same integer steps, which the check images compare call
+ * by call.
  *
  * Registers as clang emits calls (TI EABI): 32-bit arguments in R13:R12 and R15:R14 (high
  * word first here: R12 is the low word), 32-bit result in R13:R12; R11..R15 may be
@@ -103,19 +103,22 @@ fx_sin:
     ret
 
 /*
- * Arctangent core, local convention: R13:R12 = ay, R15:R14 = ax (both <= 2^31, not both 0)
- * -> R13:R12 = the angle of (ax, ay) in [0, quarter]. Bits 0 and 1 of R11 must be clear on
- * entry (the core uses them; callers keep their own flags in the other bits); R9, R10, R14,
- * R15 are clobbered. Steps of fx_atan_q1() in fx_trig.c: swap so that ay <= ax,
- * octant_ratio() (both halved when ax >= 2^30; turned by 45 degrees when ay > ax - ay),
- * q = floor(num 2^24 / den) by restoring division (24 steps; den <= 2^31, so the doubled
- * remainder fits 32 bits), t = A[i] + (A[i+1] - A[i]) u / 2^16 with i = q >> 16,
+ * fx_angle_t fx_atan_q1(uint32_t ay, uint32_t ax) (fx_internal.h): R13:R12 = ay,
+ * R15:R14 = ax (both <= 2^31, not both 0) -> R13:R12 = the angle of (ax, ay) in
+ * [0, quarter]. Steps of fx_atan_q1() in fx_trig_k.c: swap so that ay <= ax (bit 0 of R11),
+ * octant_ratio() (both halved when ax >= 2^30; turned by 45 degrees when ay > ax - ay: bit
+ * 1 of R11), q = floor(num 2^24 / den) by restoring division (24 steps; den <= 2^31, so the
+ * doubled remainder fits 32 bits), t = A[i] + (A[i+1] - A[i]) u / 2^16 with i = q >> 16,
  * u = q mod 2^16, then unfolded: turned t = 2^29 - t, swapped t = 2^30 - t.
  * Each quotient register starts with a sentinel bit whose carry-out ends its loop.
  */
-    .section .text.fx_atan_core,"ax",@progbits
-    .type fx_atan_core,@function
-fx_atan_core:
+    .section .text.fx_atan_q1,"ax",@progbits
+    .global fx_atan_q1
+    .type fx_atan_q1,@function
+fx_atan_q1:
+    push    r10
+    push    r9
+    clr     r11
     cmp     r13, r15                ; ay > ax: swap (bit 0)
     jlo     1f
     jne     2f
@@ -215,105 +218,6 @@ fx_atan_core:
     mov     r12, r14
     mov     r10, r13
 14: mov     r14, r12
-    ret
-
-/* fx_angle_t fx_atan_q1(uint32_t ay, uint32_t ax) (fx_internal.h): the core, C-callable. */
-    .section .text.fx_atan_q1,"ax",@progbits
-    .global fx_atan_q1
-    .type fx_atan_q1,@function
-fx_atan_q1:
-    push    r10
-    push    r9
-    clr     r11
-    call    #fx_atan_core
     pop     r9
     pop     r10
     ret
-
-/*
- * fx_angle_t fx_atan2(int32_t y, int32_t x): R13:R12 = y, R15:R14 = x -> R13:R12.
- * fx_atan2() of fx_trig.c: the core on |y|, |x|, then placed in the quadrant of (x, y):
- * x < 0: t = half - t; y < 0: t = -t. (0, 0) gives 0.
- */
-    .section .text.fx_atan2,"ax",@progbits
-    .global fx_atan2
-    .type fx_atan2,@function
-fx_atan2:
-    push    r10
-    push    r9
-    clr     r11                     ; bit 2: y < 0, bit 3: x < 0
-    tst     r13
-    jge     1f
-    clr     r9                      ; y = -y
-    sub     r12, r9
-    clr     r10
-    subc    r13, r10
-    mov     r9, r12
-    mov     r10, r13
-    mov     #4, r11
-1:  tst     r15
-    jge     .Latan_place
-    clr     r9                      ; x = -x
-    sub     r14, r9
-    clr     r10
-    subc    r15, r10
-    mov     r9, r14
-    mov     r10, r15
-    bis     #8, r11
-    jmp     .Latan_place
-
-/*
- * fx_angle_t fx_atan_ratio(int32_t num, int32_t den): R13:R12 = num, R15:R14 = den -> R13:R12.
- * fx_atan_ratio() of fx_trig.c: the core on |num|, |den|, negated when the signs differ
- * (bit 2 of R11, the "y < 0" of fx_atan2, whose tail it shares); (0, 0) gives 0.
- */
-    .global fx_atan_ratio
-    .type fx_atan_ratio,@function
-fx_atan_ratio:
-    push    r10
-    push    r9
-    clr     r11
-    tst     r13
-    jge     1f
-    inv     r12                     ; num = -num
-    inv     r13
-    add     #1, r12
-    adc     r13
-    mov     #4, r11
-1:  tst     r15
-    jge     .Latan_place
-    inv     r14                     ; den = -den, the sign flips
-    inv     r15
-    add     #1, r14
-    adc     r15
-    xor     #4, r11
-.Latan_place:
-    mov     r12, r10                ; (0, 0) gives 0
-    bis     r13, r10
-    bis     r14, r10
-    bis     r15, r10
-    tst     r10                     ; (BIS leaves the flags alone)
-    jz      5f
-    call    #fx_atan_core
-    bit     #8, r11                 ; x < 0: t = half - t
-    jz      3f
-    clr     r14
-    sub     r12, r14
-    mov     #0x8000, r15
-    subc    r13, r15
-    mov     r14, r12
-    mov     r15, r13
-3:  bit     #4, r11                 ; y < 0: t = -t
-    jz      4f
-    clr     r14
-    sub     r12, r14
-    clr     r15
-    subc    r13, r15
-    mov     r14, r12
-    mov     r15, r13
-4:  pop     r9
-    pop     r10
-    ret
-5:  clr     r12
-    clr     r13
-    jmp     4b

@@ -26,6 +26,7 @@ typedef enum {
     HAL_EDGE_GYRO_DOWN,      /**< nav board: gyro heading -1 step (clockwise)           P1.6 */
     HAL_EDGE_BEACON_SIGHTED, /**< nav board: main board photodetector pulse (sighting) P1.7 */
     HAL_EDGE_DELTA_S,        /**< main board: drive board's segment-almost-done pulse   P2.0 */
+    HAL_EDGE_CAN_INT,        /**< both boards: the MCP2515's /INT (falling edge)         P2.2 */
     HAL_EDGE_TEST,           /**< free line for tests                                   P2.7 */
     HAL_EDGE_COORD_REQUEST,  /**< nav board: coordinate request, NON-MASKABLE    RST/NMI pin */
     HAL_EDGE_COUNT

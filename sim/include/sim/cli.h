@@ -12,9 +12,12 @@ typedef struct {
     const char *report;   /* --report FILE, NULL = stdout */
     const char *log_dir;  /* --log-dir DIR, or NULL */
     const char *lcm_url;  /* --lcm URL, or NULL */
+    const char *can;      /* --can IFACE, or NULL */
+    const char *candump;  /* --candump FILE, or NULL */
     int quiet;            /* --quiet */
     int trace;            /* --trace */
     int stats;            /* --stats */
+    double realtime;      /* --realtime[=FACTOR]: simulated s per wall s, 0 = not paced */
 } sim_cli_t;
 
 /**

@@ -7,6 +7,11 @@
  * constant-steering, constant-speed segment at a time (sim/motion.h); every change of segment
  * is reported to the owner (the sensors reschedule their pulses along the new motion).
  *
+ * Seed 002's DAC style (firmware/drive/proto.c): the steering DAC turns the wheel at once
+ * (within the vehicle's steering range, atan(wheelbase / minimum radius)), the speed DAC sets
+ * the speed (128 + counts) while the drive motor is enabled and the brake released; speed 0,
+ * a disabled motor or the brake brakes at SIM_DRIVE_BRAKE as the 8255's speed 0 does.
+ *
  * Units: metres, seconds, radians. The drive board's units (length counts per metre of front
  * wheel, speed per count, shortest arc with a clean pulse, DAC centre) are the drive_board_t
  * the main board is configured with (firmware/drive/include/drive/drive_cmd.h).
@@ -45,6 +50,9 @@ typedef struct {
     int cur;           /* arc being driven, 2 = none */
     int braking;       /* 1 while braking to a stop */
     double alpha, v;   /* commanded steering (rad) and speed (m/s) */
+    int dac;           /* 1 once driven in seed 002's DAC style (no arcs: steering and speed) */
+    double dac_v;      /* DAC style: the speed DAC's speed, m/s */
+    uint8_t outputs;   /* DAC style: the digital outputs (DRIVE_OUT_*) */
     sim_segment_t seg; /* the vehicle's true motion now */
     uint64_t ev;       /* the board's next event (harness id), 0 = none */
     sim_drive_motion_fn on_motion;

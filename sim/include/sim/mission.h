@@ -23,6 +23,7 @@ typedef struct {
     uint32_t dk[OPTICAL_MAX_BEACONS];
     optical_xy8_t beacons8[OPTICAL_MAX_BEACONS];
     drive_path_point_t points[MAIN_BOARD_MAX_PATH];
+    main_pursuit_config_t pursuit; /* mode pursuit: main.pursuit points here */
     sim_path_t nominal;
 } sim_mission_t;
 
@@ -30,7 +31,8 @@ typedef struct {
  * Build the download of @p sc into @p m (which must outlive the run). Returns 0, or -1 with a
  * message naming the offending key and value in @p err: more path points or beacons than the
  * main board holds, beacons it cannot map (two of them coincide), a prescribed pose the solver
- * cannot reach from the previous one with the vehicle's minimum radius.
+ * cannot reach from the previous one with the vehicle's minimum radius; in mode pursuit,
+ * parameters the pursuit refuses (docs/pursuit.md).
  */
 int sim_mission_build(sim_mission_t *m, const sim_scenario_t *sc, char *err, size_t errlen);
 

@@ -1,14 +1,18 @@
 /*
  * sensors.h - the vehicle's pulse sources, scheduled on the harness along the true motion:
  *  - the odometer: one delta-l pulse to the nav board per dl of front-wheel travel (times the
- *    wheel's scale error);
+ *    wheel's scale error); a pulse may be lost, or come with a spurious extra one (glitches);
  *  - the gyro: a step up or down to the nav board whenever the measured heading (truth plus
  *    drift) crosses a step boundary, steps counted around the start heading;
- *  - the goniometer: the index pulse at every mirror turn and the photodetector's edges
- *    (sim/gonio.h) as captures on the main board; each rising edge also reaches the nav board
- *    (it latches its pose there) and is recorded with the true pose of its instant, so that a
- *    fix referring to that latch can be compared with the truth.
- * Every change of motion reschedules them (sim_sensors_motion()).
+ *  - the goniometer: the index pulse at every mirror turn (one may be lost) and the
+ *    photodetector's edges (sim/gonio.h) as captures on the main board, none while the
+ *    photodetector is blinded (dropout windows); each rising edge also reaches the nav board
+ *    (it latches its pose there) and is recorded with the true pose of its instant and the
+ *    target that lit it, so that a fix referring to that latch can be compared with the truth.
+ * The random disturbances draw from their own streams of the scenario's seed.
+ * Every change of motion reschedules them (sim_sensors_motion()). In mode pursuit the mirror
+ * stands still (no index pulse, no edge): the main board navigates on the position receiver
+ * and leaves the goniometer off, and seed 002's vehicle had none.
  */
 #ifndef SIM_SENSORS_H
 #define SIM_SENSORS_H
@@ -32,8 +36,11 @@ typedef struct {
     double gyro_drift; /* rad/s */
     double heading0;   /* rad: the start heading, centre of gyro step 0 */
     const sim_world_t *world;
+    const sim_scenario_t *sc; /* the disturbances: losses, glitches, dropout windows */
     sim_gonio_cfg_t gonio;
+    int gonio_off; /* mode pursuit: the mirror stands still */
     sim_rng_t rng_gonio;
+    sim_rng_t rng_index, rng_odo; /* index pulse losses, odometer glitches */
     /* state */
     double front_next; /* front-wheel total at the next odometer pulse, m */
     long gyro_count;   /* measured heading, in steps from the start */
@@ -42,10 +49,13 @@ typedef struct {
     sim_gonio_event_t edges[SIM_SENSORS_MAX_EDGES];
     size_t n_edges, next_edge;
     sim_photo_t photo;
+    uint8_t dark[SIM_PHOTO_TARGETS]; /* a pulse that began in a dropout window: not seen */
+    uint32_t index_lost, odo_missed, odo_extra; /* disturbances so far */
     uint32_t rises; /* rising edges so far (the nav board's latch numbers count them) */
     double rise_t[SIM_SENSORS_LATCHES];
     sim_pose_t rise_pose[SIM_SENSORS_LATCHES];
-    uint64_t ev_dl, ev_gyro, ev_gonio; /* harness event ids, 0 = none */
+    int16_t rise_target[SIM_SENSORS_LATCHES]; /* beacon index, or -1 - glint index */
+    uint64_t ev_dl, ev_gyro, ev_gonio;        /* harness event ids, 0 = none */
 } sim_sensors_t;
 
 /**
@@ -66,5 +76,12 @@ void sim_sensors_motion(sim_sensors_t *s);
  * one of the last SIM_SENSORS_LATCHES no more.
  */
 int sim_sensors_latch(const sim_sensors_t *s, uint16_t latch, double *t, sim_pose_t *pose);
+
+/**
+ * How many distinct map beacons lit the @p n rising edges up to and including @p last (latch
+ * numbers as in sim_sensors_latch(); the truth of a revolution's sightings). Edges no longer
+ * remembered count as none.
+ */
+int sim_sensors_beacons(const sim_sensors_t *s, uint16_t last, int n);
 
 #endif

@@ -1,7 +1,7 @@
 /*
  * world.h - the simulated building: retroreflective beacons (cylindrical posts or flat strips
- * facing the vehicle), mirror-like spurious reflectors (narrow glints), and occluders (wall
- * segments that block the beam).
+ * facing the vehicle), mirror-like spurious reflectors (narrow glints), occluders (wall
+ * segments that block the beam) and pillars (round obstacles that block it).
  */
 #ifndef SIM_WORLD_H
 #define SIM_WORLD_H
@@ -12,6 +12,7 @@
 #define SIM_MAX_BEACONS   64
 #define SIM_MAX_SPURIOUS  16
 #define SIM_MAX_OCCLUDERS 32
+#define SIM_MAX_PILLARS   32
 
 typedef struct {
     double x, y;
@@ -29,12 +30,19 @@ typedef struct {
 } sim_occluder_t;
 
 typedef struct {
+    double x, y;
+    double diameter; /* m */
+} sim_pillar_t;
+
+typedef struct {
     sim_beacon_t beacon[SIM_MAX_BEACONS];
     size_t n_beacons;
     sim_spurious_t spurious[SIM_MAX_SPURIOUS];
     size_t n_spurious;
     sim_occluder_t occluder[SIM_MAX_OCCLUDERS];
     size_t n_occluders;
+    sim_pillar_t pillar[SIM_MAX_PILLARS];
+    size_t n_pillars;
 } sim_world_t;
 
 /**
@@ -43,7 +51,8 @@ typedef struct {
  */
 bool sim_world_coincident(const sim_world_t *w, size_t *i, size_t *j);
 
-/** True when the straight line from (ax, ay) to (bx, by) crosses no occluder. */
+/** True when the straight line from (ax, ay) to (bx, by) crosses no occluder and passes no
+ * pillar nearer than its radius. */
 bool sim_world_visible(const sim_world_t *w, double ax, double ay, double bx, double by);
 
 #endif

@@ -38,26 +38,34 @@ void kcheck_register(kcheck_stat_t *st)
     hal_irq_restore(s);
 }
 
-static void report(const cy_bench_stat_t *b, const char *kind)
+void kcheck_add(kcheck_cycles_t *c, uint16_t cycles)
+{
+    if (cycles > c->max)
+        c->max = cycles;
+    c->sum += cycles;
+    c->n++;
+}
+
+static void report(const char *name, const kcheck_cycles_t *c, const char *kind)
 {
     cy_print("@cycles kernel/" CY_KCHECK_IMAGE "/");
-    cy_print(b->name);
+    cy_print(name);
     cy_print("/");
     cy_print(kind);
     cy_print(" ");
-    cy_print_dec((int32_t)b->max);
+    cy_print_dec((int32_t)c->max);
     cy_print(" ");
-    cy_print_dec(b->n ? (int32_t)(b->sum / b->n) : 0);
+    cy_print_dec(c->n ? (int32_t)(c->sum / c->n) : 0);
     cy_print(" ");
-    cy_print_dec(b->n);
+    cy_print_dec((int32_t)c->n);
     cy_println();
 }
 
 void cy_kernel_check_end(void)
 {
     for (const kcheck_stat_t *st = stats; st != 0; st = st->next) {
-        report(&st->asm_cycles, "asm");
-        report(&st->c_cycles, "c");
+        report(st->name, &st->asm_cycles, "asm");
+        report(st->name, &st->c_cycles, "c");
     }
 }
 

@@ -76,8 +76,8 @@ uint8_t __wrap_optical_scan(int16_t mid, uint16_t half)
     uint16_t t3 = cy_bench_now();
     uint16_t c_asm = (uint16_t)(t1 - t0 - cy_bench_overhead);
     if (c_asm <= 8000u) {
-        cy_bench_add(&st.asm_cycles, c_asm);
-        cy_bench_add(&st.c_cycles, (uint16_t)(t3 - t2 - cy_bench_overhead));
+        kcheck_add(&st.asm_cycles, c_asm);
+        kcheck_add(&st.c_cycles, (uint16_t)(t3 - t2 - cy_bench_overhead));
     }
     after_c = optical_work;
     optical_work = after_asm;

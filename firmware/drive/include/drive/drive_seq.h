@@ -18,6 +18,14 @@
  * at the end of the second. A delta-S pulse that ends the loaded double arc while the next
  * one waits for its load time loads it at once (D1: the next segment must be ready).
  *
+ * Dead reckoning through fix gaps (issue 16, docs/drive.md section 6): in full travel a failed
+ * fix is no fault. The sequencer adds up the travel since the last accepted fix (the chords
+ * between the poses it is given, from the fix's instant on) and scales the speed of every
+ * double arc it builds by drive_blind_speed(): full speed for the first quarter of the blind
+ * distance, then slower, down to a quarter at the blind distance, where the vehicle stops (a
+ * controlled stop, DRIVE_STOP_BLIND). An accepted fix restores full speed. The nav board
+ * watches the same distance on its odometer and asks for the stop (G6, DRIVE_EVT_STOP).
+ *
  * Simplified travel (seed 5.2): stopped, the first index pulse is ignored, the second starts
  * a fix (the index pulse is disabled while it is computed), the double arc to the next point
  * is computed from the fix and loaded, the vehicle stops at the last delta-S pulse of the
@@ -59,8 +67,9 @@ typedef enum {
     DRIVE_ST_S_FIX,        /**< simplified: optical fix requested                         */
     DRIVE_ST_S_ARC1,       /**< simplified: driving the first arc                         */
     DRIVE_ST_S_ARC2,       /**< simplified: driving the second arc                        */
-    DRIVE_ST_DONE,         /**< path finished (or stopped on request): waiting for orders */
+    DRIVE_ST_DONE,         /**< path finished: waiting for orders                         */
     DRIVE_ST_FAULT,        /**< stopped on a fault                                        */
+    DRIVE_ST_STOPPED,      /**< stopped short of the goal (seq.stop says why)             */
     DRIVE_ST_COUNT,
     DRIVE_ST_ANY = 0xFF /**< table wildcard */
 } drive_state_t;
@@ -74,7 +83,7 @@ typedef enum {
     DRIVE_EVT_POSE,       /**< the requested pose (current or predicted) is available       */
     DRIVE_EVT_DELTA_S,    /**< drive board: the current arc is almost done                  */
     DRIVE_EVT_TIMER,      /**< the timer started by DRIVE_ACT_TIMER elapsed                 */
-    DRIVE_EVT_STOP,       /**< stop request                                                 */
+    DRIVE_EVT_STOP,       /**< stop request (the nav board's, G6)                           */
     DRIVE_EVT_COUNT
 } drive_evt_t;
 
@@ -88,16 +97,25 @@ typedef enum {
 #define DRIVE_ACT_TIMER        0x0040u /**< (re)start the timer: out.timer_ms              */
 #define DRIVE_ACT_INDEX_ON     0x0080u /**< enable the index pulse                         */
 #define DRIVE_ACT_INDEX_OFF    0x0100u /**< disable the index pulse                        */
-#define DRIVE_ACT_DONE         0x0200u /**< the path is finished                           */
-#define DRIVE_ACT_FAULT        0x0400u /**< stopped on a fault: out.fault, out.status      */
+#define DRIVE_ACT_DONE                                                                             \
+    0x0200u                     /**< the travel is over: at the goal, or short of it               \
+                                      (out.stop says why)                          */
+#define DRIVE_ACT_FAULT 0x0400u /**< stopped on a fault: out.fault, out.status      */
 
 /** Why the sequencer stopped on a fault. */
 typedef enum {
     DRIVE_FAULT_NONE = 0,
     DRIVE_FAULT_NOT_READY, /**< started without a ready path                          */
     DRIVE_FAULT_SOLVE,     /**< no double arc (or drive-board command) to the target  */
-    DRIVE_FAULT_FIXES      /**< too many optical fixes failed in a row                */
+    DRIVE_FAULT_FIXES      /**< simplified: too many optical fixes failed in a row    */
 } drive_fault_t;
+
+/** Why the travel stopped short of the goal without a fault. */
+typedef enum {
+    DRIVE_STOP_NONE = 0,
+    DRIVE_STOP_REQUEST, /**< DRIVE_EVT_STOP: the nav board's request (G6)                   */
+    DRIVE_STOP_BLIND    /**< full: cfg.blind_distance travelled without an accepted fix     */
+} drive_stop_t;
 
 /** Timing and stopping parameters. */
 typedef struct {
@@ -111,7 +129,11 @@ typedef struct {
      * tight turns, where the front wheel runs farther than the rear axle), the nearer target
      * is driven to instead. */
     fx_q16_t advance;
-    uint8_t max_fix_failures; /**< consecutive failed fixes tolerated                       */
+    uint8_t max_fix_failures; /**< simplified: consecutive failed fixes tolerated           */
+    /** full: travel without an accepted fix after which the vehicle stops (metres Q16, >= 0;
+     * 0 stops at the first pose after a failed fix); the speed falls as it nears it
+     * (drive_blind_speed()). */
+    fx_q16_t blind_distance;
 } drive_seq_config_t;
 
 /** What the integration must do after a step. */
@@ -122,6 +144,7 @@ typedef struct {
     uint16_t timer_ms;     /**< DRIVE_ACT_TIMER                                         */
     uint16_t pose_ms;      /**< DRIVE_ACT_REQUEST_POSE: 0 = now, else predicted ahead   */
     drive_fault_t fault;   /**< DRIVE_ACT_FAULT                                         */
+    drive_stop_t stop;     /**< DRIVE_ACT_DONE short of the goal: why                   */
     drive_status_t status; /**< DRIVE_ACT_FAULT for DRIVE_FAULT_SOLVE: the solver's say */
 } drive_seq_out_t;
 
@@ -142,6 +165,9 @@ typedef struct {
     bool loaded_last;            /**< loaded targets the last point                        */
     uint8_t pulses_seen;         /**< delta-S pulses since the last load                   */
     uint8_t fix_failures;        /**< consecutive failed fixes                             */
+    fx_q16_t blind;              /**< travel since the last accepted fix (m Q16, saturates)  */
+    drive_pose_t blind_from;     /**< where it is counted from: the fix, then each pose    */
+    drive_stop_t stop;           /**< why the travel stopped short (DRIVE_ST_STOPPED)       */
     drive_status_t solve_status; /**< last solve (or command) status                       */
     uint16_t ignored;            /**< events without a row in their state                  */
     uint16_t underruns;          /**< double arcs that ended before the next was ready     */
@@ -169,6 +195,16 @@ void drive_seq_init(drive_seq_t *seq, drive_path_t *path, const drive_seq_config
  * target: up to a few solves, never from an interrupt handler in that case.
  */
 void drive_seq_step(drive_seq_t *seq, const drive_seq_event_t *ev, drive_seq_out_t *out);
+
+/**
+ * The speed of a double arc built @p blind metres (Q16, >= 0) after the last accepted fix,
+ * for a path speed @p speed (m/s Q16, >= 0) and the blind distance @p limit (m Q16): speed *
+ * clamp(5/4 - blind / limit, 1/4, 1), i.e. full speed up to a quarter of the limit, then
+ * falling linearly to a quarter of it at the limit (docs/drive.md, "Dead reckoning through fix
+ * gaps"). Never below @p slowest (the drive board's one speed count), unless @p speed itself
+ * is; @p limit <= 0: a quarter of the speed. Rounded to nearest (0.5 LSB of the factor).
+ */
+fx_q16_t drive_blind_speed(fx_q16_t speed, fx_q16_t blind, fx_q16_t limit, fx_q16_t slowest);
 
 /** Short name of a state (for logs). */
 const char *drive_seq_state_name(drive_state_t st);

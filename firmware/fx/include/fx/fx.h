@@ -14,12 +14,14 @@
  * mirrored numbers. Each function documents its valid input range and its maximum error,
  * measured over the whole input range by tests/unit/fx_test.cpp against double precision
  * (docs/fx.md has the table); the MSP430 build gives bit-identical results to the host build
- * (tests/vectors/fx_vectors.c), also where it uses assembly (firmware/fx/msp430/).
+ * (tests/vectors/fx_vectors.c), also where it uses assembly kernels (firmware/fx/msp430/,
+ * docs/kernels.md).
  *
- * Every function is reentrant (no state) and safe in interrupt handlers. On the MSP430 the
- * assembly versions hold interrupts off while they use the hardware multiplier (at most 85
- * cycles, 5.3 us at 16 MHz), as the compiler's multiply helpers do, so an interrupt cannot
- * corrupt a product in progress. Cycle counts: docs/fx.md.
+ * Every function is reentrant (no state) and safe in maskable interrupt handlers. On the
+ * MSP430 the kernels hold interrupts off while they use the hardware multiplier, as the
+ * compiler's multiply helpers do, so a maskable interrupt cannot corrupt a product in
+ * progress; nothing here may run in the NMI (DINT does not hold it off). Cycle counts:
+ * build/msp430/cycles.json (docs/fx.md).
  */
 #ifndef FX_FX_H
 #define FX_FX_H
@@ -87,9 +89,9 @@ fx_q16_t fx_cot(fx_angle_t a);
 /**
  * Angle of the vector (x, y): atan2(y, x) as a binary angle in [0, 1 turn). Any common scale
  * of x and y (full int32 range). Exact on the axes and the diagonals; (0, 0) gives 0.
- * Max error 1.3e-6 rad (7.5e-5 degrees) against atan2 of the exact inputs. At about 500
- * cycles on the MSP430 it also serves beacon identification: a coarser variant would save
- * little, the 24-step division being most of the cost.
+ * Max error 1.3e-6 rad (7.5e-5 degrees) against atan2 of the exact inputs. Its cost is
+ * mostly the 24-step division of the first-quadrant kernel: a coarser variant would save
+ * little.
  */
 fx_angle_t fx_atan2(int32_t y, int32_t x);
 

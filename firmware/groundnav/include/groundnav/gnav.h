@@ -86,12 +86,16 @@ typedef struct {
     gnav_pose_t pose;
 } gnav_latch_t;
 
-/** Called from the coordinate-request (NMI) handler with the pose it handed out. */
-typedef void (*gnav_coord_fn)(const gnav_pose_t *pose, void *ctx);
+/**
+ * Called from the coordinate-request (NMI) handler once it has taken the pose of that instant;
+ * read it with gnav_coord() from the main loop (the conversion to metres multiplies, which
+ * nothing in the NMI may do). Keep it short and multiply-free: it runs in the NMI.
+ */
+typedef void (*gnav_coord_fn)(void *ctx);
 /** Called once from the dl handler when the travel without a fix reaches the limit. */
 typedef void (*gnav_stop_fn)(void *ctx);
 
-/* Private state (about 0.8 KB of RAM); see gnav.c for the formats. */
+/* Private state (about 0.9 KB of RAM); see gnav_internal.h for the formats. */
 typedef struct {
     int64_t x, y;       /* pulses, Q25 */
     fx_angle_t heading; /* centre of the gyro cell */
@@ -133,6 +137,7 @@ typedef struct gnav {
     int16_t d15_c, d15_s;      /* unit vector of the interval's cell, Q15 */
     uint16_t stop_lo, stop_hi; /* pulses left before the stop request */
     uint8_t pending, reverse, dc_due, rho_due, stop_armed, stop;
+    uint8_t p_due; /* the closing point P is the position now: taken at the next pulse */
     /* gyro: the current cell */
     int32_t nxt_c, nxt_s;    /* its unit vector, Q25 */
     int16_t n15_c, n15_s;    /* and in Q15 */
@@ -172,8 +177,10 @@ typedef struct gnav {
     uint16_t latch_seq;
     gnav_latch_raw_t latch[GNAV_LATCH_N];
     gnav_corr_t corr[GNAV_CORR_N];
-    /* outputs */
-    gnav_pose_t coord;
+    /* outputs: the coordinate request's snapshots (the NMI fills coord[(seq + 1) & 1], then
+     * bumps coord_seq) */
+    volatile uint16_t coord_seq;
+    gnav_pub_t coord[2];
     gnav_coord_fn coord_fn;
     void *coord_ctx;
 } gnav_t;
@@ -203,8 +210,10 @@ void gnav_on_gyro_down(void *arg);
 void gnav_on_beacon_sighted(void *arg);
 /**
  * Coordinate Request handler (NMI): copy the published pose (never torn, even when it
- * preempts the dl handler mid-update), convert it to metres, keep it (gnav_coord()) and pass
- * it to the callback set with gnav_set_coord_callback().
+ * preempts the dl handler mid-update) as the snapshot gnav_coord() reads, and call the
+ * callback set with gnav_set_coord_callback(). A copy of 28 bytes and nothing else: it
+ * reaches no multiply (an NMI may land inside any; tools/stack_bound.py --no-mpy-in-nmi proves
+ * it for the nav board image).
  */
 void gnav_on_coord_request(void *arg);
 
@@ -217,15 +226,20 @@ void gnav_set_coord_callback(gnav_t *g, gnav_coord_fn fn, void *ctx);
 void gnav_set_stop_callback(gnav_t *g, gnav_stop_fn fn, void *ctx);
 
 /**
- * The current pose, consistent (never torn), from any context: retries while dl or gyro
- * handlers publish under it. Position error: at most 8 um of rounding on top of the dead
- * reckoning itself. Heading: inside the current gyro cell (within +-half a step of its centre),
- * extrapolated from the last edge at the rate the intervals showed (1,700 cycles on the
- * MSP430).
+ * The current pose, consistent (never torn), from any context but the NMI (it multiplies):
+ * retries while dl or gyro handlers publish under it. Position error: at most 8 um of rounding
+ * on top of the dead reckoning itself. Heading: inside the current gyro cell (within +-half a
+ * step of its centre), extrapolated from the last edge at the rate the intervals showed
+ * (cycles: gnav_pose in build/msp430/cycles.json).
  */
 void gnav_pose(gnav_t *g, gnav_pose_t *out);
 
-/** The pose the last coordinate request handed out. */
+/**
+ * The pose the last coordinate request took (all zero before the first), in metres and with
+ * its heading placed inside the cell: the snapshot converted now (the same numbers whenever it
+ * is read). Main loop only, any time after the request; retries while a new request lands
+ * under it.
+ */
 void gnav_coord(const gnav_t *g, gnav_pose_t *out);
 
 /** Number of the next latch (the count of Beacon Sighted edges so far, wraps at 2^16). */

@@ -27,7 +27,6 @@
 
 #include "hal/capture.h"
 #include "hal/edge.h"
-#include "hal/link.h"
 #include "hal/signal.h"
 
 #ifdef __cplusplus
@@ -166,17 +165,37 @@ void posix_signal_connect(int from_board, hal_signal_t s, int to_board, hal_edge
 /** Forget clocks and wiring (posix_reset() calls it). */
 void posix_clock_signal_reset(void);
 
-/* ---- the inter-board link (hal/link.h) ---- */
+/* ---- CAN (hal/can.h): the bus model, hal_posix/can_bus.h ---- */
 
-/** Latency of the in-process bus, ns (default 200 us). posix_reset() restores the default. */
-void posix_link_set_latency(uint64_t ns);
+/** Forget every CAN bus, node, frame and fault (posix_reset() calls it). */
+void posix_can_reset(void);
 
-/** Observer of every frame sent (logs, telemetry); NULL removes it. */
-typedef void (*posix_link_tap_fn)(void *ctx, int from_board, const hal_link_frame_t *f);
-void posix_link_set_tap(posix_link_tap_fn fn, void *ctx);
+/* ---- serial receivers (hal/uart.h): the device at the other end of the line ---- */
 
-/** Forget every link port and frame in flight (posix_reset() calls it). */
-void posix_link_reset(void);
+/** Bytes the line of one instance holds before they go out (posix_uart_send). */
+#define POSIX_UART_QUEUE 512
+
+/**
+ * Send @p n bytes to instance @p instance of @p board, as the device at the other end of the
+ * line does: each takes 10 bit times at the baud rate the firmware opened the instance with
+ * and arrives (a receive interrupt) at the end of its stop bit, back to back after the bytes
+ * sent before it (the first starts now when the line is idle). @p flags (HAL_UART_RX_ERROR)
+ * marks the bytes as received with a framing error. Returns how many were queued: 0 when the
+ * instance is not open, fewer than @p n when the line's queue (POSIX_UART_QUEUE) is full.
+ */
+size_t posix_uart_send(int board, uint8_t instance, const uint8_t *bytes, size_t n, uint8_t flags);
+
+/** When the line of @p instance is idle again (ns): now, or when its last queued byte ends. */
+uint64_t posix_uart_idle_ns(int board, uint8_t instance);
+
+/** Source id of the receive interrupt of @p instance on @p board, -1 when not open. */
+int posix_uart_source(int board, uint8_t instance);
+
+/** Bytes overrun on @p instance of @p board so far. */
+uint32_t posix_uart_overruns(int board, uint8_t instance);
+
+/** Close every line and forget bytes in flight (posix_reset() calls it). */
+void posix_uart_reset(void);
 
 #ifdef __cplusplus
 }
