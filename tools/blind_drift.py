@@ -93,6 +93,8 @@ def one_run(job):
         prev = (x, y)
         err = (float(e["x_m"]) - x, float(e["y_m"]) - y)
         tt = float(t["t_s"])
+        if k < len(fixes) and fixes[k] <= tt < fixes[k] + INSTALL_S:
+            continue  # a fix computed, perhaps installed already: neither drift nor its start
         installed = False
         while k < len(fixes) and fixes[k] + INSTALL_S <= tt:
             k += 1

@@ -9,24 +9,32 @@
 
 #include "optical/optical.h"
 
+/* ceil(v / 2^16) */
+static uint32_t ceil16(uint32_t v)
+{
+    return (v >> 16) + ((v & 0xFFFFu) != 0u);
+}
+
 void optical_unc_grow(const optical_config_t *cfg, optical_unc_t *u, fx_q16_t travel,
                       fx_angle_t turn)
 {
-    /* 2^-8 m and 2^-16 turn, one unit more than their floor (bounds: rounded up) */
-    uint16_t t8 = travel <= 0 ? 0u : travel >= 0xFFFF00l ? 0xFFFFu : (uint16_t)(travel >> 8) + 1u;
-    uint16_t tr = (uint16_t)((turn >= 0x80000000ul ? 0x80000000ul : turn) >> 16) + 1u;
-    uint16_t h = (uint16_t)(u->heading >> 16) + 1u, hmax = (uint16_t)(cfg->turn_max >> 16);
+    /* 2^-8 m and 2^-16 turn, rounded up (bounds stay bounds; nothing grows standing still) */
+    uint16_t t8 = travel <= 0           ? 0u
+                  : travel >= 0xFFFF00l ? 0xFFFFu
+                                        : (uint16_t)(((uint32_t)travel + 255u) >> 8);
+    uint32_t tr = ceil16(turn >= 0x80000000ul ? 0x80000000ul : turn);
+    uint32_t h = ceil16(u->heading), hmax = cfg->turn_max >> 16;
     /* heading: the gyro's scale on the turn, its drift per metre travelled (per metre in
-     * 2^-24 turn, rounded up: t8 of them make 2^-32 turn); each floored term rounded up */
-    uint32_t dh = (((uint32_t)tr * (uint16_t)cfg->unc_turn) >> 16) +
-                  (((uint32_t)t8 * (uint16_t)((cfg->unc_head_per_m >> 8) + 1u)) >> 16) + 2u;
-    h = h >= hmax || dh >= (uint32_t)(hmax - h) ? hmax : (uint16_t)(h + dh);
+     * 2^-24 turn, rounded up: t8 of them make 2^-32 turn) */
+    uint32_t dh = ceil16(tr * (uint16_t)cfg->unc_turn) +
+                  ceil16((uint32_t)t8 * (uint16_t)((cfg->unc_head_per_m + 255u) >> 8));
+    h = h >= hmax || dh >= hmax - h ? hmax : h + dh;
     /* position: the odometer's scale on the travel, and the heading's error over it, h 2 pi /
-     * 2^16 t8 in 2^-8 m (2 pi / 2^16 = 201 / 2^21 within 0.03 %, low: within 0.02 units at
-     * the cap of 0.5 m); three floors, each rounded up */
-    uint32_t dp = (((uint32_t)t8 * (uint16_t)cfg->unc_per_m) >> 16) +
-                  ((((uint32_t)h * t8) >> 10) * 201u >> 11) + 3u;
-    uint32_t p = ((uint32_t)u->pos >> 8) + 1u + dp, pmax = (uint32_t)cfg->jump_max >> 8;
+     * 2^16 t8 in 2^-8 m, with 2 pi / 2^16 <= 202 / 2^21 (0.5 % high), each part rounded up */
+    uint32_t ht = (uint32_t)h * t8; /* (h <= 2^15, t8 < 2^16) */
+    uint32_t dp = ceil16((uint32_t)t8 * (uint16_t)cfg->unc_per_m) +
+                  ((((ht >> 10) + ((ht & 1023u) != 0u)) * 202u + 2047u) >> 11);
+    uint32_t p = (((uint32_t)u->pos + 255u) >> 8) + dp, pmax = (uint32_t)cfg->jump_max >> 8;
     u->heading = (fx_angle_t)h << 16;
     u->pos = p >= pmax ? cfg->jump_max : (fx_q16_t)(p << 8);
 }
