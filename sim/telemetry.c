@@ -365,9 +365,12 @@ void sim_telemetry_fix(void *ctx, const main_board_fix_event_t *ev)
     double err = -1, herr = -1, tref = t;
     sim_pose_t tp;
     if (ev->n > 0 && sim_sensors_latch(tm->sensors, ev->ref_latch, &tref, &tp) == 0) {
-        double fx = fx_q16_to_double(ev->fix.pose.x), fy = fx_q16_to_double(ev->fix.pose.y);
-        err = hypot(fx - tp.x, fy - tp.y);
-        herr = fabs(remainder(fx_angle_to_deg(ev->fix.pose.heading) - tp.th / DEG, 360.0));
+        if (accepted || ev->fix.quality != UINT32_MAX) { /* (an attempt without a solution has
+                                                          * no error) */
+            double fx = fx_q16_to_double(ev->fix.pose.x), fy = fx_q16_to_double(ev->fix.pose.y);
+            err = hypot(fx - tp.x, fy - tp.y);
+            herr = fabs(remainder(fx_angle_to_deg(ev->fix.pose.heading) - tp.th / DEG, 360.0));
+        }
         if (tm->trace)
             trace_fix(ev, t, tp, err);
     } else if (tm->trace) {

@@ -220,6 +220,8 @@ static void correct_nav(void);
 static void fix_done(int8_t status, const optical_sighting_t *s, uint8_t n)
 {
     uint16_t ref_latch = (uint16_t)(mb.latch_first + (n > 0 ? n - 1u : 0u));
+    if (status == OPTICAL_E_REV) /* (optical_fix did not run: no solution, nothing stale) */
+        mb.fix.quality = UINT32_MAX;
     mb.fix_state = FIX_IDLE;
     optical_capture_release(&mb.cap);
     if (status == OPTICAL_OK) {
@@ -244,6 +246,7 @@ static __attribute__((noinline)) void fix_too_few(void)
     optical_sighting_t s[OPTICAL_MAX_SIGHTINGS];
     int8_t n = optical_rev_sightings(mb.rev, mb.cfg->counts_per_turn, s);
     mb.fix.status = n < 0 ? OPTICAL_E_REV : OPTICAL_E_FEW;
+    mb.fix.quality = UINT32_MAX; /* (optical_fix does not run: no solution) */
     fix_done((int8_t)mb.fix.status, s, n < 0 ? 0u : (uint8_t)n);
 }
 
