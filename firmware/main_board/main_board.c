@@ -427,6 +427,19 @@ static void correct_nav(void)
     mb.ack_in = 0;
     hal_critical_exit();
     link_send(&mb.link, &m);
+    /* and its quality (docs/optical.md O6), saturated to the fields */
+    m.type = LINKMSG_FIX_QUALITY;
+    m.u.fix_quality.latch = mb.fix_ref;
+    /* Q16 m per mrad to um per count of a 50,000-count goniometer (0.12566 mrad): x 1.9175,
+     * 31416 / 2^14 */
+    m.u.fix_quality.quality =
+        (uint16_t)(mb.fix.quality > 34177ul ? 0xFFFFu : (mb.fix.quality * 31416u) >> 14);
+    uint32_t e = ((uint32_t)mb.fix.err >> 6) * 1000u >> 10; /* Q16 m to mm */
+    m.u.fix_quality.err = (uint16_t)(mb.fix.err >= (65l << 16) ? 0xFFFFu : e);
+    uint32_t r = ((uint32_t)mb.fix.resid * 36000u) >> 16; /* 2^-16 turn to 0.01 deg */
+    m.u.fix_quality.resid = (uint8_t)(r > 0xFFu ? 0xFFu : r);
+    m.u.fix_quality.agree = mb.fix.n_agree;
+    link_send(&mb.link, &m);
 }
 
 static void request_pose(void)

@@ -31,7 +31,7 @@ TEST(LinkMsg, EveryMessageRoundTrips)
     std::mt19937 g(7);
     for (int i = 0; i < 2000; i++) {
         linkmsg_t m{};
-        m.type = (uint8_t)(1 + i % 9);
+        m.type = (uint8_t)(1 + i % (LINKMSG_TYPES - 1));
         switch (m.type) {
         case LINKMSG_STOP:
             m.u.stop.reason = (uint8_t)g();
@@ -60,6 +60,10 @@ TEST(LinkMsg, EveryMessageRoundTrips)
             break;
         case LINKMSG_DIR:
             m.u.dir.reverse = (uint8_t)(g() & 1);
+            break;
+        case LINKMSG_FIX_QUALITY:
+            m.u.fix_quality = {(uint16_t)g(), (uint16_t)g(), (uint16_t)g(), (uint8_t)g(),
+                               (uint8_t)g()};
             break;
         case LINKMSG_MAIN_HEARTBEAT:
         case LINKMSG_NAV_HEARTBEAT:
@@ -107,6 +111,13 @@ TEST(LinkMsg, EveryMessageRoundTrips)
             break;
         case LINKMSG_DIR:
             EXPECT_EQ(out.u.dir.reverse, m.u.dir.reverse);
+            break;
+        case LINKMSG_FIX_QUALITY:
+            EXPECT_EQ(out.u.fix_quality.latch, m.u.fix_quality.latch);
+            EXPECT_EQ(out.u.fix_quality.quality, m.u.fix_quality.quality);
+            EXPECT_EQ(out.u.fix_quality.err, m.u.fix_quality.err);
+            EXPECT_EQ(out.u.fix_quality.resid, m.u.fix_quality.resid);
+            EXPECT_EQ(out.u.fix_quality.agree, m.u.fix_quality.agree);
             break;
         case LINKMSG_MAIN_HEARTBEAT:
         case LINKMSG_NAV_HEARTBEAT:
@@ -240,6 +251,11 @@ TEST(LinkMsg, EveryMessageHasItsDocumentedBytes)
     expect_frames(m, {{0x050, {0x01}}});
 
     m = {};
+    m.type = LINKMSG_FIX_QUALITY; // latch, quality, err (u16 each), resid, agree
+    m.u.fix_quality = {0x1234, 0xBEEF, 0x0102, 0x99, 11};
+    expect_frames(m, {{0x033, {0x34, 0x12, 0xEF, 0xBE, 0x02, 0x01, 0x99, 11}}});
+
+    m = {};
     m.type = LINKMSG_MAIN_HEARTBEAT;
     m.u.heartbeat = {0xFE, 0x03, 0x80, 0x7F};
     expect_frames(m, {{0x701, {0xFE, 0x03, 0x80, 0x7F}}});
@@ -258,12 +274,12 @@ TEST(LinkMsg, EveryMessageHasItsDocumentedBytes)
 TEST(LinkMsg, EveryFrameHasItsSender)
 {
     const uint16_t from_nav[] = {0x010, 0x020, 0x021, 0x032, 0x041, 0x042, 0x702};
-    const uint16_t from_main[] = {0x030, 0x031, 0x040, 0x050, 0x701};
+    const uint16_t from_main[] = {0x030, 0x031, 0x033, 0x040, 0x050, 0x701};
     for (uint16_t id : from_nav)
         EXPECT_EQ(linkmsg_sender(id), LINKMSG_NODE_NAV) << std::hex << id;
     for (uint16_t id : from_main)
         EXPECT_EQ(linkmsg_sender(id), LINKMSG_NODE_MAIN) << std::hex << id;
-    for (uint16_t id : {0x000, 0x011, 0x022, 0x033, 0x043, 0x051, 0x700, 0x703, 0x7FF})
+    for (uint16_t id : {0x000, 0x011, 0x022, 0x034, 0x043, 0x051, 0x700, 0x703, 0x7FF})
         EXPECT_EQ(linkmsg_sender(id), -1) << std::hex << id;
 }
 
@@ -277,9 +293,9 @@ TEST(LinkMsg, WrongLengthsAreCountedForEveryId)
     memset(&out, 0x5A, sizeof out);
     linkmsg_t untouched = out;
     uint16_t errors = 0;
-    const uint16_t ids[] = {0x010, 0x020, 0x021, 0x030, 0x031, 0x032,
+    const uint16_t ids[] = {0x010, 0x020, 0x021, 0x030, 0x031, 0x032, 0x033,
                             0x040, 0x041, 0x042, 0x050, 0x701, 0x702};
-    const uint8_t good[] = {1, 8, 6, 8, 8, 3, 3, 8, 8, 1, 4, 4};
+    const uint8_t good[] = {1, 8, 6, 8, 8, 3, 8, 3, 8, 8, 1, 4, 4};
     for (size_t i = 0; i < sizeof ids / sizeof ids[0]; i++)
         for (uint8_t len = 0; len <= 8; len++) {
             if (len == good[i])

@@ -51,6 +51,13 @@ static void fill(linkmsg_t *m, uint8_t type)
     case LINKMSG_DIR:
         m->u.dir.reverse = (uint8_t)rnd();
         break;
+    case LINKMSG_FIX_QUALITY:
+        m->u.fix_quality.latch = (uint16_t)rnd();
+        m->u.fix_quality.quality = (uint16_t)rnd();
+        m->u.fix_quality.err = (uint16_t)rnd();
+        m->u.fix_quality.resid = (uint8_t)rnd();
+        m->u.fix_quality.agree = (uint8_t)rnd();
+        break;
     default: /* the heartbeats */
         m->u.heartbeat.counter = (uint8_t)rnd();
         m->u.heartbeat.flags = (uint8_t)rnd();
