@@ -113,10 +113,14 @@ class Worlds(unittest.TestCase):
             t = campaign.travel_time(self.base)
             for w in s["goniometer"]["dropouts"]:
                 self.assertTrue(1.0 <= w["duration_s"] <= 6.0 and 2.0 <= w["t_s"] <= t)
-            link = self.world("all", seed)["link_loss"]
-            self.assertTrue(0.01 <= link["drop"] <= 0.05 and len(link["outages"]) <= 2)
-            for w in link["outages"]:
-                self.assertTrue(0.2 <= w["duration_s"] <= 1.5)
+            faults = self.world("all", seed)["link"]["faults"]
+            drops = [f for f in faults if f["kind"] == "drop"]
+            corrupts = [f for f in faults if f["kind"] == "corrupt"]
+            self.assertTrue(1 <= len(drops) <= 3 and len(corrupts) == 1)
+            for f in drops:
+                self.assertTrue(0.02 <= f["duration_s"] <= 0.1 and f["count"] == 0)
+            self.assertTrue(0.1 <= corrupts[0]["duration_s"] <= 0.5)
+            self.assertEqual([f["at_s"] for f in faults], sorted(f["at_s"] for f in faults))
 
 
 class Figures(unittest.TestCase):

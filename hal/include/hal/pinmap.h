@@ -17,17 +17,17 @@
 #endif
 
 /** Vector numbers of the MSP430F2618 (word at 0xFFC0 + 2N; a higher N is served first). */
-#define HAL_VEC_PORT1   18 /* 0xFFE4 */
-#define HAL_VEC_PORT2   19 /* 0xFFE6 */
-#define HAL_VEC_TIMERA1 24 /* 0xFFF0 TACCR1-2, TAIFG */
-#define HAL_VEC_TIMERA0 25 /* 0xFFF2 TACCR0 */
-#define HAL_VEC_WDT     26 /* 0xFFF4 */
-#define HAL_VEC_TIMERB1 28 /* 0xFFF8 TBCCR1-6, TBIFG */
-#define HAL_VEC_TIMERB0 29 /* 0xFFFA TBCCR0 */
-#define HAL_VEC_NMI     30 /* 0xFFFC */
-#define HAL_VEC_RESET   31 /* 0xFFFE */
+#define HAL_VEC_PORT1    18 /* 0xFFE4 */
+#define HAL_VEC_PORT2    19 /* 0xFFE6 */
+#define HAL_VEC_TIMERA1  24 /* 0xFFF0 TACCR1-2, TAIFG */
+#define HAL_VEC_TIMERA0  25 /* 0xFFF2 TACCR0 */
+#define HAL_VEC_WDT      26 /* 0xFFF4 */
+#define HAL_VEC_TIMERB1  28 /* 0xFFF8 TBCCR1-6, TBIFG */
+#define HAL_VEC_TIMERB0  29 /* 0xFFFA TBCCR0 */
+#define HAL_VEC_NMI      30 /* 0xFFFC */
+#define HAL_VEC_RESET    31 /* 0xFFFE */
 /** Number of vectors (0..HAL_VEC_COUNT-1). */
-#define HAL_VEC_COUNT   32
+#define HAL_VEC_COUNT    32
 /** Receive vectors of the hal/uart.h instances. */
 #define HAL_VEC_UART0_RX 17 /* 0xFFE2 USCIAB1RX: USCI_A1 */
 #define HAL_VEC_UART1_RX 23 /* 0xFFEE USCIAB0RX: USCI_A0 */
