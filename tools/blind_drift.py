@@ -9,7 +9,8 @@ and turns), with the blind distance lifted out of the way. From each run's logs
 (truth.csv, estimate.csv: every 50 ms; fixes.csv) it takes the drift since the last accepted
 fix: the error vector of dead reckoning (estimate minus truth) minus the one it had when the
 nav board installed that fix, against the distance travelled since (the fix's own error
-cancels; its heading error and everything dead reckoning adds do not). It prints the worst
+cancels; its heading error and everything dead reckoning adds do not), over the blind windows
+only (between fixes a late installation would count a fix's correction as drift). It prints the worst
 drift in each metre of distance, and the longest whole number of metres whose worst drift
 stays within --budget: the blind distance the measurement supports.
 
@@ -101,7 +102,7 @@ def one_run(job):
             installed = True
         if installed:
             e0, s0 = err, s
-        if e0 is not None:
+        if e0 is not None and start <= tt <= start + window:  # blind: no fix can come
             out.append((s - s0, math.hypot(err[0] - e0[0], err[1] - e0[1])))
     return out
 

@@ -20,7 +20,7 @@ it with that seed. Kinds:
                   believes)
   index_loss      each index pulse lost with probability 0.05-0.25
   encoder_glitch  odometer pulses lost and spurious ones, each with probability 1e-4-1e-3
-  link_loss       on the CAN bus model: 1-3 windows of 0.02-0.2 s in which every board-link
+  link_loss       on the CAN bus model: 1-3 windows of 0.02-0.1 s in which every board-link
                   frame is lost, one of 0.1-0.5 s in which frames are corrupted (error
                   frames and retransmission)
   fix_dropout     1-3 windows of 1-6 s in which the photodetector sees nothing
@@ -212,10 +212,11 @@ def windows(rng, n, lo, hi, t_end):
 
 
 def g_link_loss(sc, route, rng):
-    # On the CAN bus model: 1-3 windows in which every frame is lost (shorter than the
-    # boards' silence time) and one in which frames are corrupted (error frames, retransmitted).
+    # On the CAN bus model: 1-3 windows in which every frame is lost (with the heartbeat
+    # period before them, shorter than the boards' silence time: a loss the link must ride
+    # out, not a silence) and one in which frames are corrupted (error frames, retransmitted).
     faults = [{"kind": "drop", "at_s": w["t_s"], "duration_s": w["duration_s"], "count": 0}
-              for w in windows(rng, rng.randint(1, 3), 0.02, 0.2, travel_time(sc))]
+              for w in windows(rng, rng.randint(1, 3), 0.02, 0.1, travel_time(sc))]
     faults += [{"kind": "corrupt", "at_s": w["t_s"], "duration_s": w["duration_s"], "count": 0}
                for w in windows(rng, 1, 0.1, 0.5, travel_time(sc))]
     sc.setdefault("link", {"bus": "can"})["faults"] = sorted(faults, key=lambda f: f["at_s"])

@@ -27,6 +27,13 @@ CRITERIA = {
 }
 
 
+# The blend arcs' smallest radius: 1.5 times the vehicle's (0.5 m), so that the double arcs
+# that bring the vehicle back onto a corner after a fix have room to steer tighter than the
+# corner itself (at the vehicle's own minimum a corrected pose on the inside of the corner has
+# no double arc to the next point: fault:solve).
+MIN_RADIUS_M = 0.75
+
+
 def scenario(name, mode, drawn):
     with open(os.path.join(ROOT, "sim", "scenarios", "seed002_two_segment.json")) as f:
         base = json.load(f)
@@ -59,7 +66,8 @@ def main():
             stem = os.path.splitext(os.path.basename(dxf))[0]
             out = os.path.join(tmp, stem + ".json")
             r = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "dxf2path.py"), dxf,
-                                "-o", out, "--step", "1.0", "--speed", "1.0"],
+                                "-o", out, "--step", "1.0", "--speed", "1.0",
+                                "--min-radius", str(MIN_RADIUS_M)],
                                capture_output=True, text=True)
             if r.returncode != 0:
                 print(f"FAIL {stem}: dxf2path: {r.stderr.strip()}")
