@@ -302,18 +302,17 @@ static int32_t rise_of(uint8_t i)
  * a width later (up to a few ms: millimetres at 1 m/s). Each sighting's pose is interpolated
  * between its latch and the next one (extrapolated for the last) by the angle clock, which
  * is time; then the poses are put in the sightings' (angle) order. In place: RAM is short.
- * The @p n poses are those of capture-order sightings skip..skip + n - 1 (@p order counts
- * from skip).
  */
-static __attribute__((noinline)) void centre_and_sort(const uint8_t *order, uint8_t n, uint8_t skip)
+static __attribute__((noinline)) void centre_and_sort(const uint8_t *order)
 {
     optical_pose_t *l = mb.latched;
+    uint8_t n = mb.n;
     optical_pose_t before_last = l[n - 2]; /* the last one extrapolates from it */
     for (uint8_t i = 0; i < n; i++) {
         uint8_t a = i + 1u < n ? i : (uint8_t)(i - 1u), b = (uint8_t)(a + 1u);
         const optical_pose_t pa = i + 1u < n ? l[a] : before_last, pb = l[b];
-        int32_t span = rise_of((uint8_t)(b + skip)) - rise_of((uint8_t)(a + skip));
-        int32_t half = (int32_t)((mb.rev->s[i + skip].width + 1u) >> 1);
+        int32_t span = rise_of(b) - rise_of(a);
+        int32_t half = (int32_t)((mb.rev->s[i].width + 1u) >> 1);
         int32_t frac = 0; /* Q16 */
         if (span > 0 && fx_div_shift(half, span, 16, &frac)) {
             l[i].x += fx_mul_q16(pb.x - pa.x, frac);
@@ -336,34 +335,6 @@ static __attribute__((noinline)) void centre_and_sort(const uint8_t *order, uint
         l[k] = first;
         done |= (uint16_t)(1u << k);
     }
-}
-
-/*
- * Latches lost (the nav board keeps its last 16: a revolution of more pulses overwrites its
- * first ones before the request is served): when only the first k of the revolution are
- * missing, its other sightings still make a fix. Drops the sorted sightings of capture order
- * below k from @p s and @p order (the rest renumbered from k), the first k latches, and moves
- * latch_first on; returns k, or -1 when others are missing or fewer than three would remain.
- */
-static __attribute__((noinline)) int8_t drop_unlatched(optical_sighting_t *s, uint8_t *order)
-{
-    uint8_t k = 0, n = mb.n;
-    while (k < n && !(mb.latch_have & (1u << k)))
-        k++;
-    uint16_t rest = (uint16_t)(((1u << n) - 1u) & ~((1u << k) - 1u));
-    if (mb.latch_have != rest || n - k < 3)
-        return -1;
-    uint8_t m = 0;
-    for (uint8_t j = 0; j < n; j++) {
-        if (order[j] < k)
-            continue;
-        s[m] = s[j];
-        order[m++] = (uint8_t)(order[j] - k);
-    }
-    for (uint8_t i = k; i < n; i++)
-        mb.latched[i - k] = mb.latched[i];
-    mb.latch_first = (uint16_t)(mb.latch_first + k);
-    return (int8_t)k;
 }
 
 /* The dead reckoning's uncertainty grown from the last attempt's reference pose to this one's
@@ -390,27 +361,31 @@ static __attribute__((noinline)) void fix_finish(void)
         fix_done(OPTICAL_E_REV, s, 0);
         return;
     }
-    int8_t skip = 0;
-    if (mb.latch_have != all && (skip = drop_unlatched(s, order)) < 0) {
+    if (mb.latch_have != all) {
         mb.stats.latch_timeouts++;
         fix_done(OPTICAL_E_REV, s, mb.n);
         return;
     }
-    uint8_t m = (uint8_t)(mb.n - (uint8_t)skip);
     /* Reference instant: the last sighting's rising edge; its latch is the approximate pose
      * and the nav board applies the fix to that latch. */
-    mb.approx = mb.latched[m - 1u];
-    centre_and_sort(order, m, (uint8_t)skip);
+    mb.approx = mb.latched[mb.n - 1];
+    centre_and_sort(order);
     grow_unc();
-    int8_t st =
-        optical_fix(&mb.cfg->map, &mb.cfg->optical, &mb.approx, &mb.unc, s, m, mb.latched, &mb.fix);
+    int8_t st = optical_fix(&mb.cfg->map, &mb.cfg->optical, &mb.approx, &mb.unc, s, mb.n,
+                            mb.latched, &mb.fix);
     if (st == OPTICAL_OK) {
         optical_unc_after_fix(&mb.cfg->optical, &mb.fix, &mb.unc);
         mb.last = mb.fix.pose;
     } else {
         mb.last = mb.approx;
     }
-    fix_done(st, s, m);
+    fix_done(st, s, mb.n);
+}
+
+/* @p v saturated to 16 bits */
+static uint16_t sat16(uint32_t v)
+{
+    return v > 0xFFFFu ? 0xFFFFu : (uint16_t)v;
 }
 
 /* Send the fix to the nav board (Buffer Full) for its reference latch. */
@@ -427,17 +402,12 @@ static void correct_nav(void)
     mb.ack_in = 0;
     hal_critical_exit();
     link_send(&mb.link, &m);
-    /* and its quality (docs/optical.md O6), saturated to the fields */
+    /* and its quality (docs/optical.md O6) in the firmware's units, saturated */
     m.type = LINKMSG_FIX_QUALITY;
     m.u.fix_quality.latch = mb.fix_ref;
-    /* Q16 m per mrad to um per count of a 50,000-count goniometer (0.12566 mrad): x 1.9175,
-     * 31416 / 2^14 */
-    m.u.fix_quality.quality =
-        (uint16_t)(mb.fix.quality > 34177ul ? 0xFFFFu : (mb.fix.quality * 31416u) >> 14);
-    uint32_t e = ((uint32_t)mb.fix.err >> 6) * 1000u >> 10; /* Q16 m to mm */
-    m.u.fix_quality.err = (uint16_t)(mb.fix.err >= (65l << 16) ? 0xFFFFu : e);
-    uint32_t r = ((uint32_t)mb.fix.resid * 36000u) >> 16; /* 2^-16 turn to 0.01 deg */
-    m.u.fix_quality.resid = (uint8_t)(r > 0xFFu ? 0xFFu : r);
+    m.u.fix_quality.quality = sat16(mb.fix.quality >> 2);   /* 2^-18 m per mrad */
+    m.u.fix_quality.err = sat16((uint32_t)mb.fix.err >> 8); /* 2^-8 m */
+    m.u.fix_quality.resid = mb.fix.resid > 0x3FFu ? 0xFFu : (uint8_t)(mb.fix.resid >> 2);
     m.u.fix_quality.agree = mb.fix.n_agree;
     link_send(&mb.link, &m);
 }

@@ -9,32 +9,38 @@
 
 #include "optical/optical.h"
 
-/* ceil(v / 2^16) */
-static uint32_t ceil16(uint32_t v)
+/* ceil(a b / 2^16), a and b below 2^16 */
+static uint16_t mulc(uint16_t a, uint16_t b)
 {
-    return (v >> 16) + ((v & 0xFFFFu) != 0u);
+    uint32_t p = (uint32_t)a * b;
+    return (uint16_t)((p + 0xFFFFu) >> 16);
+}
+
+/* ceil(v / 2^s) of a Q16 bound (>= 0) in 2^-(16-s) units, at most 0xFFFF */
+static uint16_t up(uint32_t v, uint8_t s)
+{
+    v = (v + ((1ul << s) - 1u)) >> s;
+    return v > 0xFFFFu ? 0xFFFFu : (uint16_t)v;
 }
 
 void optical_unc_grow(const optical_config_t *cfg, optical_unc_t *u, fx_q16_t travel,
                       fx_angle_t turn)
 {
     /* 2^-8 m and 2^-16 turn, rounded up (bounds stay bounds; nothing grows standing still) */
-    uint16_t t8 = travel <= 0           ? 0u
-                  : travel >= 0xFFFF00l ? 0xFFFFu
-                                        : (uint16_t)(((uint32_t)travel + 255u) >> 8);
-    uint32_t tr = ceil16(turn >= 0x80000000ul ? 0x80000000ul : turn);
-    uint32_t h = ceil16(u->heading), hmax = cfg->turn_max >> 16;
+    uint16_t t8 = up(travel < 0 ? 0u : (uint32_t)travel, 8);
+    uint16_t tr = up(turn >= 0x80000000ul ? 0x80000000ul : turn, 16);
+    uint32_t h = up(u->heading, 16), hmax = cfg->turn_max >> 16;
     /* heading: the gyro's scale on the turn, its drift per metre travelled (per metre in
      * 2^-24 turn, rounded up: t8 of them make 2^-32 turn) */
-    uint32_t dh = ceil16(tr * (uint16_t)cfg->unc_turn) +
-                  ceil16((uint32_t)t8 * (uint16_t)((cfg->unc_head_per_m + 255u) >> 8));
-    h = h >= hmax || dh >= hmax - h ? hmax : h + dh;
+    h += (uint32_t)mulc(tr, (uint16_t)cfg->unc_turn) + mulc(t8, up(cfg->unc_head_per_m, 8));
+    h = h > hmax ? hmax : h;
     /* position: the odometer's scale on the travel, and the heading's error over it, h 2 pi /
-     * 2^16 t8 in 2^-8 m, with 2 pi / 2^16 <= 202 / 2^21 (0.5 % high), each part rounded up */
-    uint32_t ht = (uint32_t)h * t8; /* (h <= 2^15, t8 < 2^16) */
-    uint32_t dp = ceil16((uint32_t)t8 * (uint16_t)cfg->unc_per_m) +
-                  ((((ht >> 10) + ((ht & 1023u) != 0u)) * 202u + 2047u) >> 11);
-    uint32_t p = (((uint32_t)u->pos + 255u) >> 8) + dp, pmax = (uint32_t)cfg->jump_max >> 8;
+     * 2^16 t8 in 2^-8 m, with 2 pi / 2^16 <= 1609 / 2^24 (0.02 % high): (h 1609 / 2^8) t8 /
+     * 2^16, each step rounded up; from 57 degrees on (h 1609 / 2^8 would pass 16 bits) 2 t8,
+     * what any heading error can do (h <= 2^15: h 1609 within 32 bits) */
+    uint32_t p = (uint32_t)up((uint32_t)u->pos, 8) + mulc(t8, (uint16_t)cfg->unc_per_m) +
+                 (h > 10400u ? 2ul * t8 : mulc(t8, up(h * 1609u, 8)));
+    uint32_t pmax = (uint32_t)cfg->jump_max >> 8;
     u->heading = (fx_angle_t)h << 16;
     u->pos = p >= pmax ? cfg->jump_max : (fx_q16_t)(p << 8);
 }

@@ -21,8 +21,8 @@
  *   0x032  nav->main  FIX_ACK              status (i8, gnav_err_t), latch seq (u16)
  *   0x040  main->nav  LATCH_REQ            first latch seq (u16), count (u8)
  *   0x041  nav->main  LATCH A/B (0x042)    x, y | heading, seq (u16), status (i8), tag
- *   0x033  main->nav  FIX_QUALITY          latch (u16), quality (um/count), err (mm), resid
- *                                          (0.01 deg), agree (u8)
+ *   0x033  main->nav  FIX_QUALITY          latch (u16), quality (2^-18 m/mrad), err (2^-8 m),
+ *                                          resid (2^-14 turn), agree (u8)
  *   0x050  main->nav  DIR                  1 = driving backwards
  *   0x701  main       MAIN_HEARTBEAT       counter, flags, TEC, REC (u8 each)
  *   0x702  nav        NAV_HEARTBEAT        counter, flags, TEC, REC (u8 each)
@@ -87,9 +87,9 @@ typedef struct {
         } dir;
         struct {
             uint16_t latch;   /**< the latch of the FIX it describes */
-            uint16_t quality; /**< geometry, um per count of bearing error, saturated */
-            uint16_t err;     /**< predicted position error bound, mm, saturated */
-            uint8_t resid;    /**< largest residual of the agreeing others, 0.01 deg, sat. */
+            uint16_t quality; /**< geometry, 2^-18 m per mrad, saturated */
+            uint16_t err;     /**< predicted position error bound, 2^-8 m, saturated */
+            uint8_t resid;    /**< largest residual of the agreeing others, 2^-14 turn, sat. */
             uint8_t agree;    /**< beacons that agree: the triplet and the others */
         } fix_quality;
         struct {

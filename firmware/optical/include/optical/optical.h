@@ -323,7 +323,8 @@ int8_t optical_map_compile(optical_map_t *map, const optical_xy_t *b, const opti
  * up to 256 m, in 2^-8 m rounded up) with @p turn of heading change (the sum of its
  * magnitudes, binary angle; counted up to a half turn, in 2^-16 turn): heading += unc_turn *
  * turn + unc_head_per_m * travel, then position += unc_per_m * travel + heading (rad) *
- * travel; each capped at turn_max and jump_max (docs/optical.md "O6").
+ * travel (at most 2 travel); each capped at turn_max and jump_max, every step rounded up
+ * (docs/optical.md "O6").
  */
 void optical_unc_grow(const optical_config_t *cfg, optical_unc_t *u, fx_q16_t travel,
                       fx_angle_t turn);
