@@ -352,12 +352,15 @@ static uint16_t mrad8_of(fx_angle_t a)
 }
 
 /* The predicted position error bound of a fix of quality @p q (Q16 m per mrad) for bearing
- * errors of @p mrad8 (2^-8 mrad): q mrad8 / 2^8 rounded, Q16 m, at most ERR_CAP. */
+ * errors of @p mrad8 (2^-8 mrad): q mrad8 / 2^8 rounded up, Q16 m, at most ERR_CAP (two
+ * 16 x 16 products: no 64-bit arithmetic on the fix's path). */
 static fx_q16_t err_of(uint32_t q, uint16_t mrad8)
 {
-    int32_t v;
-    return q < (uint32_t)ERR_CAP && fx_mul_shift((int32_t)q, mrad8, 8, &v) && v < ERR_CAP ? v
-                                                                                          : ERR_CAP;
+    uint32_t hi = (uint32_t)(uint16_t)(q >> 16) * mrad8, lo = (uint32_t)(uint16_t)q * mrad8;
+    if (q >= (uint32_t)ERR_CAP || hi >= (1ul << 20))
+        return ERR_CAP;
+    uint32_t v = (hi << 8) + (lo >> 8) + ((lo & 0xFFu) != 0u);
+    return v < (uint32_t)ERR_CAP ? (fx_q16_t)v : ERR_CAP;
 }
 
 /* The octagonal norm of (dx, dy) (Q16 m) in 2^-8 m, each component capped at 256 m: between
