@@ -23,7 +23,9 @@ import sys
 import cantools
 
 # The firmware's units (fx/fx.h): physical value of one raw step, by signal name.
-UNITS = {"x": 2.0**-16, "y": 2.0**-16, "heading": 360.0 / 2**32}
+UNITS = {"x": 2.0**-16, "y": 2.0**-16, "heading": 360.0 / 2**32,
+         # FIX_QUALITY (link/linkmsg.h): 2^-18 m per mrad, 2^-8 m, 2^-14 turn
+         "quality": 2.0**-18, "err": 2.0**-8, "resid": 360.0 / 2**14}
 
 
 def crc8(data):
@@ -64,8 +66,8 @@ def main():
         print("FAIL " + msg)
 
     # The firmware's messages and their fields: from the codec, by encoding zeros.
-    names = ["STOP", "POSE", "FIX", "FIX_ACK", "LATCH_REQ", "LATCH", "DIR", "MAIN_HEARTBEAT",
-             "NAV_HEARTBEAT"]
+    names = ["STOP", "POSE", "FIX", "FIX_ACK", "FIX_QUALITY", "LATCH_REQ", "LATCH", "DIR",
+             "MAIN_HEARTBEAT", "NAV_HEARTBEAT"]
     frames_sent = {}
     for name in names:
         pair = [m for m in db.messages if m.name in (name, name + "_A", name + "_B")]
