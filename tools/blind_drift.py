@@ -100,6 +100,8 @@ def one_run(job):
             installed = True
         if installed:
             e0, s0 = err, s
+        if k < len(fixes) and fixes[k] <= tt:
+            continue  # a fix computed just before this sample may be installed in it or not
         if e0 is not None and start <= tt <= start + window:  # blind: no fix can come
             out.append((s - s0, math.hypot(err[0] - e0[0], err[1] - e0[1])))
     return out
