@@ -21,8 +21,8 @@ it with that seed. Kinds:
   index_loss      each index pulse lost with probability 0.05-0.25
   encoder_glitch  odometer pulses lost and spurious ones, each with probability 1e-4-1e-3
   link_loss       on the CAN bus model: 1-3 windows of 0.02-0.1 s in which every board-link
-                  frame is lost, one of 0.1-0.5 s in which frames are corrupted (error
-                  frames and retransmission)
+                  frame is lost, one of 0.1-0.5 s in which 1-8 frames are corrupted
+                  (error frames and retransmission)
   fix_dropout     1-3 windows of 1-6 s in which the photodetector sees nothing
   all             every disturbance above at once, drawn the same way
 
@@ -214,10 +214,12 @@ def windows(rng, n, lo, hi, t_end):
 def g_link_loss(sc, route, rng):
     # On the CAN bus model: 1-3 windows in which every frame is lost (with the heartbeat
     # period before them, shorter than the boards' silence time: a loss the link must ride
-    # out, not a silence) and one in which frames are corrupted (error frames, retransmitted).
+    # out, not a silence) and one in which 1-8 frames are corrupted (error frames, each
+    # retransmitted; corrupting every frame for long drives a node bus-off: a silence).
     faults = [{"kind": "drop", "at_s": w["t_s"], "duration_s": w["duration_s"], "count": 0}
               for w in windows(rng, rng.randint(1, 3), 0.02, 0.1, travel_time(sc))]
-    faults += [{"kind": "corrupt", "at_s": w["t_s"], "duration_s": w["duration_s"], "count": 0}
+    faults += [{"kind": "corrupt", "at_s": w["t_s"], "duration_s": w["duration_s"],
+                "count": rng.randint(1, 8)}
                for w in windows(rng, 1, 0.1, 0.5, travel_time(sc))]
     sc.setdefault("link", {"bus": "can"})["faults"] = sorted(faults, key=lambda f: f["at_s"])
 

@@ -153,8 +153,9 @@ def images_table(names, src):
         if n not in measured:
             raise Missing(f"the cycle report has no stack high-water mark of {n}")
         for key, d, what in (("flash_limit", img, "images"), ("worst", st, "stack")):
-            if key not in d:
-                raise Missing(f"{n}'s {what} figures have no {key}: rebuild")
+            if d.get(key) is None:
+                raise Missing(f"{n}'s {what} figures have no {key} (the analysis failed: "
+                              "see target.stack_bound.*); rebuild")
         lines.append(f"| `{n}.elf` | {fmt(img['flash'])} B | {fmt(img['flash_limit'])} | "
                      f"{fmt(img['ram'])} B | {fmt(st['worst'])} B | "
                      f"{fmt(measured[n]['used'])} B | {fmt(img['ram'] + st['worst'])} B | "

@@ -68,7 +68,8 @@ static uint16_t excursion(uint16_t a, uint16_t len, uint16_t r_in, uint16_t r_ou
  *    rate unknown: the middle of what the tightest turn (one step in M pulses: L |d heading|
  *    <= dl) can have reached, min(a / M, 1) / 2;
  *  - closed by an edge in the entry direction: evenly between the edges (the mean rate),
- *    unless the interval outlasted its entry rate (then as an gnav_overdue open one);
+ *    unless the interval outlasted its entry rate (then as an gnav_overdue open one, but not
+ *    below the lower of a / len and 1 - (len - a) / rate_out: the exit it made);
  *  - closed back through the entry threshold (an excursion, an S-curve's inflection): up at
  *    the entry rate, down at the exit rate (either for both when one is unknown).
  */
@@ -97,6 +98,21 @@ int32_t gnav_cell_offset(const gnav_t *g, int8_t dir, uint16_t rate, uint16_t a,
         f = frac15(a, rate);
         if (exit != 0 || gnav_overdue(a_now, rate, false))
             f = ended_somewhere(f);
+        if (exit == dir) {
+            /* Closed in the entry direction after outlasting its entry rate: the turn slowed
+             * (a double arc's wider second arc) or paused and went on. Either way the heading
+             * reached the exit threshold at len, and it is not left below the lower of: the
+             * chord a / len (a turn that only slowed lies above it) and the exit at rate_out,
+             * 1 - (len - a) / rate_out (a turn that went on at the next interval's rate). */
+            uint16_t low = frac15(a, len);
+            if (rate_out != 0u) {
+                uint16_t back = (uint16_t)(0x8000u - frac15((uint16_t)(len - a), rate_out));
+                if (back < low)
+                    low = back;
+            }
+            if (low > f)
+                f = low;
+        }
     }
     uint32_t beta = g->step_whole;
     int32_t off = of_step(beta, f) - (int32_t)(beta >> 1);

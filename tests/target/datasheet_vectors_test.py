@@ -34,6 +34,7 @@ WIRING = {
     "I/O port P1": "hal_isr_port1",                # nav-board pulse inputs P1.4-P1.7
     "I/O port P2": "hal_isr_port2",                # delta-S (P2.0), the MCP2515's /INT (P2.2)
     "NMI": "hal_isr_nmi",                          # coordinate request (RST/NMI pin)
+    "USCI_A1/B1 receive": "hal_isr_uart0_rx",      # seed 002's position receiver (UCA1RXD, P3.7)
 }
 
 # mspdebug device -> {its config key: the data sheet source it raises}

@@ -120,6 +120,7 @@ class Worlds(unittest.TestCase):
             for f in drops:
                 self.assertTrue(0.02 <= f["duration_s"] <= 0.1 and f["count"] == 0)
             self.assertTrue(0.1 <= corrupts[0]["duration_s"] <= 0.5)
+            self.assertTrue(1 <= corrupts[0]["count"] <= 8)
             self.assertEqual([f["at_s"] for f in faults], sorted(f["at_s"] for f in faults))
 
 
