@@ -37,19 +37,28 @@ endfunction()
 if(CY_TARGET_MSP430)
     # The project budget of each board image on the MSP430F2618 (SPEC): flash (text, rodata,
     # the load image of .data, the vectors) and RAM (static data plus the proven worst-case
-    # stack). Room left on purpose for what comes next.
+    # stack). Room left on purpose for what comes next: 48 KB of flash. The main board image
+    # has outgrown it: the beacon travel, the CAN link and the fix gate of issue 16 take
+    # 51,534 B (the last 3.4 KB the gate), so its budget is the whole flash below the vectors
+    # that the classic ISA reaches (0x3100-0xFFBF, 52,928 B) and its margin is gone (README,
+    # "The MCU"). Pursuit mode is already off that image (docs/posrx.md).
     set(CY_BOARD_FLASH_BUDGET 49152)
+    set(CY_MAIN_BOARD_FLASH_BUDGET 52928)
     set(CY_BOARD_RAM_BUDGET 6144)
 
-    # cy_msp430_image(NAME KIND board|test SOURCES src... [LINK lib...] [CONSOLE uart])
+    # cy_msp430_image(NAME KIND board|test SOURCES src... [LINK lib...] [CONSOLE uart]
+    #                 [FLASH_BUDGET bytes])
     # An MSP430 ELF in bin/. Board images get the UART console, test images the simulator
     # console (CONSOLE uart: the board's, for tests of it under tools/msp430sim.py --uart);
     # both the F2618's memory map. Board images are checked against the project
-    # budget (48 KB flash, 6 KB RAM with the stack: the static part here, static + proven
+    # budget (48 KB flash unless FLASH_BUDGET says otherwise, 6 KB RAM with the stack: the static part here, static + proven
     # worst-case stack in target.stack_bound.*), test images against the part; the sizes are
     # recorded in images/<name>.json.
     function(cy_msp430_image name)
-        cmake_parse_arguments(A "" "KIND;CONSOLE" "SOURCES;LINK" ${ARGN})
+        cmake_parse_arguments(A "" "KIND;CONSOLE;FLASH_BUDGET" "SOURCES;LINK" ${ARGN})
+        if(NOT A_FLASH_BUDGET)
+            set(A_FLASH_BUDGET ${CY_BOARD_FLASH_BUDGET})
+        endif()
         add_executable(${name} ${A_SOURCES})
         cy_warnings(${name})
         if(A_KIND STREQUAL "board")
@@ -69,7 +78,7 @@ if(CY_TARGET_MSP430)
         set_target_properties(${name} PROPERTIES LINK_DEPENDS
             "${ld};${PROJECT_SOURCE_DIR}/hal/msp430/ld/f2618_sections.ld;${PROJECT_SOURCE_DIR}/tools/image_size.py")
         if(A_KIND STREQUAL "board")
-            set(limits --flash-limit ${CY_BOARD_FLASH_BUDGET} --ram-limit ${CY_BOARD_RAM_BUDGET})
+            set(limits --flash-limit ${A_FLASH_BUDGET} --ram-limit ${CY_BOARD_RAM_BUDGET})
         else()
             set(limits --flash-limit 53056 --ram-limit 8192)
         endif()
