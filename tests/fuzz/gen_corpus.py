@@ -70,10 +70,12 @@ def messages():
 
 # ----------------------------------------------------------------------- link messages
 # linkmsg_fuzz.c records: [selector, id byte, length byte, data...]; a selector below 0xC0
-# picks ids[selector % 12] in this order:
-SEL = {ID_STOP: 0, ID_POSE_A: 1, ID_POSE_A + 1: 2, ID_FIX_A: 3, ID_FIX_A + 1: 4,
-       ID_FIX_ACK: 5, ID_LATCH_A: 6, ID_LATCH_A + 1: 7, ID_DIR: 8, ID_LATCH_REQ: 9,
-       ID_MAIN_HEARTBEAT: 10, ID_NAV_HEARTBEAT: 11}
+# picks ids[selector % n] of the message table's ids in ascending order (linkmsg_sender()):
+ID_FIX_QUALITY = 0x033
+TABLE_IDS = sorted([ID_STOP, ID_POSE_A, ID_POSE_A + 1, ID_FIX_A, ID_FIX_A + 1, ID_FIX_ACK,
+                    ID_FIX_QUALITY, ID_LATCH_REQ, ID_LATCH_A, ID_LATCH_A + 1, ID_DIR,
+                    ID_MAIN_HEARTBEAT, ID_NAV_HEARTBEAT])
+SEL = {fid: k for k, fid in enumerate(TABLE_IDS)}
 
 
 def record(fid, data, raw=False):

@@ -4,7 +4,7 @@
  * board's receive handler feeds it.
  *
  * Input: records of [id selector, id byte, length byte, data...]: a selector below 0xC0 picks
- * one of the messages' twelve ids (so that most frames are of interest), otherwise the id is any
+ * one of the message table's ids (so that most frames are of interest), otherwise the id is any
  * 11-bit value; the length is taken modulo 9; missing data bytes are zero.
  * Properties beyond memory safety: a completed message has a known type and encodes back to
  * exactly the frames that made it (the frame just fed, and for a pair the A frame fed last
@@ -15,12 +15,9 @@
 #include "fuzz_check.h"
 #include "link/linkmsg.h"
 
-static const uint16_t ids[] = {
-    LINKMSG_ID_STOP,  LINKMSG_ID_POSE_A,    LINKMSG_ID_POSE_B,         LINKMSG_ID_FIX_A,
-    LINKMSG_ID_FIX_B, LINKMSG_ID_FIX_ACK,   LINKMSG_ID_LATCH_A,        LINKMSG_ID_LATCH_B,
-    LINKMSG_ID_DIR,   LINKMSG_ID_LATCH_REQ, LINKMSG_ID_MAIN_HEARTBEAT, LINKMSG_ID_NAV_HEARTBEAT,
-};
-#define N_IDS (sizeof ids / sizeof ids[0])
+/* The message table's ids (messages.toml, through linkmsg_sender()), gathered once. */
+static uint16_t ids[2 * (LINKMSG_TYPES + 1)];
+static size_t n_ids;
 
 static bool same(const hal_can_frame_t *a, const hal_can_frame_t *b)
 {
@@ -29,14 +26,15 @@ static bool same(const hal_can_frame_t *a, const hal_can_frame_t *b)
 
 static bool known(uint16_t id)
 {
-    for (size_t i = 0; i < N_IDS; i++)
-        if (ids[i] == id)
-            return true;
-    return false;
+    return linkmsg_sender(id) >= 0;
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
+    if (n_ids == 0)
+        for (uint16_t id = 0; id <= HAL_CAN_MAX_ID && n_ids < sizeof ids / sizeof ids[0]; id++)
+            if (known(id))
+                ids[n_ids++] = id;
     linkmsg_rx_t rx;
     linkmsg_rx_init(&rx);
     hal_can_frame_t last[HAL_CAN_MAX_ID + 1]; /* the last frame fed per id */
@@ -44,7 +42,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     size_t i = 0;
     while (i + 3 <= size) {
         hal_can_frame_t f = {0};
-        f.id = data[i] < 0xC0 ? ids[data[i] % N_IDS]
+        f.id = data[i] < 0xC0 ? ids[data[i] % n_ids]
                               : (uint16_t)(((data[i] & 7u) << 8 | data[i + 1]) & HAL_CAN_MAX_ID);
         f.len = (uint8_t)(data[i + 2] % (HAL_CAN_MAX_DATA + 1));
         i += 3;
