@@ -27,7 +27,7 @@ function(cy_docs_tests)
     endif()
     add_test(NAME docs.figures
         COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/doc_figures.py
-            --root ${PROJECT_SOURCE_DIR} --tree ${tree} --build ${CMAKE_BINARY_DIR}
+            --root ${PROJECT_SOURCE_DIR} --tree ${tree} --tree host --build ${CMAKE_BINARY_DIR}
             --host-bin ${CY_HOST_BIN_DIR})
     set(docs_tests docs.figures)
     if(tree STREQUAL "msp430")
