@@ -44,6 +44,14 @@ import threading
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# Directories the VM mounts a tmpfs of its own on (the job script): a host path below one of
+# them is not in the VM unless it is shared.
+VM_OWN_DIRS = ("/tmp", "/run", "/var/tmp", "/dev/shm")
+
+
+def hidden_in_vm(path):
+    """True when @p path lies below a directory the VM has its own tmpfs on."""
+    return any(path == d or path.startswith(d + "/") for d in VM_OWN_DIRS)
 DEFAULT_CACHE = os.path.join(REPO, "build", "canvm")
 KERNEL_META = "linux-image-amd64"
 EXIT_SKIP = 77
@@ -82,9 +90,9 @@ mount -t proc proc /host/proc && mount -t sysfs sysfs /host/sys &&
     mount -t tmpfs tmpfs /host/tmp && mount -t tmpfs tmpfs /host/run ||
     die "mounting proc, sys, dev, tmp in the host root failed"
 [ -d /host/var/tmp ] && mount -t tmpfs tmpfs /host/var/tmp
-while read -r tag dir; do
+while read -r tag dir opt; do
     mkdir -p "/host$dir" 2> /dev/null
-    mount -t 9p -o NINEP,cache=none "$tag" "/host$dir" || die "mount of $dir failed"
+    mount -t 9p -o NINEP,cache=none${opt:+,$opt} "$tag" "/host$dir" || die "mount of $dir failed"
 done < /job/mounts
 chroot /host ip link set lo up || die "ip link set lo up failed"
 for i in $(cat /job/ifaces); do
@@ -691,6 +699,9 @@ def run_vm(args, cmd, deadline):
     job = tempfile.mkdtemp(prefix=f"{boot}-{os.getpid()}-", dir=jobs)
     shares = [("hostroot", "/", True), ("job", job, False)]
     rw = []
+    if hidden_in_vm(REPO):  # e.g. a clone in mktemp -d: the VM's own /tmp would hide it
+        shares.append(("repo", REPO, True))
+        rw.append(f"repo {REPO} ro")
     for i, d in enumerate(dict.fromkeys([args.build_dir] + args.rw)):
         shares.append((f"rw{i}", d, False))
         rw.append(f"rw{i} {d}")
