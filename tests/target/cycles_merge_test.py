@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Unit test of tools/msp430sim.py's cycle-report merge (no toolchain needed): entries are
 merged by name across images, and a run of one image replaces every entry that image wrote
-before (an entry it no longer prints does not linger in a reused build directory)."""
+before (an entry it no longer prints does not linger in a reused build directory); the
+stack figure of an image is the deepest of its runs."""
 import json
 import os
 import sys
@@ -31,6 +32,19 @@ class MergeCycles(unittest.TestCase):
             self.assertEqual(got, {"fix": (800, "optical_vectors_target"),
                                    "isr_a": (120, "irq_test")})
             self.assertEqual(rep["clock_hz"], 16000000)
+
+    def test_the_stack_of_an_image_is_the_deepest_of_its_runs(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "cycles.json")
+            for used in (194, 174):  # two tests of one board image, either order
+                msp430sim.merge_cycles(path, [], None, stack={"image": "nav_board",
+                                                              "used": used, "room": 6000})
+            msp430sim.merge_cycles(path, [], None, stack={"image": "main_board", "used": 400,
+                                                          "room": 6000})
+            with open(path) as f:
+                rep = json.load(f)
+            self.assertEqual({e["image"]: e["used"] for e in rep["stack"]},
+                             {"main_board": 400, "nav_board": 194})
 
     def test_entries_of_an_older_report_without_image_stay_until_renamed(self):
         with tempfile.TemporaryDirectory() as d:
