@@ -20,6 +20,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import campaign  # noqa: E402  (the table is campaign.py's own)
+import markerdoc  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BLOCK = re.compile(r"(<!-- campaign-table (\S+) -->\n)(.*?)(<!-- end campaign-table -->)", re.S)
@@ -44,28 +45,7 @@ def main():
     ap.add_argument("--check", action="store_true", help="only check; exit 1 when out of date")
     ap.add_argument("docs", nargs="+", help="documents with campaign-table markers")
     a = ap.parse_args()
-    stale = 0
-    for doc in a.docs:
-        with open(doc) as f:
-            text = f.read()
-        try:
-            new, n = BLOCK.subn(lambda m: m.group(1) + render(m.group(2)) + m.group(4), text)
-        except (OSError, ValueError, KeyError) as e:
-            print(f"campaign_doc: {doc}: {e}", file=sys.stderr)
-            return 2
-        if n == 0:
-            print(f"campaign_doc: {doc}: no campaign-table markers", file=sys.stderr)
-            return 2
-        if new != text:
-            if a.check:
-                print(f"campaign_doc: {doc}: the campaign table is out of date "
-                      f"(run tools/campaign_doc.py {doc})", file=sys.stderr)
-                stale += 1
-            else:
-                with open(doc, "w") as f:
-                    f.write(new)
-                print(f"campaign_doc: {doc}: table rewritten")
-    return 1 if stale else 0
+    return markerdoc.rewrite(a.docs, BLOCK, render, "campaign_doc", "campaign table", a.check)
 
 
 if __name__ == "__main__":

@@ -21,6 +21,9 @@ import os
 import re
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import markerdoc  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BLOCK = re.compile(r"(<!-- schema-table (\S+) -->\n)(.*?)(<!-- end schema-table -->)", re.S)
 
@@ -85,24 +88,7 @@ def main():
     ap.add_argument("--check", action="store_true", help="only check; exit 1 when out of date")
     ap.add_argument("docs", nargs="+")
     a = ap.parse_args()
-    stale = 0
-    for doc in a.docs:
-        with open(doc) as f:
-            text = f.read()
-        new, n = BLOCK.subn(lambda m: m.group(1) + table(m.group(2)) + m.group(4), text)
-        if n == 0:
-            print(f"schema_doc: {doc}: no schema-table markers", file=sys.stderr)
-            return 2
-        if new != text:
-            if a.check:
-                print(f"schema_doc: {doc}: a key table is out of date "
-                      f"(run tools/schema_doc.py {doc})", file=sys.stderr)
-                stale += 1
-            else:
-                with open(doc, "w") as f:
-                    f.write(new)
-                print(f"schema_doc: {doc}: tables rewritten")
-    return 1 if stale else 0
+    return markerdoc.rewrite(a.docs, BLOCK, table, "schema_doc", "key table", a.check)
 
 
 if __name__ == "__main__":
