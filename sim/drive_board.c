@@ -48,11 +48,16 @@ int sim_drive_standing(const sim_drive_t *d)
     return d->v == 0 && !d->braking;
 }
 
-/* Account the rear-axle travel since the segment began to the arc being driven. */
+/*
+ * Account the rear-axle travel since the segment began to the arc being driven; while braking,
+ * the commanded speed follows the ramp (the speed at @p t).
+ */
 static void arc_progress(sim_drive_t *d, double t)
 {
     if (d->cur < 2)
-        d->arc[d->cur].left -= fabs(d->seg.v) * (t - d->seg.t0);
+        d->arc[d->cur].left -= fabs(sim_segment_travel(&d->seg, t));
+    if (d->braking)
+        d->v = sim_segment_speed(&d->seg, t);
 }
 
 /* A new constant-steering, constant-speed piece of motion from @p t (after arc_progress). */
@@ -64,6 +69,7 @@ static void new_segment(sim_drive_t *d, double t)
         d->alpha = d->arc[d->cur].alpha;
     double v = d->cur < 2 || d->dac ? d->v : 0.0;
     d->seg = sim_segment(t, p, front, d->alpha, v, d->wheelbase);
+    d->seg.decel = d->braking ? SIM_DRIVE_BRAKE : 0.0;
     if (d->on_motion)
         d->on_motion(d->ctx, t);
     sim_drive_schedule(d, t);
@@ -75,13 +81,17 @@ void sim_drive_schedule(sim_drive_t *d, double t)
     double v = fabs(d->seg.v);
     double next = INFINITY;
     if (d->braking)
-        next = t + SIM_DRIVE_BRAKE_STEP;
+        next = sim_segment_stop_time(&d->seg);
     if (d->cur < 2 && v > 0) {
         const sim_drive_arc_t *a = &d->arc[d->cur];
         double ds = a->pulse ? a->left : a->left - SIM_DRIVE_DS_MARGIN;
         if (ds < 0)
             ds = 0;
-        next = fmin(next, t + ds / v);
+        if (d->seg.decel > 0.0) /* the travel to go counts from t */
+            next = fmin(next, sim_segment_time_at_travel(
+                                  &d->seg, fabs(sim_segment_travel(&d->seg, t)) + ds));
+        else
+            next = fmin(next, t + ds / v);
     }
     if (isfinite(next))
         d->ev = sim_clock_schedule(next, on_event, d);
@@ -109,21 +119,19 @@ static void on_event(void *ctx, uint64_t t_ns)
             changed = 1;
         }
     }
-    if (d->braking) {
-        double m = fabs(d->v) - SIM_DRIVE_BRAKE * SIM_DRIVE_BRAKE_STEP;
-        if (m <= 0) {
-            m = 0;
-            d->braking = 0;
-        }
-        d->v = d->v < 0 ? -m : m;
+    if (d->braking && t >= sim_segment_stop_time(&d->seg) - 1e-9) {
+        d->v = 0; /* braked to a stand */
+        d->braking = 0;
         changed = 1;
     }
     if (changed) {
         new_segment(d, t);
     } else {
         /* Only a delta-S went out: keep moving, restart the arc bookkeeping from here. */
+        double decel = d->seg.decel;
         d->seg = sim_segment(t, sim_drive_pose(d, t), sim_segment_front(&d->seg, t), d->alpha,
-                             d->seg.v, d->wheelbase);
+                             sim_segment_speed(&d->seg, t), d->wheelbase);
+        d->seg.decel = decel;
         sim_drive_schedule(d, t);
     }
 }
@@ -134,6 +142,8 @@ void sim_drive_write(sim_drive_t *d, uint8_t reg, uint8_t value)
     if (!drive_decoder_feed(&d->dec, reg, value, &ev))
         return;
     double t = sim_clock_now();
+    if (d->braking)
+        d->v = sim_segment_speed(&d->seg, t); /* the ramp's speed now */
     double L = d->wheelbase;
     double cpm = fx_q16_to_double(d->units.counts_per_m),
            lsb = fx_q16_to_double(d->units.speed_lsb);

@@ -15,7 +15,46 @@ sim_segment_t sim_segment(double t, sim_pose_t p, double front_rolled, double al
     s.v = v;
     s.front_per_rear = 1.0 / cos(alpha);
     s.front0 = front_rolled;
+    s.decel = 0.0;
     return s;
+}
+
+double sim_segment_stop_time(const sim_segment_t *seg)
+{
+    return seg->decel > 0.0 ? seg->t0 + fabs(seg->v) / seg->decel : INFINITY;
+}
+
+double sim_segment_travel(const sim_segment_t *seg, double t)
+{
+    if (seg->decel <= 0.0)
+        return seg->v * (t - seg->t0);
+    double tau = fmin(t, sim_segment_stop_time(seg)) - seg->t0;
+    double d = fabs(seg->v) * tau - 0.5 * seg->decel * tau * tau;
+    return seg->v < 0.0 ? -d : d;
+}
+
+double sim_segment_speed(const sim_segment_t *seg, double t)
+{
+    if (seg->decel <= 0.0)
+        return seg->v;
+    double m = fabs(seg->v) - seg->decel * (t - seg->t0);
+    if (m <= 0.0)
+        return 0.0;
+    return seg->v < 0.0 ? -m : m;
+}
+
+double sim_segment_time_at_travel(const sim_segment_t *seg, double dist)
+{
+    double v = fabs(seg->v);
+    if (v <= 0.0)
+        return INFINITY;
+    if (seg->decel <= 0.0)
+        return seg->t0 + dist / v;
+    /* |v| tau - a tau^2 / 2 = dist, the smaller root, in the form that does not cancel */
+    double disc = v * v - 2.0 * seg->decel * dist;
+    if (disc < 0.0)
+        return INFINITY; /* stops first */
+    return seg->t0 + 2.0 * dist / (v + sqrt(disc));
 }
 
 double sim_segment_omega(const sim_segment_t *seg)
@@ -25,7 +64,7 @@ double sim_segment_omega(const sim_segment_t *seg)
 
 sim_pose_t sim_segment_pose(const sim_segment_t *seg, double t)
 {
-    double d = seg->v * (t - seg->t0); /* signed rear-axle travel */
+    double d = sim_segment_travel(seg, t); /* signed rear-axle travel */
     sim_pose_t p = seg->p0;
     double k = seg->kappa;
     double dth = k * d;
@@ -44,14 +83,21 @@ sim_pose_t sim_segment_pose(const sim_segment_t *seg, double t)
 
 double sim_segment_front(const sim_segment_t *seg, double t)
 {
+    if (seg->decel > 0.0)
+        return seg->front0 + seg->front_per_rear * fabs(sim_segment_travel(seg, t));
     return seg->front0 + fabs(seg->v) * seg->front_per_rear * (t - seg->t0);
 }
 
 double sim_segment_time_at_front(const sim_segment_t *seg, double front, double after)
 {
-    double rate = fabs(seg->v) * seg->front_per_rear;
-    if (rate <= 0.0)
-        return INFINITY;
-    double t = seg->t0 + (front - seg->front0) / rate;
+    double t;
+    if (seg->decel > 0.0) {
+        t = sim_segment_time_at_travel(seg, (front - seg->front0) / seg->front_per_rear);
+    } else {
+        double rate = fabs(seg->v) * seg->front_per_rear;
+        if (rate <= 0.0)
+            return INFINITY;
+        t = seg->t0 + (front - seg->front0) / rate;
+    }
     return t < after ? after : t;
 }

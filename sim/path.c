@@ -15,6 +15,7 @@ sim_pose_t sim_piece_end(const sim_piece_t *pc)
     seg.v = d;
     seg.front_per_rear = 1.0;
     seg.front0 = 0.0;
+    seg.decel = 0.0;
     return sim_segment_pose(&seg, 1.0);
 }
 

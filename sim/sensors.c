@@ -120,15 +120,79 @@ static void on_dl(void *ctx, uint64_t t_ns)
 
 /* ------------------------------------------------------------------ gyro */
 
-/* Measured heading: truth (linear in time on a segment) plus the gyro's drift. */
+/* Measured heading: truth plus the gyro's drift. */
 static double gyro_heading(const sim_sensors_t *s, double t)
 {
+    if (s->seg->decel > 0.0)
+        return s->seg->p0.th + s->seg->kappa * sim_segment_travel(s->seg, t) + s->gyro_drift * t;
     return s->seg->p0.th + sim_segment_omega(s->seg) * (t - s->seg->t0) + s->gyro_drift * t;
+}
+
+/*
+ * Smallest tau in [lo, hi] at which a tau^2 + b tau + c crosses 0 going the way of @p dir
+ * (+1 upwards, -1 downwards), INFINITY if none; the roots in the forms that do not cancel.
+ */
+static double first_root(double a, double b, double c, int dir, double lo, double hi)
+{
+    double r[2] = {INFINITY, INFINITY};
+    if (fabs(a) < 1e-15) {
+        if (b != 0.0)
+            r[0] = -c / b;
+    } else {
+        double disc = b * b - 4.0 * a * c;
+        if (disc >= 0.0) {
+            double q = -0.5 * (b + copysign(sqrt(disc), b));
+            r[0] = q / a;
+            r[1] = q != 0.0 ? c / q : INFINITY;
+        }
+    }
+    double best = INFINITY;
+    for (int i = 0; i < 2; i++)
+        if (r[i] >= lo && r[i] <= hi && r[i] < best && dir * (2.0 * a * r[i] + b) > 0.0)
+            best = r[i];
+    return best;
+}
+
+/*
+ * A braking segment: the first crossing of either step boundary from @p t0 by the measured
+ * heading, quadratic in time until the stop and linear (the drift alone) after it.
+ */
+static void schedule_gyro_braking(sim_sensors_t *s, double t0)
+{
+    const sim_segment_t *g = s->seg;
+    double sgn = g->v < 0.0 ? -1.0 : 1.0, ts = sim_segment_stop_time(g), t1 = fmax(t0, ts);
+    double best = INFINITY;
+    int dir = 0;
+    for (int k = 0; k < 2; k++) {
+        int up = k == 0 ? 1 : -1;
+        double level = s->heading0 + (s->gyro_count + 0.5 * up) * s->gyro_step;
+        /* th0 + kappa sgn (|v| tau - decel tau^2 / 2) + drift (t0 + tau) = level */
+        double a = -0.5 * g->kappa * sgn * g->decel, b = g->kappa * g->v + s->gyro_drift,
+               c = g->p0.th + s->gyro_drift * g->t0 - level;
+        double t = g->t0 + first_root(a, b, c, up, t0 - g->t0, ts - g->t0);
+        if (!isfinite(t) && up * s->gyro_drift > 1e-12) {
+            double after = t1 + (level - gyro_heading(s, t1)) / s->gyro_drift;
+            if (after >= t1)
+                t = after;
+        }
+        if (t < best) {
+            best = t;
+            dir = up;
+        }
+    }
+    if (!isfinite(best))
+        return;
+    s->gyro_dir = dir;
+    s->ev_gyro = sim_clock_schedule(best, on_gyro, s);
 }
 
 static void schedule_gyro(sim_sensors_t *s, double t0)
 {
     sim_clock_cancel(&s->ev_gyro);
+    if (s->seg->decel > 0.0) {
+        schedule_gyro_braking(s, t0);
+        return;
+    }
     double rate = sim_segment_omega(s->seg) + s->gyro_drift;
     if (fabs(rate) < 1e-12)
         return;

@@ -211,8 +211,9 @@ static void sample(void *ctx, uint64_t t_ns)
     double t = sim_clock_s(t_ns);
     sim_pose_t p = sim_drive_pose(tm->drive, t);
     double ct = sim_path_index_distance(tm->nominal, p.x, p.y);
-    if (tm->src && !tm->done && !tm->travel_done && tm->drive->seg.v != 0) {
-        tm->report->pursuit.distance += fabs(tm->drive->seg.v) * SIM_TELEMETRY_SAMPLE;
+    double speed = sim_segment_speed(&tm->drive->seg, t);
+    if (tm->src && !tm->done && !tm->travel_done && speed != 0) {
+        tm->report->pursuit.distance += fabs(speed) * SIM_TELEMETRY_SAMPLE;
         tm->report->pursuit.moving += SIM_TELEMETRY_SAMPLE;
     }
     if (hypot(p.x - tm->last_sample.x, p.y - tm->last_sample.y) >= 1e-3 && !tm->done &&
@@ -227,7 +228,7 @@ static void sample(void *ctx, uint64_t t_ns)
         nav_board_pose(&e);
         double ex = fx_q16_to_double(e.x), ey = fx_q16_to_double(e.y);
         double eh = fx_angle_to_deg(e.heading);
-        double v = tm->drive->seg.v, steer = tm->drive->alpha / DEG;
+        double v = speed, steer = tm->drive->alpha / DEG;
         if (tm->f_truth)
             fprintf(tm->f_truth, "%.4f,%.6f,%.6f,%.5f,%.4f,%.4f,%.6f\n", t, p.x, p.y,
                     wrap_deg(p.th / DEG), v, steer, ct);

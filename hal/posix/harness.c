@@ -320,51 +320,60 @@ uint64_t posix_preempt_points(int board)
 
 /* ---- time and events: a binary min-heap ordered by (t, seq) ---- */
 
-static bool before(const event_t *a, const event_t *b)
+/* Does (t, seq) come before the event @p e? */
+static bool before(uint64_t t, uint64_t seq, const event_t *e)
 {
-    return a->t < b->t || (a->t == b->t && a->seq < b->seq);
+    return t < e->t || (t == e->t && seq < e->seq);
 }
 
-/* Sift @p e up from the hole at @p i and store it where it belongs (moves, no swaps). */
-static void sift_up(size_t i, event_t e)
+/*
+ * Store the event (t, seq, fn, ctx) in the heap from the hole at @p i upwards. The fields go
+ * one by one (no event on the stack): this runs for every pulse of the simulation.
+ */
+static void sift_up(size_t i, uint64_t t, uint64_t seq, posix_event_fn fn, void *ctx)
 {
     while (i > 0) {
         size_t p = (i - 1) / 2;
-        if (!before(&e, &heap[p]))
+        if (!before(t, seq, &heap[p]))
             break;
         heap[i] = heap[p];
         i = p;
     }
-    heap[i] = e;
+    heap[i].t = t;
+    heap[i].seq = seq;
+    heap[i].fn = fn;
+    heap[i].ctx = ctx;
 }
 
-/* Sift @p e down from the hole at @p i and store it where it belongs. */
-static void sift_down(size_t i, event_t e)
-{
-    for (;;) {
-        size_t m = 2 * i + 1;
-        if (m >= heap_n)
-            break;
-        if (m + 1 < heap_n && before(&heap[m + 1], &heap[m]))
-            m++;
-        if (!before(&heap[m], &e))
-            break;
-        heap[i] = heap[m];
-        i = m;
-    }
-    heap[i] = e;
-}
-
+/* Fill the hole at @p i with the last event, moving it down (or up) to where it belongs. */
 static void heap_remove(size_t i)
 {
     heap_n--;
     if (i == heap_n)
         return;
-    event_t last = heap[heap_n];
-    if (i > 0 && before(&last, &heap[(i - 1) / 2]))
-        sift_up(i, last);
-    else
-        sift_down(i, last);
+    const event_t *last = &heap[heap_n];
+    uint64_t t = last->t, seq = last->seq;
+    if (i > 0 && before(t, seq, &heap[(i - 1) / 2])) {
+        sift_up(i, t, seq, last->fn, last->ctx);
+        return;
+    }
+    posix_event_fn fn = last->fn;
+    void *ctx = last->ctx;
+    for (;;) {
+        size_t m = 2 * i + 1;
+        if (m >= heap_n)
+            break;
+        if (m + 1 < heap_n && before(heap[m + 1].t, heap[m + 1].seq, &heap[m]))
+            m++;
+        if (before(t, seq, &heap[m]))
+            break;
+        heap[i] = heap[m];
+        i = m;
+    }
+    heap[i].t = t;
+    heap[i].seq = seq;
+    heap[i].fn = fn;
+    heap[i].ctx = ctx;
 }
 
 uint64_t posix_now_ns(void)
@@ -377,9 +386,8 @@ uint64_t posix_schedule(uint64_t t_ns, posix_event_fn fn, void *ctx)
     if (fn == NULL || t_ns < now_ns || heap_n >= POSIX_MAX_EVENTS)
         return 0;
     uint64_t id = ++next_seq;
-    event_t e = {.t = t_ns, .seq = id, .fn = fn, .ctx = ctx};
     heap_n++;
-    sift_up(heap_n - 1, e);
+    sift_up(heap_n - 1, t_ns, id, fn, ctx);
     return id;
 }
 
@@ -403,10 +411,12 @@ uint64_t posix_run_until(uint64_t t_ns)
 {
     uint64_t n = 0;
     while (heap_n && heap[0].t <= t_ns) {
-        event_t e = heap[0];
+        uint64_t t = heap[0].t;
+        posix_event_fn fn = heap[0].fn;
+        void *ctx = heap[0].ctx;
         heap_remove(0);
-        now_ns = e.t;
-        e.fn(e.ctx, e.t);
+        now_ns = t;
+        fn(ctx, t);
         posix_dispatch();
         n++;
     }

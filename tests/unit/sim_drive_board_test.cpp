@@ -135,11 +135,8 @@ TEST(DriveBoard, SpeedZeroBrakesAtHalfAMetrePerSecondSquared)
     double v = 30 * kSpeedLsb;
     b.run_until(0.5 + v / 0.5 + 0.05);
     EXPECT_TRUE(sim_drive_standing(&b.d));
-    // Travel: 0.5 s at v, then the braking ramp in 10 ms steps (v - 0.005 k for step k).
-    // Travel: 0.5 s at v, 10 ms more at v, then 10 ms steps at v - 0.005 k while positive.
-    double dist = 0.5 * v + 0.01 * v;
-    for (int k = 1; v - 0.005 * k > 0; k++)
-        dist += 0.01 * (v - 0.005 * k);
+    // Travel: 0.5 s at v, then a steady ramp down at 0.5 m/s^2: v^2 / (2 x 0.5) more.
+    double dist = 0.5 * v + v * v / (2 * 0.5);
     sim_pose_t p = sim_drive_pose(&b.d, 0.5 + v / 0.5 + 0.05);
     EXPECT_NEAR(p.x, dist, 1e-6);
 }

@@ -112,6 +112,30 @@ TEST(Sensors, GyroStepsAtEachBoundaryOfTheMeasuredHeading)
     EXPECT_EQ(g_up, 0);
 }
 
+// Braking on a curve: the heading moves kappa v^2 / (2 decel) in all, then only the drift
+// moves it; the odometer counts the front wheel's v^2 / (2 decel cos alpha).
+TEST(Sensors, GyroAndOdometerFollowABrakingCurve)
+{
+    for (double alpha : {0.3, -0.3}) {
+        for (double drift : {0.0, 0.5, -0.5}) {
+            Bench b(alpha, 0.8, drift);
+            b.seg.decel = 0.5;
+            sim_sensors_motion(&b.s);
+            posix_run_until(3'000'000'000ull); // stops at 1.6 s, then stands
+            double kappa = std::tan(alpha) / 0.75, travel = 0.8 * 0.8 / (2 * 0.5);
+            double turn = kappa * travel + drift * M_PI / 180 * 3.0;
+            double step = 0.25 * M_PI / 180;
+            // Net, the measured heading passes turn / step boundaries; one way only unless the
+            // drift turns it back once the vehicle slows.
+            EXPECT_EQ(g_up - g_down, (int)std::floor(turn / step + 0.5)) << alpha << " " << drift;
+            if (kappa * drift >= 0) {
+                EXPECT_EQ(std::min(g_up, g_down), 0) << alpha << " " << drift;
+            }
+            EXPECT_EQ(g_dl, (int)std::floor(travel / std::cos(alpha) / 0.000254));
+        }
+    }
+}
+
 // Glitches: every pulse lost with probability `missed`, or followed by an extra one with
 // probability `extra`; the handler sees what is left.
 TEST(Sensors, OdometerGlitchesLoseAndAddPulses)

@@ -4,8 +4,9 @@
  * double arc at the commanded speed, raises delta-S SIM_DRIVE_DS_MARGIN before an arc's end
  * (only for arcs long enough to raise a clean pulse), stops when the double arc is done, and
  * brakes at SIM_DRIVE_BRAKE when told speed 0. The vehicle's true motion is one
- * constant-steering, constant-speed segment at a time (sim/motion.h); every change of segment
- * is reported to the owner (the sensors reschedule their pulses along the new motion).
+ * constant-steering segment at a time, at constant speed or braking (sim/motion.h); every
+ * change of segment is reported to the owner (the sensors reschedule their pulses along the
+ * new motion).
  *
  * Seed 002's DAC style (firmware/drive/proto.c): the steering DAC turns the wheel at once
  * (within the vehicle's steering range, atan(wheelbase / minimum radius)), the speed DAC sets
@@ -25,9 +26,8 @@
 #include "drive/drive_proto.h"
 #include "sim/motion.h"
 
-#define SIM_DRIVE_DS_MARGIN  0.02 /* m: delta-S comes this far before an arc ends */
-#define SIM_DRIVE_BRAKE      0.5  /* m/s^2: braking when told speed 0 */
-#define SIM_DRIVE_BRAKE_STEP 0.01 /* s: speed steps while braking */
+#define SIM_DRIVE_DS_MARGIN 0.02 /* m: delta-S comes this far before an arc ends */
+#define SIM_DRIVE_BRAKE     0.5  /* m/s^2: braking when told speed 0 (a steady ramp) */
 
 /** One loaded arc, as the board drives it. */
 typedef struct {
@@ -75,7 +75,7 @@ void sim_drive_init(sim_drive_t *d, const drive_board_t *units, double wheelbase
  */
 void sim_drive_write(sim_drive_t *d, uint8_t reg, uint8_t value);
 
-/** Schedule the board's next event (a delta-S, an arc's end, a braking step) from @p t (s). */
+/** Schedule the board's next event (a delta-S, an arc's end, the end of braking) from @p t (s). */
 void sim_drive_schedule(sim_drive_t *d, double t);
 
 /**
