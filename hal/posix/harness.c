@@ -45,11 +45,19 @@ typedef struct {
 } event_t;
 
 static board_t boards[POSIX_MAX_BOARDS];
+static int n_boards; /* boards[0 .. n_boards - 1] were created since the reset */
 static int current = -1;
 static uint64_t now_ns;
 static uint64_t next_seq;
 static event_t heap[POSIX_MAX_EVENTS];
 static size_t heap_n;
+/*
+ * While an event runs, it still holds the heap's root (it is the least event there, so the
+ * heap stays valid): the first event its handler schedules takes the root's place with one
+ * sift down, instead of a removal and an insertion (most handlers schedule their successor).
+ * The order of the events does not change: it is the total order (t, seq).
+ */
+static bool root_spent;
 static posix_preempt_hook_fn preempt_hook;
 static void *preempt_ctx;
 volatile int hal_preempt_armed;
@@ -70,10 +78,12 @@ static board_t *board_at(int b)
 void posix_reset(void)
 {
     memset(boards, 0, sizeof boards);
+    n_boards = 0;
     current = -1;
     now_ns = 0;
     next_seq = 0;
     heap_n = 0;
+    root_spent = false;
     preempt_hook = NULL;
     preempt_ctx = NULL;
     hal_preempt_armed = 0;
@@ -89,6 +99,8 @@ int posix_board_create(const char *name)
         if (!boards[b].used) {
             memset(&boards[b], 0, sizeof boards[b]);
             boards[b].used = true;
+            if (b >= n_boards)
+                n_boards = b + 1;
             snprintf(boards[b].name, sizeof boards[b].name, "%s", name ? name : "board");
             return b;
         }
@@ -135,6 +147,37 @@ bool posix_board_take_wake(int board)
 posix_board_state_t *posix_board_state(int board)
 {
     return &board_at(board)->hal;
+}
+
+/* The current board (a valid one: posix_board_select() checked it, or it was just created). */
+static board_t *current_board(void)
+{
+    return &boards[posix_board_current()];
+}
+
+bool posix_current_set_gie(bool gie)
+{
+    board_t *bd = current_board();
+    bool was = bd->gie;
+    bd->gie = gie;
+    return was;
+}
+
+bool posix_current_gie(void)
+{
+    return current_board()->gie;
+}
+
+posix_board_state_t *posix_current_state(void)
+{
+    return &current_board()->hal;
+}
+
+void posix_current_dispatch(void)
+{
+    int b = posix_board_current();
+    if (boards[b].pending & boards[b].enabled)
+        posix_dispatch_board(b);
 }
 
 int posix_source_register(int board, int vector, int bit, bool nonmaskable, posix_isr_fn fn,
@@ -261,9 +304,7 @@ static int pick(const board_t *bd)
 void posix_dispatch_board(int b)
 {
     board_t *bd = board_at(b);
-    if (!(bd->pending & bd->enabled))
-        return; /* the common case: nothing to deliver */
-    for (;;) {
+    while (bd->pending & bd->enabled) { /* the common case: nothing (more) to deliver */
         int i = pick(bd);
         if (i < 0)
             return;
@@ -290,7 +331,7 @@ void posix_dispatch_board(int b)
 
 void posix_dispatch(void)
 {
-    for (int b = 0; b < POSIX_MAX_BOARDS; b++)
+    for (int b = 0; b < n_boards; b++)
         if (boards[b].pending & boards[b].enabled)
             posix_dispatch_board(b);
 }
@@ -345,20 +386,9 @@ static void sift_up(size_t i, uint64_t t, uint64_t seq, posix_event_fn fn, void 
     heap[i].ctx = ctx;
 }
 
-/* Fill the hole at @p i with the last event, moving it down (or up) to where it belongs. */
-static void heap_remove(size_t i)
+/* Store the event (t, seq, fn, ctx) in the heap from the hole at @p i downwards. */
+static void sift_down(size_t i, uint64_t t, uint64_t seq, posix_event_fn fn, void *ctx)
 {
-    heap_n--;
-    if (i == heap_n)
-        return;
-    const event_t *last = &heap[heap_n];
-    uint64_t t = last->t, seq = last->seq;
-    if (i > 0 && before(t, seq, &heap[(i - 1) / 2])) {
-        sift_up(i, t, seq, last->fn, last->ctx);
-        return;
-    }
-    posix_event_fn fn = last->fn;
-    void *ctx = last->ctx;
     for (;;) {
         size_t m = 2 * i + 1;
         if (m >= heap_n)
@@ -376,6 +406,19 @@ static void heap_remove(size_t i)
     heap[i].ctx = ctx;
 }
 
+/* Fill the hole at @p i with the last event, moving it down (or up) to where it belongs. */
+static void heap_remove(size_t i)
+{
+    heap_n--;
+    if (i == heap_n)
+        return;
+    const event_t *last = &heap[heap_n];
+    if (i > 0 && before(last->t, last->seq, &heap[(i - 1) / 2]))
+        sift_up(i, last->t, last->seq, last->fn, last->ctx);
+    else
+        sift_down(i, last->t, last->seq, last->fn, last->ctx);
+}
+
 uint64_t posix_now_ns(void)
 {
     return now_ns;
@@ -386,6 +429,11 @@ uint64_t posix_schedule(uint64_t t_ns, posix_event_fn fn, void *ctx)
     if (fn == NULL || t_ns < now_ns || heap_n >= POSIX_MAX_EVENTS)
         return 0;
     uint64_t id = ++next_seq;
+    if (root_spent) { /* from the running event's handler: take its place */
+        root_spent = false;
+        sift_down(0, t_ns, id, fn, ctx);
+        return id;
+    }
     heap_n++;
     sift_up(heap_n - 1, t_ns, id, fn, ctx);
     return id;
@@ -393,7 +441,7 @@ uint64_t posix_schedule(uint64_t t_ns, posix_event_fn fn, void *ctx)
 
 bool posix_cancel(uint64_t id)
 {
-    for (size_t i = 0; i < heap_n; i++) {
+    for (size_t i = root_spent ? 1 : 0; i < heap_n; i++) {
         if (heap[i].seq == id) {
             heap_remove(i);
             return true;
@@ -404,7 +452,13 @@ bool posix_cancel(uint64_t id)
 
 uint64_t posix_next_event_ns(void)
 {
-    return heap_n ? heap[0].t : UINT64_MAX;
+    if (!root_spent)
+        return heap_n ? heap[0].t : UINT64_MAX;
+    uint64_t t = UINT64_MAX; /* the running event's children */
+    for (size_t i = 1; i <= 2 && i < heap_n; i++)
+        if (heap[i].t < t)
+            t = heap[i].t;
+    return t;
 }
 
 uint64_t posix_run_until(uint64_t t_ns)
@@ -414,9 +468,13 @@ uint64_t posix_run_until(uint64_t t_ns)
         uint64_t t = heap[0].t;
         posix_event_fn fn = heap[0].fn;
         void *ctx = heap[0].ctx;
-        heap_remove(0);
         now_ns = t;
+        root_spent = true;
         fn(ctx, t);
+        if (root_spent) { /* it scheduled nothing: the root goes */
+            root_spent = false;
+            heap_remove(0);
+        }
         posix_dispatch();
         n++;
     }

@@ -9,18 +9,14 @@
 
 hal_irq_state_t hal_irq_disable(void)
 {
-    int b = posix_board_current();
-    hal_irq_state_t was = posix_gie(b) ? 1u : 0u;
-    posix_set_gie(b, false);
-    return was;
+    return posix_current_set_gie(false) ? 1u : 0u;
 }
 
 void hal_irq_restore(hal_irq_state_t state)
 {
-    int b = posix_board_current();
-    posix_set_gie(b, state != 0);
+    posix_current_set_gie(state != 0);
     if (state)
-        posix_dispatch_board(b); /* pending interrupts are taken right after EINT */
+        posix_current_dispatch(); /* pending interrupts are taken right after EINT */
 }
 
 void hal_irq_enable(void)
@@ -30,13 +26,13 @@ void hal_irq_enable(void)
 
 hal_irq_state_t hal_irq_enabled(void)
 {
-    return posix_gie(posix_board_current()) ? 1u : 0u;
+    return posix_current_gie() ? 1u : 0u;
 }
 
 void hal_critical_enter(void)
 {
     hal_irq_state_t was = hal_irq_disable();
-    posix_board_state_t *st = posix_board_state(posix_board_current());
+    posix_board_state_t *st = posix_current_state();
     if (st->critical_depth >= HAL_CRITICAL_MAX_DEPTH)
         hal_fault(HAL_FAULT_CRITICAL_OVERFLOW);
     if (st->critical_depth == 0)
@@ -46,7 +42,7 @@ void hal_critical_enter(void)
 
 void hal_critical_exit(void)
 {
-    posix_board_state_t *st = posix_board_state(posix_board_current());
+    posix_board_state_t *st = posix_current_state();
     if (st->critical_depth == 0)
         hal_fault(HAL_FAULT_CRITICAL_UNDERFLOW);
     st->critical_depth--;
@@ -56,5 +52,5 @@ void hal_critical_exit(void)
 
 uint8_t hal_critical_depth(void)
 {
-    return posix_board_state(posix_board_current())->critical_depth;
+    return posix_current_state()->critical_depth;
 }
