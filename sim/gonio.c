@@ -46,33 +46,46 @@ static double target_half(const crossing_t *c, double px, double py)
     return d > r ? asin(r / d) : 0.5 * M_PI;
 }
 
-static double F(const crossing_t *c, double t)
+/*
+ * F at @p t, and its rate dF/dt in *dF: the heading's rate, the mirror's, less the bearing's
+ * and the apparent half width's as the vehicle moves (all in closed form from the pose and the
+ * speed at t).
+ */
+static double F(const crossing_t *c, double t, double *dF)
 {
     sim_pose_t p = sim_segment_pose(c->seg, t);
-    double bearing = atan2(c->ty - p.y, c->tx - p.x);
-    double off = c->side * target_half(c, p.x, p.y);
-    return p.th + mirror_at(c->cfg, c->t_index, t) - bearing - off;
+    double dx = c->tx - p.x, dy = c->ty - p.y;
+    double bearing = atan2(dy, dx);
+    double half = target_half(c, p.x, p.y);
+    double v = sim_segment_speed(c->seg, t);
+    double vx = v * cos(p.th), vy = v * sin(p.th), r2 = dx * dx + dy * dy;
+    double bearing_rate = r2 > 0.0 ? (dy * vx - dx * vy) / r2 : 0.0;
+    double half_rate = 0.0;
+    if (c->half >= 0.0 && r2 > 0.0) {
+        double d = sqrt(r2), d_rate = -(dx * vx + dy * vy) / d, r = c->half;
+        if (c->flat)
+            half_rate = -r / (r2 + r * r) * d_rate;
+        else if (d > r)
+            half_rate = -r / (d * sqrt(r2 - r * r)) * d_rate;
+    }
+    *dF = c->seg->kappa * v + 2.0 * M_PI * c->cfg->rev_per_s - bearing_rate - c->side * half_rate;
+    return p.th + mirror_at(c->cfg, c->t_index, t) - bearing - c->side * half;
 }
 
 /* The crossing of F through 0 (mod 2 pi) in [t_from, t_to); NAN if none. */
 static double solve(const crossing_t *c, double t_from, double t_to)
 {
-    double w = 2.0 * M_PI * c->cfg->rev_per_s;
-    double f0 = F(c, t_from);
+    double w = 2.0 * M_PI * c->cfg->rev_per_s, df;
+    double f0 = F(c, t_from, &df);
     /* Next multiple of 2 pi above f0: F grows at about the mirror rate. */
     double target = ceil(f0 / (2.0 * M_PI)) * 2.0 * M_PI;
-    double t = t_from + (target - f0) / w;
-    /* Newton with the derivative from the last step (secant): F is close to linear. */
-    double df = w;
+    double t = t_from + (target - f0) / (df > 0.0 ? df : w);
+    /* Newton with F's rate in closed form. */
     for (int i = 0; i < 8; i++) {
-        double f = F(c, t) - target;
-        double dt = f / df;
-        double h = 1e-6;
-        if (i == 0)
-            df = (F(c, t + h) - F(c, t - h)) / (2.0 * h);
+        double f = F(c, t, &df) - target;
         if (df <= 0.0)
             df = w;
-        dt = f / df;
+        double dt = f / df;
         t -= dt;
         if (fabs(dt) < 1e-12)
             break;
