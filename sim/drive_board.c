@@ -101,6 +101,7 @@ static void on_event(void *ctx, uint64_t t_ns)
 {
     sim_drive_t *d = ctx;
     d->ev = 0;
+    posix_run_stop(); /* the run loop looks at the vehicle's standing */
     double t = sim_clock_s(t_ns);
     int changed = 0;
     arc_progress(d, t);

@@ -12,6 +12,8 @@
 #include <string.h>
 #include <sys/ioctl.h>
 #include <sys/socket.h>
+
+#include "hal_posix/harness.h"
 #include <unistd.h>
 
 #define ECHO_TIMEOUT_MS 2000
@@ -62,6 +64,7 @@ static int failed(sim_socketcan_t *s, const char *fmt, const hal_can_frame_t *f,
         snprintf(hex + 2 * i, 3, "%02X", f->data[i]);
     snprintf(s->err, sizeof s->err, fmt, s->iface, f->id, hex, why);
     s->failed = 1;
+    posix_run_stop(); /* the run loop stops at the failure */
     return -1;
 }
 

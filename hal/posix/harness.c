@@ -58,6 +58,8 @@ static size_t heap_n;
  * The order of the events does not change: it is the total order (t, seq).
  */
 static bool root_spent;
+static int watch_board = -1; /* posix_run_steps(): its interrupts end a run of instants */
+static bool run_stop;        /* posix_run_steps(): end after this instant */
 static posix_preempt_hook_fn preempt_hook;
 static void *preempt_ctx;
 volatile int hal_preempt_armed;
@@ -84,6 +86,8 @@ void posix_reset(void)
     next_seq = 0;
     heap_n = 0;
     root_spent = false;
+    watch_board = -1;
+    run_stop = false;
     preempt_hook = NULL;
     preempt_ctx = NULL;
     hal_preempt_armed = 0;
@@ -309,6 +313,8 @@ void posix_dispatch_board(int b)
         if (i < 0)
             return;
         source_t *s = &bd->src[i];
+        if (b == watch_board)
+            run_stop = true;
         /* Interrupt entry: flag cleared by the shim, GIE cleared by the CPU. */
         bd->pending &= ~(1u << i);
         s->count++;
@@ -461,24 +467,56 @@ uint64_t posix_next_event_ns(void)
     return t;
 }
 
+/* Run the least event (heap_n > 0) and deliver the interrupts it raised. */
+static void run_first(void)
+{
+    uint64_t t = heap[0].t;
+    posix_event_fn fn = heap[0].fn;
+    void *ctx = heap[0].ctx;
+    now_ns = t;
+    root_spent = true;
+    fn(ctx, t);
+    if (root_spent) { /* it scheduled nothing: the root goes */
+        root_spent = false;
+        heap_remove(0);
+    }
+    posix_dispatch();
+}
+
 uint64_t posix_run_until(uint64_t t_ns)
 {
     uint64_t n = 0;
     while (heap_n && heap[0].t <= t_ns) {
-        uint64_t t = heap[0].t;
-        posix_event_fn fn = heap[0].fn;
-        void *ctx = heap[0].ctx;
-        now_ns = t;
-        root_spent = true;
-        fn(ctx, t);
-        if (root_spent) { /* it scheduled nothing: the root goes */
-            root_spent = false;
-            heap_remove(0);
-        }
-        posix_dispatch();
+        run_first();
         n++;
     }
     if (t_ns > now_ns)
         now_ns = t_ns;
+    return n;
+}
+
+void posix_run_stop(void)
+{
+    run_stop = true;
+}
+
+uint64_t posix_run_steps(uint64_t end_ns, int board)
+{
+    uint64_t n = 0;
+    watch_board = board;
+    run_stop = false;
+    while (heap_n && heap[0].t <= end_ns) {
+        uint64_t instant = heap[0].t;
+        while (heap_n && heap[0].t == instant) {
+            run_first();
+            n++;
+        }
+        bool woken = false;
+        for (int b = 0; b < n_boards; b++)
+            woken |= boards[b].woken;
+        if (woken || run_stop)
+            break;
+    }
+    watch_board = -1;
     return n;
 }

@@ -123,6 +123,20 @@ uint64_t posix_next_event_ns(void);
 uint64_t posix_run_until(uint64_t t_ns);
 
 /**
+ * Run whole instants in time order up to @p end_ns (each instant: every event queued for that
+ * time, as posix_run_until() runs it), and return after the first instant at which a board
+ * was woken, @p watch_board took an interrupt or an event called posix_run_stop(), or when no
+ * event is left up to @p end_ns. Returns the number of events run. A loop that looks at the
+ * boards only through their main loops (when woken) and @p watch_board's interrupts sees,
+ * between calls, exactly what it would see after every instant of posix_run_until(): the
+ * instants in between pass without the loop's overhead.
+ */
+uint64_t posix_run_steps(uint64_t end_ns, int watch_board);
+
+/** From an event: make posix_run_steps() return after the current instant. */
+void posix_run_stop(void);
+
+/**
  * Hook called at every HAL_PREEMPT_POINT() (with the number of points passed so far on the
  * current board) before pending interrupts are delivered there; NULL removes it. Points are
  * only counted while a hook is set.
