@@ -49,15 +49,14 @@ static int n_boards; /* boards[0 .. n_boards - 1] were created since the reset *
 static int current = -1;
 static uint64_t now_ns;
 static uint64_t next_seq;
-static event_t heap[POSIX_MAX_EVENTS];
-static size_t heap_n;
 /*
- * While an event runs, it still holds the heap's root (it is the least event there, so the
- * heap stays valid): the first event its handler schedules takes the root's place with one
- * sift down, instead of a removal and an insertion (most handlers schedule their successor).
- * The order of the events does not change: it is the total order (t, seq).
+ * The queue: the events sorted by (t, seq), the latest first and the next one last. A run has
+ * a handful queued (one per sensor, clock and bus model; about 7 to 11 in the shipped
+ * scenarios) and most are scheduled a little ahead of the others: an insertion scans from the
+ * end and usually stops at once, and the next event leaves from the end.
  */
-static bool root_spent;
+static event_t queue[POSIX_MAX_EVENTS];
+static size_t queue_n;
 static int watch_board = -1; /* posix_run_steps(): its interrupts end a run of instants */
 static bool run_stop;        /* posix_run_steps(): end after this instant */
 static posix_preempt_hook_fn preempt_hook;
@@ -84,8 +83,7 @@ void posix_reset(void)
     current = -1;
     now_ns = 0;
     next_seq = 0;
-    heap_n = 0;
-    root_spent = false;
+    queue_n = 0;
     watch_board = -1;
     run_stop = false;
     preempt_hook = NULL;
@@ -365,64 +363,19 @@ uint64_t posix_preempt_points(int board)
     return board_at(board)->preempt_points;
 }
 
-/* ---- time and events: a binary min-heap ordered by (t, seq) ---- */
+/* ---- time and events: a queue sorted by (t, seq) ---- */
 
-/* Does (t, seq) come before the event @p e? */
-static bool before(uint64_t t, uint64_t seq, const event_t *e)
+/* Does the queued event @p e come before (t, seq)? */
+static bool earlier(const event_t *e, uint64_t t, uint64_t seq)
 {
-    return t < e->t || (t == e->t && seq < e->seq);
+    return e->t < t || (e->t == t && e->seq < seq);
 }
 
-/*
- * Store the event (t, seq, fn, ctx) in the heap from the hole at @p i upwards. The fields go
- * one by one (no event on the stack): this runs for every pulse of the simulation.
- */
-static void sift_up(size_t i, uint64_t t, uint64_t seq, posix_event_fn fn, void *ctx)
+/* Remove the event at @p i. */
+static void queue_remove(size_t i)
 {
-    while (i > 0) {
-        size_t p = (i - 1) / 2;
-        if (!before(t, seq, &heap[p]))
-            break;
-        heap[i] = heap[p];
-        i = p;
-    }
-    heap[i].t = t;
-    heap[i].seq = seq;
-    heap[i].fn = fn;
-    heap[i].ctx = ctx;
-}
-
-/* Store the event (t, seq, fn, ctx) in the heap from the hole at @p i downwards. */
-static void sift_down(size_t i, uint64_t t, uint64_t seq, posix_event_fn fn, void *ctx)
-{
-    for (;;) {
-        size_t m = 2 * i + 1;
-        if (m >= heap_n)
-            break;
-        if (m + 1 < heap_n && before(heap[m + 1].t, heap[m + 1].seq, &heap[m]))
-            m++;
-        if (before(t, seq, &heap[m]))
-            break;
-        heap[i] = heap[m];
-        i = m;
-    }
-    heap[i].t = t;
-    heap[i].seq = seq;
-    heap[i].fn = fn;
-    heap[i].ctx = ctx;
-}
-
-/* Fill the hole at @p i with the last event, moving it down (or up) to where it belongs. */
-static void heap_remove(size_t i)
-{
-    heap_n--;
-    if (i == heap_n)
-        return;
-    const event_t *last = &heap[heap_n];
-    if (i > 0 && before(last->t, last->seq, &heap[(i - 1) / 2]))
-        sift_up(i, last->t, last->seq, last->fn, last->ctx);
-    else
-        sift_down(i, last->t, last->seq, last->fn, last->ctx);
+    queue_n--;
+    memmove(&queue[i], &queue[i + 1], (queue_n - i) * sizeof queue[0]);
 }
 
 uint64_t posix_now_ns(void)
@@ -432,24 +385,24 @@ uint64_t posix_now_ns(void)
 
 uint64_t posix_schedule(uint64_t t_ns, posix_event_fn fn, void *ctx)
 {
-    if (fn == NULL || t_ns < now_ns || heap_n >= POSIX_MAX_EVENTS)
+    if (fn == NULL || t_ns < now_ns || queue_n >= POSIX_MAX_EVENTS)
         return 0;
     uint64_t id = ++next_seq;
-    if (root_spent) { /* from the running event's handler: take its place */
-        root_spent = false;
-        sift_down(0, t_ns, id, fn, ctx);
-        return id;
-    }
-    heap_n++;
-    sift_up(heap_n - 1, t_ns, id, fn, ctx);
+    size_t i = queue_n++;
+    for (; i > 0 && earlier(&queue[i - 1], t_ns, id); i--)
+        queue[i] = queue[i - 1];
+    queue[i].t = t_ns;
+    queue[i].seq = id;
+    queue[i].fn = fn;
+    queue[i].ctx = ctx;
     return id;
 }
 
 bool posix_cancel(uint64_t id)
 {
-    for (size_t i = root_spent ? 1 : 0; i < heap_n; i++) {
-        if (heap[i].seq == id) {
-            heap_remove(i);
+    for (size_t i = queue_n; i-- > 0;) {
+        if (queue[i].seq == id) {
+            queue_remove(i);
             return true;
         }
     }
@@ -458,35 +411,25 @@ bool posix_cancel(uint64_t id)
 
 uint64_t posix_next_event_ns(void)
 {
-    if (!root_spent)
-        return heap_n ? heap[0].t : UINT64_MAX;
-    uint64_t t = UINT64_MAX; /* the running event's children */
-    for (size_t i = 1; i <= 2 && i < heap_n; i++)
-        if (heap[i].t < t)
-            t = heap[i].t;
-    return t;
+    return queue_n ? queue[queue_n - 1].t : UINT64_MAX;
 }
 
-/* Run the least event (heap_n > 0) and deliver the interrupts it raised. */
+/* Run the next event (queue_n > 0) and deliver the interrupts it raised. */
 static void run_first(void)
 {
-    uint64_t t = heap[0].t;
-    posix_event_fn fn = heap[0].fn;
-    void *ctx = heap[0].ctx;
+    const event_t *e = &queue[--queue_n];
+    uint64_t t = e->t;
+    posix_event_fn fn = e->fn;
+    void *ctx = e->ctx;
     now_ns = t;
-    root_spent = true;
     fn(ctx, t);
-    if (root_spent) { /* it scheduled nothing: the root goes */
-        root_spent = false;
-        heap_remove(0);
-    }
     posix_dispatch();
 }
 
 uint64_t posix_run_until(uint64_t t_ns)
 {
     uint64_t n = 0;
-    while (heap_n && heap[0].t <= t_ns) {
+    while (queue_n && queue[queue_n - 1].t <= t_ns) {
         run_first();
         n++;
     }
@@ -505,9 +448,9 @@ uint64_t posix_run_steps(uint64_t end_ns, int board)
     uint64_t n = 0;
     watch_board = board;
     run_stop = false;
-    while (heap_n && heap[0].t <= end_ns) {
-        uint64_t instant = heap[0].t;
-        while (heap_n && heap[0].t == instant) {
+    while (queue_n && queue[queue_n - 1].t <= end_ns) {
+        uint64_t instant = queue[queue_n - 1].t;
+        while (queue_n && queue[queue_n - 1].t == instant) {
             run_first();
             n++;
         }
