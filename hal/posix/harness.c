@@ -63,6 +63,8 @@ static posix_preempt_hook_fn preempt_hook;
 static void *preempt_ctx;
 volatile int hal_preempt_armed;
 
+static void dispatch(board_t *bd, int b);
+
 static void harness_die(const char *what, int value)
 {
     fprintf(stderr, "harness: %s (%d)\n", what, value);
@@ -179,7 +181,7 @@ void posix_current_dispatch(void)
 {
     int b = posix_board_current();
     if (boards[b].pending & boards[b].enabled)
-        posix_dispatch_board(b);
+        dispatch(&boards[b], b);
 }
 
 int posix_source_register(int board, int vector, int bit, bool nonmaskable, posix_isr_fn fn,
@@ -282,34 +284,31 @@ void posix_set_gie(int board, bool gie)
     board_at(board)->gie = gie;
 }
 
-/* Highest-priority deliverable source of a board, or -1. */
-static int pick(const board_t *bd)
+/* The highest-priority source among the deliverable ones @p m (several bits). */
+static int pick(const board_t *bd, uint32_t m)
 {
-    uint32_t allowed = bd->gie ? ~0u : 0u;
-    if (!bd->in_nmi)
-        allowed |= bd->nonmaskable;
-    else
-        allowed &= ~bd->nonmaskable;
-    uint32_t m = bd->pending & bd->enabled & allowed;
-    int best = -1;
-    while (m) {
+    int best = __builtin_ctz(m);
+    for (m &= m - 1; m; m &= m - 1) {
         int i = __builtin_ctz(m);
-        m &= m - 1;
-        const source_t *s = &bd->src[i];
-        if (best < 0 || s->vector > bd->src[best].vector ||
-            (s->vector == bd->src[best].vector && s->bit < bd->src[best].bit))
+        const source_t *s = &bd->src[i], *b = &bd->src[best];
+        if (s->vector > b->vector || (s->vector == b->vector && s->bit < b->bit))
             best = i;
     }
     return best;
 }
 
-void posix_dispatch_board(int b)
+/* Deliver board @p b's pending interrupts (board valid). */
+static void dispatch(board_t *bd, int b)
 {
-    board_t *bd = board_at(b);
-    while (bd->pending & bd->enabled) { /* the common case: nothing (more) to deliver */
-        int i = pick(bd);
-        if (i < 0)
+    uint32_t m;
+    while ((m = bd->pending & bd->enabled) != 0) { /* the common case: nothing (more) */
+        if (!bd->gie) /* only the NMI's sources get through, and not into an NMI */
+            m = bd->in_nmi ? 0u : m & bd->nonmaskable;
+        else if (bd->in_nmi)
+            m &= ~bd->nonmaskable;
+        if (m == 0)
             return;
+        int i = (m & (m - 1)) ? pick(bd, m) : __builtin_ctz(m);
         source_t *s = &bd->src[i];
         if (b == watch_board)
             run_stop = true;
@@ -333,11 +332,16 @@ void posix_dispatch_board(int b)
     }
 }
 
+void posix_dispatch_board(int b)
+{
+    dispatch(board_at(b), b);
+}
+
 void posix_dispatch(void)
 {
     for (int b = 0; b < n_boards; b++)
         if (boards[b].pending & boards[b].enabled)
-            posix_dispatch_board(b);
+            dispatch(&boards[b], b);
 }
 
 void hal_preempt_point(void)
