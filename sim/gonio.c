@@ -6,6 +6,7 @@
 #include "sim/scenario_keys.h" /* generated: SIM_BEACON_KIND_* */
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -46,46 +47,67 @@ static double target_half(const crossing_t *c, double px, double py)
     return d > r ? asin(r / d) : 0.5 * M_PI;
 }
 
+/* F at a time without the side's term, and the apparent half width; with their rates. */
+typedef struct {
+    double base, half;           /* F = base - side half */
+    double bearing;              /* the target's direction, rad, (-pi, pi] */
+    double base_rate, half_rate; /* dF/dt = base_rate - side half_rate (when asked for) */
+} f_parts_t;
+
 /*
- * F at @p t, and its rate dF/dt in *dF: the heading's rate, the mirror's, less the bearing's
- * and the apparent half width's as the vehicle moves (all in closed form from the pose and the
- * speed at t).
+ * The parts of F at @p t (the crossing's side aside): heading, mirror and bearing, and the
+ * apparent half width; with @p rates their rates too, in closed form from the pose and the
+ * speed at t: the heading's, the mirror's, less the bearing's and the half width's as the
+ * vehicle moves.
  */
-static double F(const crossing_t *c, double t, double *dF)
+static f_parts_t F_parts(const crossing_t *c, double t, bool rates)
 {
+    f_parts_t f;
     sim_pose_t p = sim_segment_pose(c->seg, t);
     double dx = c->tx - p.x, dy = c->ty - p.y;
     double bearing = atan2(dy, dx);
-    double half = target_half(c, p.x, p.y);
+    f.bearing = bearing;
+    f.half = target_half(c, p.x, p.y);
+    f.base = p.th + mirror_at(c->cfg, c->t_index, t) - bearing;
+    f.base_rate = f.half_rate = 0.0;
+    if (!rates)
+        return f;
     double v = sim_segment_speed(c->seg, t);
     double vx = v * cos(p.th), vy = v * sin(p.th), r2 = dx * dx + dy * dy;
     double bearing_rate = r2 > 0.0 ? (dy * vx - dx * vy) / r2 : 0.0;
-    double half_rate = 0.0;
     if (c->half >= 0.0 && r2 > 0.0) {
         double d = sqrt(r2), d_rate = -(dx * vx + dy * vy) / d, r = c->half;
         if (c->flat)
-            half_rate = -r / (r2 + r * r) * d_rate;
+            f.half_rate = -r / (r2 + r * r) * d_rate;
         else if (d > r)
-            half_rate = -r / (d * sqrt(r2 - r * r)) * d_rate;
+            f.half_rate = -r / (d * sqrt(r2 - r * r)) * d_rate;
     }
-    *dF = c->seg->kappa * v + 2.0 * M_PI * c->cfg->rev_per_s - bearing_rate - c->side * half_rate;
-    return p.th + mirror_at(c->cfg, c->t_index, t) - bearing - c->side * half;
+    f.base_rate = c->seg->kappa * v + 2.0 * M_PI * c->cfg->rev_per_s - bearing_rate;
+    return f;
 }
 
-/* The crossing of F through 0 (mod 2 pi) in [t_from, t_to); NAN if none. */
-static double solve(const crossing_t *c, double t_from, double t_to)
+/*
+ * The crossing of F through 0 (mod 2 pi) in [t_from, t_to); NAN if none. @p from and @p to are
+ * F's parts at t_from (with rates) and at t_to: F grows at about the mirror rate, so when it
+ * stays below the next multiple of 2 pi up to t_to there is no crossing to look for.
+ */
+static double solve(const crossing_t *c, double t_from, double t_to, const f_parts_t *from,
+                    const f_parts_t *to)
 {
-    double w = 2.0 * M_PI * c->cfg->rev_per_s, df;
-    double f0 = F(c, t_from, &df);
-    /* Next multiple of 2 pi above f0: F grows at about the mirror rate. */
+    double w = 2.0 * M_PI * c->cfg->rev_per_s;
+    double f0 = from->base - c->side * from->half, df = from->base_rate - c->side * from->half_rate;
+    /* Next multiple of 2 pi above f0. */
     double target = ceil(f0 / (2.0 * M_PI)) * 2.0 * M_PI;
+    if (to->base - c->side * to->half < target)
+        return NAN; /* not within the window */
     double t = t_from + (target - f0) / (df > 0.0 ? df : w);
     /* Newton with F's rate in closed form. */
     for (int i = 0; i < 8; i++) {
-        double f = F(c, t, &df) - target;
+        f_parts_t f = F_parts(c, t, true);
+        df = f.base_rate - c->side * f.half_rate;
         if (df <= 0.0)
             df = w;
-        double dt = f / df;
+        double dt = (f.base - c->side * f.half - target) / df;
         t -= dt;
         if (fabs(dt) < 1e-12)
             break;
@@ -119,9 +141,13 @@ static size_t add_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const 
 {
     double wrate = 2.0 * M_PI * cfg->rev_per_s;
     double te[2];
+    crossing_t c0 = {cfg, seg, t_index, tx, ty, half, flat, 0.0};
+    f_parts_t from = F_parts(&c0, t_from, true), to = F_parts(&c0, t_to, false);
+    /* F unwrapped across the window: the bearing moves by less than half a turn in it */
+    to.base += 2.0 * M_PI * round((to.bearing - from.bearing) / (2.0 * M_PI));
     for (int e = 0; e < 2; e++) {
         crossing_t c = {cfg, seg, t_index, tx, ty, half, flat, e == 0 ? -1.0 : 1.0};
-        te[e] = solve(&c, t_from, t_to);
+        te[e] = solve(&c, t_from, t_to, &from, &to);
         if (isnan(te[e]))
             continue;
         /* The centre crossing: half the apparent width after a rising edge, before a falling. */
