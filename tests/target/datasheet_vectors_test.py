@@ -2,7 +2,8 @@
 """The board images' interrupt vectors and the simulator's interrupt numbers against the
 MSP430F2618 data sheet (tests/target/datasheet/slas541_vectors.csv, typed from TI's SLAS541).
 
-  datasheet_vectors_test.py --mspdebug-cfg tools/mspdebug-f2618.cfg main_board.elf nav_board.elf
+  datasheet_vectors_test.py --mspdebug-cfg tools/mspdebug-f2618.cfg main_board.elf \
+      main_board_pursuit.elf nav_board.elf
 
 Independent of the project's own tables (hal/include/hal/pinmap.h, the linker scripts): the
 expected word of each vector comes from the data sheet's address of the interrupt source that
