@@ -2,8 +2,8 @@
 #   make demo   install what is missing, build, run the main job and print its summary
 #   make test   install what is missing, build host + MSP430, run every test under ctest
 #   make fuzz   run every fuzz harness longer (FUZZ_SECONDS each, default 600; docs/fuzzing.md)
-#   make flash BOARD=main|nav [PROBE=uif|tilib|olimex|sim]   program a board (README)
-#   make debug BOARD=main|nav [PROBE=...] | make debug SIM=1 BOARD=...|IMAGE=...
+#   make flash BOARD=main|main-pursuit|nav [PROBE=uif|tilib|olimex|sim]   program a board (README)
+#   make debug BOARD=main|main-pursuit|nav [PROBE=...] | make debug SIM=1 BOARD=...|IMAGE=...
 #   make sim IMAGE=name|path.elf   run one MSP430 image in mspdebug's simulator, as ctest does
 #   make lcm-spy [LCM_URL=...]   lcm-spy with the project's LCM types (README "Watching a run live")
 .PHONY: all deps host host-asan msp430 fuzz-build build test fuzz demo format clean flash debug \
@@ -57,7 +57,13 @@ PROBE ?= uif
 BIN := build/msp430/bin
 # A name (irq_test, main_board) or a path to an ELF.
 IMAGE_ELF = $(if $(filter %.elf,$(IMAGE)),$(IMAGE),$(BIN)/$(IMAGE).elf)
-BOARD_ELF = $(BIN)/$(BOARD)_board.elf
+# The image of each BOARD: the main board's beacon travel (main), its pursuit travel
+# (main-pursuit: seed 002's pursuit on the position receiver), the nav board.
+BOARD_IMAGE_main = main_board
+BOARD_IMAGE_main-pursuit = main_board_pursuit
+BOARD_IMAGE_nav = nav_board
+BOARD_IMAGE = $(or $(BOARD_IMAGE_$(BOARD)),$(error BOARD=$(BOARD): use main, main-pursuit or nav))
+BOARD_ELF = $(BIN)/$(BOARD_IMAGE).elf
 # The MSP430F2618 is JTAG-only (no Spy-Bi-Wire): mspdebug's -j. uif: FET430UIF/eZ430 over
 # its USB serial chip (UIF_TTY=/dev/ttyUSB0 to use the kernel's tty); tilib: TI's
 # libmsp430.so (MSP-FET, FET430UIF with v3 firmware; Debian does not ship it); olimex:
@@ -71,9 +77,8 @@ MSPDEBUG_PROBE = $(or $(MSPDEBUG_$(PROBE)),$(error PROBE=$(PROBE): use uif, tili
 
 # The board image, built with the MSP430 preset only.
 image:
-	@case "$(BOARD)" in main|nav) ;; *) echo "BOARD=$(BOARD): use main or nav" >&2; exit 2;; esac
 	@cmake --preset msp430 >/dev/null
-	cmake --build --preset msp430 --target $(BOARD)_board
+	cmake --build --preset msp430 --target $(BOARD_IMAGE)
 
 flash: image
 	$(MSPDEBUG_PROBE) "prog $(BOARD_ELF)"

@@ -2,15 +2,20 @@
 """Generate the board images' built-in mission (a C header) from an agv-sim scenario.
 
 The MSP430 images carry one mission in flash so that they run standalone: the beacon map
-with each beacon's reflector (diameter, cylinder or flat), the path with its speeds, the start pose, the vehicle and the sensors. It comes from a
-scenario file (default: the 1987 Table 6-1 run) so that the simulator and the images agree.
-With --path, the start pose and the path come from a tools/dxf2path.py result instead (a
-drawn path; the scenario gives the rest).
+with each beacon's reflector (diameter, cylinder or flat), the path with its speeds, the start
+pose, the vehicle and the sensors; for a scenario in mode `pursuit` also seed 002's pursuit
+parameters and the position receiver's (MISSION_PURSUIT_LAW, MISSION_POSRX_CONFIG,
+MISSION_POSRX_BAUD, MISSION_PURSUIT_HEADING: the pursuit image, main_board_pursuit.elf). It
+comes from a scenario file (the beacon image: the 1987 Table 6-1 run; the pursuit image: seed
+002's straight path) so that the simulator and the images agree. With --path, the start pose
+and the path come from a tools/dxf2path.py result instead (a drawn path; the scenario gives
+the rest).
 
   tools/gen_mission.py sim/scenarios/table_6_1_1987_full.json -o build/.../mission_builtin.h
   tools/gen_mission.py SCENARIO.json --path PATH.json -o build/.../mission_builtin.h
 
-Exit 2 when two beacons coincide (their posts would overlap), naming both.
+Exit 2 when two beacons coincide (their posts would overlap), naming both. A pursuit scenario
+with two receivers is refused: the board has one receiver line (USCI_A1).
 """
 import argparse
 import json
@@ -65,12 +70,58 @@ def read_path(filename):
             [pose(x, f"path[{i}]", True) for i, x in enumerate(d["path"])])
 
 
+def schema():
+    with open(SCHEMA) as f:
+        return json.load(f)
+
+
 def blind_distance(sc):
     """The scenario's blind_distance_m, or the schema's default (the one the simulator takes)."""
     if "blind_distance_m" in sc:
         return sc["blind_distance_m"]
-    with open(SCHEMA) as f:
-        return json.load(f)["properties"]["blind_distance_m"]["default"]
+    return schema()["properties"]["blind_distance_m"]["default"]
+
+
+def with_defaults(sc, key):
+    """The scenario's object @p key with the schema's defaults for what it leaves out."""
+    props = schema()["properties"][key]["properties"]
+    out = {k: p["default"] for k, p in props.items() if "default" in p}
+    out.update(sc.get(key, {}))
+    return out
+
+
+def lround(v):
+    """C's lround: the nearest integer, halves away from zero (as agv-sim rounds)."""
+    return int(math.copysign(math.floor(abs(v) + 0.5), v))
+
+
+def pursuit_lines(sc, v, src):
+    """Mode pursuit: the main board's pursuit download as agv-sim builds it (sim/mission.c) for
+    one receiver, as C initialisers; [] for the other modes."""
+    if sc["mode"] != "pursuit":
+        return []
+    pu, ps = with_defaults(sc, "pursuit"), with_defaults(sc, "position_source")
+    if len(ps.get("receivers", [])) > 1:
+        sys.exit(f"gen_mission: {src}: position_source.receivers: two receivers; the board "
+                 "image has one receiver line (USCI_A1, hal/uart.h instance 0)")
+    heading = {"positions": "MAIN_HEADING_POSITIONS", "nav": "MAIN_HEADING_NAV"}.get(pu["heading"])
+    if heading is None:
+        sys.exit(f"gen_mission: {src}: pursuit.heading: {pu['heading']!r} needs two receivers")
+    steer = lround(math.atan(v["wheelbase_m"] / v["min_radius_m"]) / (2 * math.pi) * 2**32)
+    law = [f".speed = {q16(pu['speed_mps'])}l", f".max_speed = {q16(pu['max_speed_mps'])}l",
+           f".k = {q16(pu['smoothing_constant'])}l",
+           f".activation_ms = {min(lround(pu['activation_s'] * 1000), 65535)}u",
+           f".threshold = {q16(pu['threshold_pct'] / 100)}l", f".max_steer = {steer}ul",
+           f".slow_after_ms = {lround(pu['slow_after_s'] * 1000)}u",
+           f".stop_after_ms = {lround(pu['stop_after_s'] * 1000)}u",
+           f".regulate = {'true' if pu['regulate_speed'] else 'false'}",
+           f".pair_tol = {q16(pu['pair_tolerance_m'])}l"]
+    return ["#define MISSION_PURSUIT_LAW \\", "    { " + ", ".join(law) + " }",
+            "#define MISSION_POSRX_CONFIG \\",
+            f"    {{ .min_update_mm = {lround(pu['min_update_m'] * 1000)}u, "
+            f".max_speed_mm_s = {lround(pu['max_speed_mps'] * 1000)}u }}",
+            f"#define MISSION_POSRX_BAUD {ps['baud']}ul",
+            f"#define MISSION_PURSUIT_HEADING {heading}"]
 
 
 def main():
@@ -165,6 +216,7 @@ def write(a, sc):
     out.append("    { " + ", ".join(
         f"{{{{{q16(x['x'])}l, {q16(x['y'])}l, {angle(x['heading_deg'])}ul}}, "
         f"{q16(x.get('speed_mps', v['speed_mps']))}l, 0u}}" for x in p) + " }")
+    out += pursuit_lines(sc, v, a.scenario)
     out += ["", "#endif", ""]
     with open(a.output, "w") as f:
         f.write("\n".join(out))

@@ -12,6 +12,13 @@
  * predicts the pose at load time along the loaded arc, and the sequencer picks the next
  * target, solves the double arc and loads it at its time. Simplified travel stops at every
  * point and fixes standing still (5.2).
+ *
+ * Files: main_board.c is what every travel shares (this API, the configuration's dispatch, the
+ * link and its messages, observers, counters); the beacon travel is main_beacon.c
+ * (main_beacon.h), seed 002's pursuit main_pursuit.c (main_pursuit.h). The host links both;
+ * an MSP430 image links one and the other's twin (main_beacon_none.c, main_pursuit_none.c),
+ * which refuses its mode: the beacon image main_board.elf, the pursuit image
+ * main_board_pursuit.elf (README, "The MCU").
  */
 #ifndef MAIN_BOARD_H
 #define MAIN_BOARD_H
@@ -112,16 +119,20 @@ typedef struct {
 
 /**
  * Set the board up for @p cfg, kept by reference (on the target it is a constant in flash):
- * @p cfg and what it points to must outlive the run. Sets up capture handlers, delta-S line,
- * drive port, the link on CAN (cfg->link), clock; prepares the path. Interrupts stay disabled.
- * Returns DRIVE_OK, or why the path or the configuration is not acceptable (DRIVE_ERR_PARAM
- * also for a link configuration link_init() refuses; the board then refuses to start). A CAN
- * controller that does not answer is no configuration error: the board comes up without its
- * link (stats can_error), and main_board_start() stops the travel at once (fault:can).
+ * @p cfg and what it points to must outlive the run. Sets up the travel of its mode (the beacon
+ * travel: capture handlers, delta-S line, the path prepared; pursuit mode with cfg->pursuit:
+ * the receivers' lines and the pursuit), the drive port, the link on CAN (cfg->link), the
+ * clock. Interrupts stay disabled. Returns DRIVE_OK, or why the path or the configuration is
+ * not acceptable (DRIVE_ERR_PARAM also for a link configuration link_init() refuses, and for a
+ * mode the image does not carry; the board then refuses to start). A CAN controller that does
+ * not answer is no configuration error: the board comes up without its link (stats
+ * can_error), and in the beacon travel main_board_start() stops the travel at once
+ * (fault:can).
  */
 drive_status_t main_board_init(const main_board_config_t *cfg);
 
-/** Where the path preparation failed (valid after main_board_init() returned an error). */
+/** Where the path preparation failed (valid after main_board_init() returned an error; the
+ * beacon travel's, main_beacon.c: not in an image without it). */
 const drive_path_t *main_board_path(void);
 
 /** The operator's go: starts the travel sequence (needs interrupts enabled). */

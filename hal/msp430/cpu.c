@@ -54,7 +54,7 @@ static void pins_init(void)
     P2OUT = 0x02u; /* P2.1 coordinate request idle high */
     P2DIR = 0xFAu; /* P2.0 delta-S and P2.2 MCP2515 /INT inputs; P2.3-P2.7 unused: low */
     P3OUT = 0x01u; /* P3.0 MCP2515 /CS high (deselected), P3.1 SIMO and P3.3 UCLK low */
-    P3SEL = 0xF0u; /* P3.4/P3.5 USCI_A0 (console), P3.6/P3.7 USCI_A1 (link) */
+    P3SEL = 0xF0u; /* P3.4/P3.5 USCI_A0 (console), P3.6/P3.7 USCI_A1 (position receiver) */
     P3DIR = 0x0Bu; /* P3.2 SOMI input */
     P4OUT = 0x00u; /* the drive port's data bus, idle low */
     P4DIR = 0xFFu;

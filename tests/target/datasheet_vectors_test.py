@@ -2,7 +2,8 @@
 """The board images' interrupt vectors and the simulator's interrupt numbers against the
 MSP430F2618 data sheet (tests/target/datasheet/slas541_vectors.csv, typed from TI's SLAS541).
 
-  datasheet_vectors_test.py --mspdebug-cfg tools/mspdebug-f2618.cfg main_board.elf nav_board.elf
+  datasheet_vectors_test.py --mspdebug-cfg tools/mspdebug-f2618.cfg main_board.elf \
+      main_board_pursuit.elf nav_board.elf [--require IMAGE:HANDLER,...]...
 
 Independent of the project's own tables (hal/include/hal/pinmap.h, the linker scripts): the
 expected word of each vector comes from the data sheet's address of the interrupt source that
@@ -10,6 +11,8 @@ the board wiring (docs, below) gives a handler. Checks, per image:
   - the vector table is 32 words at 0xFFC0 (the data sheet's range 0FFC0h-0FFFFh);
   - each source the boards use points at its handler, the reset word at cy_reset, every other
     word at cy_isr_unexpected;
+  - with --require IMAGE:HANDLER,... (IMAGE: the ELF's file name), those handlers are in that
+    image, at their sources' words (a board's wiring: the pursuit image's position receiver);
 and for tools/mspdebug-f2618.cfg: mspdebug's simulator takes interrupt I from 0xFFE0 + 2I, so
 every `irq` a device is configured with must name the data sheet's address of its source.
 """
@@ -52,8 +55,8 @@ def load_table(path=TABLE):
     return {r["source"]: int(r["address"], 16) for r in rows}
 
 
-def check_image(elf_path, table):
-    """The list of problems of one image's vector table."""
+def check_image(elf_path, table, required=()):
+    """The list of problems of one image's vector table (@p required: handlers it must have)."""
     elf = stack_bound.Elf(elf_path)
     problems = []
     sec = next((s for s in elf.sections if s["name"] == ".vectors"), None)
@@ -88,6 +91,12 @@ def check_image(elf_path, table):
         if handler in names.values() and handler not in reached:
             problems.append(f"{os.path.basename(elf_path)}: {handler} is linked but no vector "
                             "points at it")
+    for handler in required:
+        if handler not in WIRING.values():
+            problems.append(f"--require {handler}: no source of the wiring has that handler")
+        elif handler not in reached:
+            problems.append(f"{os.path.basename(elf_path)}: no vector points at {handler}, "
+                            "which this board needs")
     return problems
 
 
@@ -118,11 +127,21 @@ def main():
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("images", nargs="+", help="linked board images (ELF)")
     ap.add_argument("--mspdebug-cfg", required=True, help="tools/mspdebug-f2618.cfg")
+    ap.add_argument("--require", action="append", default=[], metavar="IMAGE:HANDLER,...",
+                    help="handlers image IMAGE (file name) must have at their vectors")
     a = ap.parse_args()
     table = load_table()
+    required = {}
+    for r in a.require:
+        img, _, handlers = r.partition(":")
+        if not handlers:
+            ap.error(f"--require {r}: expected IMAGE:HANDLER,...")
+        required.setdefault(img, []).extend(handlers.split(","))
+    names = {os.path.basename(i) for i in a.images}
     problems = check_sim_config(a.mspdebug_cfg, table)
+    problems += [f"--require {img}: no such image given" for img in required if img not in names]
     for img in a.images:
-        problems += check_image(img, table)
+        problems += check_image(img, table, required.get(os.path.basename(img), ()))
     for p in problems:
         print(f"FAIL {p}")
     print(f"{len(a.images)} image(s), {len(table)} data sheet vectors: "

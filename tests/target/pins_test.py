@@ -3,7 +3,10 @@
 the pin table of docs/hardware.md and SLAS541's pin-function tables
 (tests/target/datasheet/slas541_pins.csv).
 
-  pins_test.py --board main|nav [--hardware docs/hardware.md] IMAGE.elf
+  pins_test.py --board main|pursuit|nav [--hardware docs/hardware.md] IMAGE.elf
+
+(main: the main board's beacon image, main_board.elf; pursuit: its pursuit image,
+main_board_pursuit.elf.)
 
 Runs the image twice, with every output latch (PxOUT) preset to 0x00 and to 0xFF before the
 start-up (the chip leaves PxOUT undefined at power-up), with the simulator's ports P1-P6 as
@@ -37,6 +40,7 @@ import msp430sim  # noqa: E402
 
 DATASHEET = os.path.join(HERE, "datasheet")
 BOARDS = {"main": ("main_board_init", "main_board_poll"),
+          "pursuit": ("main_board_init", "main_board_poll"),
           "nav": ("nav_board_init", "nav_board_poll")}
 TRACE_DEPTH = 65536
 ROW_RE = re.compile(r"^\|\s*(P\d\.\d)\s*\|(.*)\|\s*$")
@@ -76,15 +80,17 @@ def state_of(functions, pin, sel, dirb, out):
 
 
 def load_plan(path):
-    """{pin: {'startup': state, 'main': state, 'nav': state}} from the pin table of
-    docs/hardware.md (columns: pin, start-up, main board, nav board, signal)."""
+    """{pin: {'startup': state, 'main': state, 'pursuit': state, 'nav': state}} from the pin
+    table of docs/hardware.md (columns: pin, start-up, main board's beacon image, its pursuit
+    image, nav board, signal)."""
     plan = {}
     with open(path) as f:
         for line in f:
             m = ROW_RE.match(line.rstrip())
             if m:
                 cells = [c.strip().strip("`") for c in m.group(2).split("|")]
-                plan[m.group(1)] = {"startup": cells[0], "main": cells[1], "nav": cells[2]}
+                plan[m.group(1)] = {"startup": cells[0], "main": cells[1], "pursuit": cells[2],
+                                    "nav": cells[3]}
     return plan
 
 

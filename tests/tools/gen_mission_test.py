@@ -1,10 +1,14 @@
 #!/usr/bin/env python3
 """ctest tools.gen_mission (label unit): tools/gen_mission.py writes the board images' mission
 from a scenario, and with --path takes the start pose and the path from a tools/dxf2path.py
-result (a drawing made here with ezdxf). Expected numbers: the header's formats (Q16 metres,
-binary angles of 2^32 per turn) applied to the JSON files' values."""
+result (a drawing made here with ezdxf); a pursuit scenario adds the pursuit image's
+parameters, one receiver only. Expected numbers: the header's formats (Q16 metres, binary
+angles of 2^32 per turn, milliseconds) applied to the JSON files' values and the seed's
+defaults (docs/pursuit.md). (ctest MainImage.* compares the images' whole downloads with
+agv-sim's.)"""
 import json
 import logging
+import math
 import os
 import re
 import subprocess
@@ -17,6 +21,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 GEN = os.path.join(ROOT, "tools", "gen_mission.py")
 DXF2PATH = os.path.join(ROOT, "tools", "dxf2path.py")
 SCENARIO = os.path.join(ROOT, "sim", "scenarios", "seed002_two_segment.json")
+PURSUIT = os.path.join(ROOT, "sim", "scenarios", "seed002_straight_pursuit.json")
 
 
 def q16(v):
@@ -47,9 +52,9 @@ class GenMissionTest(unittest.TestCase):
     def tearDown(self):
         self._tmp.cleanup()
 
-    def gen(self, *args):
+    def gen(self, *args, scenario=SCENARIO):
         out = os.path.join(self.tmp, "mission.h")
-        r = subprocess.run([GEN, SCENARIO, "-o", out] + list(args), capture_output=True,
+        r = subprocess.run([GEN, scenario, "-o", out] + list(args), capture_output=True,
                            text=True)
         text = None
         if r.returncode == 0:
@@ -124,6 +129,69 @@ class GenMissionTest(unittest.TestCase):
             self.assertNotEqual(r.returncode, 0)
             self.assertIn(says, r.stderr)
             self.assertNotIn("Traceback", r.stderr)
+
+    def pursuit_scenario(self, pursuit, source):
+        """seed002_straight_pursuit.json with these pursuit and position_source objects."""
+        with open(PURSUIT) as f:
+            sc = json.load(f)
+        sc["pursuit"], sc["position_source"] = pursuit, source
+        path = os.path.join(self.tmp, "pursuit.json")
+        with open(path, "w") as f:
+            json.dump(sc, f)
+        return path
+
+    def test_pursuit_parameters(self):
+        fields = r"\.(\w+) = (-?\d+|true|false)[ul]*"
+        # the seed's defaults where the scenario leaves them out
+        r, text = self.gen(scenario=self.pursuit_scenario({"threshold_pct": 70}, {}))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        law = re.search(r"#define MISSION_PURSUIT_LAW \\\n(.*)", text).group(1)
+        got = {k: v for k, v in re.findall(fields, law)}
+        steer = round(math.atan(0.75 / 0.5) / (2 * math.pi) * 2**32)  # the vehicle's
+        self.assertEqual(got, {"speed": str(q16(1.0)), "max_speed": str(q16(2.229)),
+                               "k": str(q16(1.0)), "activation_ms": "400",
+                               "threshold": str(q16(0.7)), "max_steer": str(steer),
+                               "slow_after_ms": "1000", "stop_after_ms": "3000",
+                               "regulate": "false", "pair_tol": str(q16(0.05))})
+        rx = re.search(r"#define MISSION_POSRX_CONFIG \\\n(.*)", text).group(1)
+        self.assertEqual(dict(re.findall(fields, rx)),
+                         {"min_update_mm": "50", "max_speed_mm_s": "2229"})
+        self.assertIn("#define MISSION_POSRX_BAUD 9600ul", text)
+        self.assertIn("#define MISSION_PURSUIT_HEADING MAIN_HEADING_POSITIONS", text)
+        # every one set
+        r, text = self.gen(scenario=self.pursuit_scenario(
+            {"speed_mps": 0.5, "max_speed_mps": 1.5, "smoothing_constant": 1.2,
+             "activation_s": 0.25, "threshold_pct": 85, "min_update_m": 0.02,
+             "heading": "nav", "slow_after_s": 2.0, "stop_after_s": 4.5,
+             "regulate_speed": True, "pair_tolerance_m": 0.1}, {"baud": 115200}))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        law = re.search(r"#define MISSION_PURSUIT_LAW \\\n(.*)", text).group(1)
+        got = {k: v for k, v in re.findall(fields, law)}
+        self.assertEqual(got, {"speed": str(q16(0.5)), "max_speed": str(q16(1.5)),
+                               "k": str(q16(1.2)), "activation_ms": "250",
+                               "threshold": str(q16(0.85)), "max_steer": str(steer),
+                               "slow_after_ms": "2000", "stop_after_ms": "4500",
+                               "regulate": "true", "pair_tol": str(q16(0.1))})
+        self.assertIn("{ .min_update_mm = 20u, .max_speed_mm_s = 1500u }", text)
+        self.assertIn("#define MISSION_POSRX_BAUD 115200ul", text)
+        self.assertIn("#define MISSION_PURSUIT_HEADING MAIN_HEADING_NAV", text)
+        # the other modes carry none of it
+        _, plain = self.gen()
+        self.assertNotIn("MISSION_PURSUIT", plain)
+        self.assertNotIn("MISSION_POSRX", plain)
+
+    def test_pursuit_two_receivers_refused(self):
+        two = [{"forward_m": 0.3, "left_m": 0}, {"forward_m": 0, "left_m": 0}]
+        for pursuit in ({}, {"heading": "receivers"}):
+            r, _ = self.gen(scenario=self.pursuit_scenario(pursuit, {"receivers": two}))
+            self.assertNotEqual(r.returncode, 0)
+            self.assertIn("position_source.receivers: two receivers", r.stderr)
+            self.assertIn("USCI_A1", r.stderr)
+            self.assertNotIn("Traceback", r.stderr)
+        # and so the heading from the two receivers
+        r, _ = self.gen(scenario=self.pursuit_scenario({"heading": "receivers"}, {}))
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("pursuit.heading: 'receivers' needs two receivers", r.stderr)
 
 
 if __name__ == "__main__":

@@ -4,9 +4,9 @@
  * byte by byte through the receive handler the main board registers with hal_uart_open(); the
  * decoded positions, their verdicts and the counters are printed, and the MSP430's output must
  * equal the host's. The handler's cycles go to the cycle report as isr_posrx_byte: the body of
- * the receive interrupt; the USCI_A1 shim around it (hal/msp430/uart_usci_a1.c: entry, two
- * register reads, the call, RETI) cannot join a test image while the board link's UART holds
- * that vector (docs/posrx.md).
+ * the receive interrupt; the whole interrupt with the USCI_A1 shim around it
+ * (hal/msp430/uart_usci_a1.c: entry, two register reads, the call, RETI) has its static bound
+ * in the same entry, from the main board's pursuit image (docs/posrx.md).
  */
 #include <stdint.h>
 
