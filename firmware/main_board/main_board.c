@@ -92,6 +92,10 @@ void main_board_start(void)
 void main_board_poll(void)
 {
     if (main_board_common.cfg->pursuit) {
+        /* The link's heartbeat goes on (the nav board hears the main board, and answers its
+         * coordinate requests for the heading); a silent nav board does not stop pursuit,
+         * whose watchdog is the receiver's (main_pursuit.h): the link counts the silence. */
+        (void)link_poll(&main_board_common.link);
         main_pursuit_poll();
         return;
     }
