@@ -60,7 +60,7 @@ static void arc_progress(sim_drive_t *d, double t)
         d->v = sim_segment_speed(&d->seg, t);
 }
 
-/* A new constant-steering, constant-speed piece of motion from @p t (after arc_progress). */
+/* A new constant-steering piece of motion from @p t, braking or not (after arc_progress). */
 static void new_segment(sim_drive_t *d, double t)
 {
     sim_pose_t p = sim_drive_pose(d, t);

@@ -155,7 +155,9 @@ static double first_root(double a, double b, double c, int dir, double lo, doubl
 
 /*
  * A braking segment: the first crossing of either step boundary from @p t0 by the measured
- * heading, quadratic in time until the stop and linear (the drift alone) after it.
+ * heading, quadratic in time until the stop and linear (the drift alone) after it. Its rate
+ * may change sign on the way (the drift against a slowing turn), hence both boundaries; on a
+ * constant-speed segment the rate keeps its sign and schedule_gyro() solves the line itself.
  */
 static void schedule_gyro_braking(sim_sensors_t *s, double t0)
 {

@@ -279,11 +279,6 @@ bool posix_gie(int board)
     return board_at(board)->gie;
 }
 
-void posix_set_gie(int board, bool gie)
-{
-    board_at(board)->gie = gie;
-}
-
 /* The highest-priority source among the deliverable ones @p m (several bits). */
 static int pick(const board_t *bd, uint32_t m)
 {
@@ -332,11 +327,6 @@ static void dispatch(board_t *bd, int b)
     }
 }
 
-void posix_dispatch_board(int b)
-{
-    dispatch(board_at(b), b);
-}
-
 void posix_dispatch(void)
 {
     for (int b = 0; b < n_boards; b++)
@@ -352,7 +342,7 @@ void hal_preempt_point(void)
     if (preempt_hook)
         preempt_hook(preempt_ctx, b, bd->preempt_points);
     if (bd->pending & bd->enabled)
-        posix_dispatch_board(b);
+        dispatch(bd, b);
 }
 
 void posix_set_preempt_hook(posix_preempt_hook_fn fn, void *ctx)

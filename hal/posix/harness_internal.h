@@ -43,8 +43,6 @@ typedef struct {
 } posix_board_state_t;
 
 posix_board_state_t *posix_board_state(int board);
-void posix_set_gie(int board, bool gie);
-void posix_dispatch_board(int board);
 
 /* The HAL's hot paths on the current board (posix_board_current()), without a board number. */
 bool posix_current_set_gie(bool gie); /* returns GIE as it was */
