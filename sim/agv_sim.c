@@ -52,8 +52,8 @@ int main(int argc, char **argv)
     if (sim_canbus_check(&sc, err, sizeof err) || sim_mission_build(&mission, &sc, err, sizeof err))
         return bad_input(cli.scenario, err);
 
-    sim_run_options_t opt = {cli.log_dir, cli.lcm_url, cli.quiet,   cli.trace,
-                             cli.can,     cli.candump, cli.realtime};
+    sim_run_options_t opt = {cli.log_dir, cli.lcm_url, cli.quiet,    cli.trace,
+                             cli.can,     cli.candump, cli.realtime, cli.ticks};
     sim_report_t r;
     sim_run_stats_t stats;
     if (sim_run(&sc, &mission, &opt, &r, &stats, err, sizeof err))

@@ -19,7 +19,7 @@ void sim_cli_usage(FILE *f)
     fprintf(f,
             "usage: agv-sim --scenario FILE [--seed N] [--report FILE.json] [--log-dir DIR]\n"
             "               [--lcm URL] [--can IFACE] [--candump FILE] [--realtime[=FACTOR]]\n"
-            "               [--quiet] [--trace] [--stats] [-h|--help] [--version]\n"
+            "               [--quiet] [--trace] [--stats] [--ticks] [-h|--help] [--version]\n"
             "Runs both boards' firmware against a simulated vehicle and building.\n"
             "  --scenario FILE   the scenario (JSON; format: docs/interfaces.md and\n"
             "                    docs/schema/scenario.schema.json; examples in sim/scenarios/)\n"
@@ -45,6 +45,10 @@ void sim_cli_usage(FILE *f)
             "  --stats           the run's work counters (events, cross-track samples, path\n"
             "                    pieces examined, LCM messages published per channel) and its\n"
             "                    CPU time as one JSON line on stderr\n"
+            "  --ticks           every board's 1 ms clock interrupt every simulated\n"
+            "                    millisecond, as on the MSP430 (slower); without it a board's\n"
+            "                    main loop runs at the deadlines it states and when its\n"
+            "                    interrupts wake it: the report and logs are the same\n"
             "  -h, --help        this text\n"
             "  --version         the version\n"
             "Exit status: 0 criteria met, 1 criteria missed, 2 bad input.\n"
@@ -65,6 +69,7 @@ int sim_cli_parse(int argc, char **argv, sim_cli_t *cli, FILE *out, FILE *err)
         OPT_TRACE,
         OPT_STATS,
         OPT_REALTIME,
+        OPT_TICKS,
         OPT_VERSION
     };
     static const struct option opts[] = {{"scenario", required_argument, 0, OPT_SCENARIO},
@@ -78,6 +83,7 @@ int sim_cli_parse(int argc, char **argv, sim_cli_t *cli, FILE *out, FILE *err)
                                          {"trace", no_argument, 0, OPT_TRACE},
                                          {"stats", no_argument, 0, OPT_STATS},
                                          {"realtime", optional_argument, 0, OPT_REALTIME},
+                                         {"ticks", no_argument, 0, OPT_TICKS},
                                          {"help", no_argument, 0, 'h'},
                                          {"version", no_argument, 0, OPT_VERSION},
                                          {0, 0, 0, 0}};
@@ -124,6 +130,9 @@ int sim_cli_parse(int argc, char **argv, sim_cli_t *cli, FILE *out, FILE *err)
             break;
         case OPT_STATS:
             cli->stats = 1;
+            break;
+        case OPT_TICKS:
+            cli->ticks = 1;
             break;
         case OPT_REALTIME: {
             char *end;

@@ -63,7 +63,9 @@ typedef struct {
 static f_parts_t F_parts(const crossing_t *c, double t, bool rates)
 {
     f_parts_t f;
-    sim_pose_t p = sim_segment_pose(c->seg, t);
+    double cth = 0.0, sth = 0.0;
+    sim_pose_t p =
+        rates ? sim_segment_pose_trig(c->seg, t, &cth, &sth) : sim_segment_pose(c->seg, t);
     double dx = c->tx - p.x, dy = c->ty - p.y;
     double bearing = atan2(dy, dx);
     f.bearing = bearing;
@@ -73,7 +75,7 @@ static f_parts_t F_parts(const crossing_t *c, double t, bool rates)
     if (!rates)
         return f;
     double v = sim_segment_speed(c->seg, t);
-    double vx = v * cos(p.th), vy = v * sin(p.th), r2 = dx * dx + dy * dy;
+    double vx = v * cth, vy = v * sth, r2 = dx * dx + dy * dy;
     double bearing_rate = r2 > 0.0 ? (dy * vx - dx * vy) / r2 : 0.0;
     if (c->half >= 0.0 && r2 > 0.0) {
         double d = sqrt(r2), d_rate = -(dx * vx + dy * vy) / d, r = c->half;

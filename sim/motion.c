@@ -4,6 +4,7 @@
 #include "sim/motion.h"
 
 #include <math.h>
+#include <stddef.h>
 
 sim_segment_t sim_segment(double t, sim_pose_t p, double front_rolled, double alpha, double v,
                           double wheelbase)
@@ -62,7 +63,8 @@ double sim_segment_omega(const sim_segment_t *seg)
     return seg->v * seg->kappa;
 }
 
-sim_pose_t sim_segment_pose(const sim_segment_t *seg, double t)
+/* The pose at @p t; with @p trig (cos, sin) of its heading too. */
+static inline sim_pose_t pose_at(const sim_segment_t *seg, double t, double trig[2])
 {
     double d = sim_segment_travel(seg, t); /* signed rear-axle travel */
     sim_pose_t p = seg->p0;
@@ -73,11 +75,40 @@ sim_pose_t sim_segment_pose(const sim_segment_t *seg, double t)
         double c = cos(p.th + 0.5 * dth), s = sin(p.th + 0.5 * dth);
         p.x += d * c;
         p.y += d * s;
+        if (trig && dth == 0.0) { /* the heading's own */
+            trig[0] = c;
+            trig[1] = s;
+            trig = NULL;
+        }
     } else {
-        p.x += (sin(p.th + dth) - sin(p.th)) / k;
-        p.y -= (cos(p.th + dth) - cos(p.th)) / k;
+        double c = cos(p.th + dth), s = sin(p.th + dth);
+        p.x += (s - sin(p.th)) / k;
+        p.y -= (c - cos(p.th)) / k;
+        if (trig) {
+            trig[0] = c;
+            trig[1] = s;
+            trig = NULL;
+        }
     }
     p.th += dth;
+    if (trig) {
+        trig[0] = cos(p.th);
+        trig[1] = sin(p.th);
+    }
+    return p;
+}
+
+sim_pose_t sim_segment_pose(const sim_segment_t *seg, double t)
+{
+    return pose_at(seg, t, NULL);
+}
+
+sim_pose_t sim_segment_pose_trig(const sim_segment_t *seg, double t, double *cos_th, double *sin_th)
+{
+    double trig[2];
+    sim_pose_t p = pose_at(seg, t, trig);
+    *cos_th = trig[0];
+    *sin_th = trig[1];
     return p;
 }
 

@@ -78,24 +78,46 @@ static int arc_covers(const arc_t *arc, double a)
                              : (rel <= 0.0 ? rel >= arc->sweep : rel - 2.0 * M_PI >= arc->sweep);
 }
 
-double sim_piece_distance(const sim_piece_t *pc, double x, double y)
+void sim_piece_geom(const sim_piece_t *pc, sim_piece_geom_t *g)
 {
     sim_pose_t e = sim_piece_end(pc);
-    double to_end = hypot(x - e.x, y - e.y), to_start = hypot(x - pc->x0, y - pc->y0);
-    double best = fmin(to_start, to_end);
     double dir = pc->reverse ? -1.0 : 1.0;
+    *g = (sim_piece_geom_t){e.x, e.y, 0, 0, 0, 0, 0, 0, 0};
     if (fabs(pc->kappa) < 1e-12) {
-        /* Segment from start to end. */
-        double ux = cos(pc->th0) * dir, uy = sin(pc->th0) * dir;
-        double s = (x - pc->x0) * ux + (y - pc->y0) * uy;
-        if (s > 0.0 && s < pc->length)
-            best = fmin(best, fabs(-(x - pc->x0) * uy + (y - pc->y0) * ux));
-        return best;
+        g->ux = cos(pc->th0) * dir;
+        g->uy = sin(pc->th0) * dir;
+        return;
     }
     arc_t arc = arc_of(pc);
+    g->cx = arc.cx;
+    g->cy = arc.cy;
+    g->r = arc.r;
+    g->a0 = arc.a0;
+    g->sw = arc.sweep;
+}
+
+double sim_piece_geom_distance(const sim_piece_t *pc, const sim_piece_geom_t *g, double x, double y)
+{
+    double to_end = hypot(x - g->ex, y - g->ey), to_start = hypot(x - pc->x0, y - pc->y0);
+    double best = fmin(to_start, to_end);
+    if (fabs(pc->kappa) < 1e-12) {
+        /* Segment from start to end. */
+        double s = (x - pc->x0) * g->ux + (y - pc->y0) * g->uy;
+        if (s > 0.0 && s < pc->length)
+            best = fmin(best, fabs(-(x - pc->x0) * g->uy + (y - pc->y0) * g->ux));
+        return best;
+    }
+    arc_t arc = {g->cx, g->cy, g->r, g->a0, g->sw};
     if (arc_covers(&arc, atan2(y - arc.cy, x - arc.cx)))
         best = fmin(best, fabs(hypot(x - arc.cx, y - arc.cy) - fabs(arc.r)));
     return best;
+}
+
+double sim_piece_distance(const sim_piece_t *pc, double x, double y)
+{
+    sim_piece_geom_t g;
+    sim_piece_geom(pc, &g);
+    return sim_piece_geom_distance(pc, &g, x, y);
 }
 
 void sim_piece_bounds(const sim_piece_t *pc, double box[4])

@@ -36,8 +36,9 @@ int sim_path_index_build(sim_path_index_t *ix, const sim_path_t *p)
     size_t n = p->n;
     ix->distinct = malloc((n ? n : 1) * sizeof *ix->distinct);
     ix->seen = calloc(n ? n : 1, sizeof *ix->seen);
+    ix->geom = malloc((n ? n : 1) * sizeof *ix->geom);
     double(*box)[4] = malloc((n ? n : 1) * sizeof *box);
-    if (!ix->distinct || !ix->seen || !box) {
+    if (!ix->distinct || !ix->seen || !ix->geom || !box) {
         free(box);
         sim_path_index_free(ix);
         return -1;
@@ -50,6 +51,7 @@ int sim_path_index_build(sim_path_index_t *ix, const sim_path_t *p)
         if (k < ix->n_distinct)
             continue; /* the same piece again: it cannot change a minimum */
         ix->distinct[ix->n_distinct++] = (uint32_t)i;
+        sim_piece_geom(&p->piece[i], &ix->geom[i]);
         sim_piece_bounds(&p->piece[i], box[i]);
         for (int c = 0; c < 2; c++) {
             lo[c] = fmin(lo[c], box[i][c]);
@@ -118,7 +120,9 @@ void sim_path_index_free(sim_path_index_t *ix)
     free(ix->items);
     free(ix->distinct);
     free(ix->seen);
+    free(ix->geom);
     ix->first = ix->items = ix->distinct = ix->seen = NULL;
+    ix->geom = NULL;
     ix->n_distinct = 0;
 }
 
@@ -128,7 +132,7 @@ static double examine(sim_path_index_t *ix, uint32_t i, double x, double y, doub
         return best;
     ix->seen[i] = ix->query;
     ix->examined++;
-    return fmin(best, sim_piece_distance(&ix->path->piece[i], x, y));
+    return fmin(best, sim_piece_geom_distance(&ix->path->piece[i], &ix->geom[i], x, y));
 }
 
 /* Every distinct piece: the answer for a point outside the grid. */

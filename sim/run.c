@@ -45,6 +45,16 @@ typedef struct {
 
 static run_t R;
 
+/* How long the run goes on once the travel is done and the vehicle stands, ns. */
+#define DONE_HOLD_NS 500000000ull
+
+/* An event that only marks an instant for the run loop. */
+static void nothing(void *ctx, uint64_t t_ns)
+{
+    (void)ctx;
+    (void)t_ns;
+}
+
 /* The drive board moved the vehicle differently: the sensors follow. */
 static void on_motion(void *ctx, double t)
 {
@@ -75,9 +85,11 @@ static double wall_since(const struct timespec *w0)
 }
 
 /* Both boards on the harness, configured and wired to the drive board and the vehicle. */
-static int boards_up(const sim_scenario_t *sc, sim_mission_t *m, char *err, size_t errlen)
+static int boards_up(const sim_scenario_t *sc, sim_mission_t *m, int ticks, char *err,
+                     size_t errlen)
 {
     posix_reset();
+    posix_clock_set_tickless(!ticks);
     R.main_b = posix_board_create("main");
     R.nav_b = posix_board_create("nav");
     sim_pose_t start = {sc->start_x, sc->start_y, sc->start_heading};
@@ -116,7 +128,11 @@ static int boards_up(const sim_scenario_t *sc, sim_mission_t *m, char *err, size
     return 0;
 }
 
-/* Run passes of the boards' main loops while their handlers left work. */
+/*
+ * Run passes of the boards' main loops while their handlers left work. What a pass raises on
+ * the other board (the coordinate request's line) is taken at once, as the pulse on the wire
+ * would be, not at the next event.
+ */
 static void poll_boards(void)
 {
     for (int pass = 0; pass < 8; pass++) {
@@ -124,17 +140,21 @@ static void poll_boards(void)
         if (posix_board_take_wake(R.nav_b)) {
             posix_board_select(R.nav_b);
             nav_board_poll();
+            posix_dispatch();
             any = 1;
         }
         if (posix_board_take_wake(R.main_b)) {
             posix_board_select(R.main_b);
             main_board_poll();
+            posix_dispatch();
             any = 1;
         }
         if (!any)
             break;
     }
 }
+
+#define CLOCK_TICKS (-2)
 
 /* The interrupt counts of the report: each handler of both boards, by name. */
 static void count_isrs(sim_report_t *r)
@@ -143,6 +163,8 @@ static void count_isrs(sim_report_t *r)
         const char *name;
         int board, source;
     } isrs[] = {
+        /* CLOCK_TICKS: the ticks the board's timer took, as on the MSP430 (tickless, the
+         * harness raised only those a deadline asked for) */
         {"main.index_pulse", R.main_b,
          posix_source_find(R.main_b, (int)hal_capture_vector(HAL_CAPTURE_INDEX),
                            HAL_CAPTURE_INDEX)},
@@ -151,7 +173,7 @@ static void count_isrs(sim_report_t *r)
                            HAL_CAPTURE_BEACON)},
         {"main.delta_s", R.main_b, posix_edge_source(R.main_b, HAL_EDGE_DELTA_S)},
         {"main.can_rx", R.main_b, posix_source_find(R.main_b, HAL_CAN0_VECTOR, HAL_CAN0_INT_PIN)},
-        {"main.clock_tick", R.main_b, posix_source_find(R.main_b, HAL_VEC_TIMERB0, 0)},
+        {"main.clock_tick", R.main_b, CLOCK_TICKS},
         {"main.uart0_rx", R.main_b, posix_uart_source(R.main_b, 0)},
         {"main.uart1_rx", R.main_b, posix_uart_source(R.main_b, 1)},
         {"nav.delta_l", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_DELTA_L)},
@@ -160,12 +182,14 @@ static void count_isrs(sim_report_t *r)
         {"nav.beacon_sighted", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_BEACON_SIGHTED)},
         {"nav.coord_request", R.nav_b, posix_edge_source(R.nav_b, HAL_EDGE_COORD_REQUEST)},
         {"nav.can_rx", R.nav_b, posix_source_find(R.nav_b, HAL_CAN0_VECTOR, HAL_CAN0_INT_PIN)},
-        {"nav.clock_tick", R.nav_b, posix_source_find(R.nav_b, HAL_VEC_TIMERB0, 0)},
+        {"nav.clock_tick", R.nav_b, CLOCK_TICKS},
     };
     for (size_t i = 0; i < sizeof isrs / sizeof isrs[0] && i < SIM_MAX_ISR_NAMES; i++) {
         r->isr_name[r->n_isr] = isrs[i].name;
-        r->isr_count[r->n_isr++] =
-            isrs[i].source >= 0 ? posix_source_count(isrs[i].board, isrs[i].source) : 0;
+        r->isr_count[r->n_isr++] = isrs[i].source == CLOCK_TICKS ? posix_clock_ticks(isrs[i].board)
+                                   : isrs[i].source >= 0
+                                       ? posix_source_count(isrs[i].board, isrs[i].source)
+                                       : 0;
     }
 }
 
@@ -218,7 +242,7 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
                  SIM_PACE_MAX_FACTOR);
         return -1;
     }
-    if (boards_up(sc, m, err, errlen))
+    if (boards_up(sc, m, o->ticks, err, errlen))
         return -1;
     sim_sensors_init(&R.sensors, sc, &R.drive.seg, R.main_b, R.nav_b);
     if (sim_path_index_build(&R.nominal, &m->nominal)) {
@@ -261,8 +285,9 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
     }
     main_board_start();
 
-    uint64_t end_ns = sim_clock_ns(sc->duration), next_ns;
+    uint64_t end_ns = sim_clock_ns(sc->duration), next_ns, done_ns = 0;
     double done_at = -1, standstill_at = -1, next_progress = 0.1, wall_next = 0;
+    int ended = 0;
     sim_pace_t pace;
     sim_pace_start(&pace, o->realtime, posix_now_ns()); /* the factor was checked above */
     while ((next_ns = posix_next_event_ns()) <= end_ns) {
@@ -283,12 +308,18 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
         if ((st == DRIVE_ST_DONE || st == DRIVE_ST_FAULT || st == DRIVE_ST_STOPPED) &&
             done_at < 0) {
             done_at = now;
+            done_ns = posix_now_ns();
+            /* the instant the run may end on: not left to whatever event comes next */
+            posix_schedule(done_ns + DONE_HOLD_NS + 1u, nothing, NULL);
             R.tm.travel_done = pursuit; /* pursuit stops when it is done: no more samples */
         }
         if (done_at >= 0 && standstill_at < 0 && sim_drive_standing(&R.drive))
             standstill_at = now;
-        if (done_at >= 0 && sim_drive_standing(&R.drive) && now > done_at + 0.5)
+        if (done_at >= 0 && sim_drive_standing(&R.drive) &&
+            posix_now_ns() > done_ns + DONE_HOLD_NS) {
+            ended = 1;
             break; /* finished and standing */
+        }
         if (!o->quiet) {
             double frac = now / sc->duration, wall = wall_since(&w0);
             if (frac >= next_progress || wall >= wall_next) {
@@ -302,6 +333,8 @@ int sim_run(const sim_scenario_t *sc, sim_mission_t *m, const sim_run_options_t 
             }
         }
     }
+    if (!ended && !R.sock.failed)
+        (void)posix_run_until(end_ns); /* time is up: the run ends at the scenario's duration */
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
     stats->cpu_time_s = (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
     memcpy(stats->lcm_published, R.tm.lcm_published, sizeof stats->lcm_published);

@@ -21,6 +21,7 @@ void sim_sensors_init(sim_sensors_t *s, const sim_scenario_t *sc, const sim_segm
     s->seg = seg;
     s->main_board = main_board;
     s->nav_board = nav_board;
+    s->dl_source = posix_edge_source(nav_board, HAL_EDGE_DELTA_L); /* -1: no handler */
     s->dl = sc->dl * sc->odo_scale;
     s->gyro_step = sc->gyro_step;
     s->gyro_drift = sc->gyro_drift;
@@ -100,22 +101,36 @@ static void schedule_dl(sim_sensors_t *s, double after)
         s->ev_dl = sim_clock_schedule(t, on_dl, s);
 }
 
+/* The pulses, one after the other while nothing else happens in between (posix_advance()). */
 static void on_dl(void *ctx, uint64_t t_ns)
 {
     sim_sensors_t *s = ctx;
     s->ev_dl = 0;
-    /* Glitches: a pulse lost, or a spurious one with it (both raise the same handler). */
-    if (s->sc->odo_missed > 0 && sim_rng_uniform(&s->rng_odo) < s->sc->odo_missed) {
-        s->odo_missed++;
-    } else {
-        posix_edge_raise(s->nav_board, HAL_EDGE_DELTA_L);
-        if (s->sc->odo_extra > 0 && sim_rng_uniform(&s->rng_odo) < s->sc->odo_extra) {
-            s->odo_extra++;
-            sim_clock_schedule(sim_clock_s(t_ns) + GLITCH_DELAY_S, on_glitch, s);
+    for (;;) {
+        /* Glitches: a pulse lost, or a spurious one with it (both raise the same handler). */
+        if (s->sc->odo_missed > 0 && sim_rng_uniform(&s->rng_odo) < s->sc->odo_missed) {
+            s->odo_missed++;
+        } else {
+            if (s->dl_source >= 0)
+                posix_source_raise(s->nav_board, s->dl_source);
+            if (s->sc->odo_extra > 0 && sim_rng_uniform(&s->rng_odo) < s->sc->odo_extra) {
+                s->odo_extra++;
+                sim_clock_schedule(sim_clock_s(t_ns) + GLITCH_DELAY_S, on_glitch, s);
+            }
         }
+        s->front_next += s->dl;
+        double t = sim_segment_time_at_front(s->seg, s->front_next, sim_clock_s(t_ns));
+        if (!isfinite(t))
+            return;
+        uint64_t next = sim_clock_ns(t);
+        if (next <= t_ns)
+            next = t_ns + 1; /* as sim_clock_schedule() */
+        if (!posix_advance(next)) {
+            s->ev_dl = posix_schedule(next, on_dl, s);
+            return;
+        }
+        t_ns = next;
     }
-    s->front_next += s->dl;
-    schedule_dl(s, sim_clock_s(t_ns));
 }
 
 /* ------------------------------------------------------------------ gyro */

@@ -6,6 +6,7 @@
 #include <stddef.h>
 
 #include "hal/clock.h"
+#include "hal/cpu.h"
 #include "hal/irq.h"
 
 static bool due(uint32_t now, uint32_t deadline)
@@ -22,8 +23,11 @@ static uint8_t peer_of(uint8_t node)
 static void on_frame(void *arg, const hal_can_frame_t *f)
 {
     link_t *l = arg;
-    if (linkmsg_sender(f->id) == (int8_t)peer_of(l->cfg.node))
+    if (linkmsg_sender(f->id) == (int8_t)peer_of(l->cfg.node)) {
         l->last_heard = hal_clock_ms();
+        if (l->silent)
+            hal_cpu_wake(); /* the peer is back: link_poll() says so at once */
+    }
     linkmsg_t m;
     if (!linkmsg_rx_feed(&l->rx, f, &m))
         return;
@@ -66,6 +70,7 @@ int link_init(link_t *l, const link_config_t *cfg, link_msg_fn on_msg, void *ctx
     uint32_t now = hal_clock_ms();
     l->last_heard = now;
     l->next_heartbeat = now;
+    hal_clock_wake_at(now); /* the first heartbeat */
     /* The table's ids: the messages (0x000-0x0FF) and the heartbeats (0x700-0x703). */
     hal_can_config_t cc = {
         cfg->bitrate_bps, {{0x000u, 0x700u}, {0x700u, 0x7FCu}}, 2, 0, on_frame, l};
@@ -139,7 +144,10 @@ link_event_t link_poll(link_t *l)
     uint32_t heard = l->last_heard, now = hal_clock_ms(); /* both before a frame moves one */
     hal_irq_restore(s);
     heartbeat(l, now);
+    hal_clock_wake_at(l->next_heartbeat); /* a refused heartbeat: the next millisecond */
     bool quiet = (uint32_t)(now - heard) >= l->cfg.silence_ms;
+    if (!quiet && !l->silent)
+        hal_clock_wake_at(heard + l->cfg.silence_ms); /* when the peer would fall silent */
     if (quiet && !l->silent) {
         l->silent = 1;
         l->stats.silences++;

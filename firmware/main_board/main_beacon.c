@@ -572,6 +572,17 @@ drive_status_t main_beacon_prepare(void)
     return st;
 }
 
+/* The deadlines the main loop waits on (hal_clock_wake_at()); the rest wakes it. */
+static void deadlines(void)
+{
+    if (bt.fix_state == FIX_WAIT_LATCHES)
+        hal_clock_wake_at(bt.fix_deadline);
+    if (bt.pose_state == POSE_WAIT_ACK || bt.pose_state == POSE_WAIT_REPLY)
+        hal_clock_wake_at(bt.pose_deadline);
+    if (bt.timer_on)
+        hal_clock_wake_at(bt.timer_deadline);
+}
+
 void main_beacon_start(void)
 {
     if (!link_up(&main_board_common.link)) {
@@ -580,6 +591,7 @@ void main_beacon_start(void)
     }
     post(DRIVE_EVT_START);
     drain();
+    deadlines();
 }
 
 void main_beacon_poll(void)
@@ -640,6 +652,7 @@ void main_beacon_poll(void)
         post(DRIVE_EVT_TIMER);
         drain();
     }
+    deadlines();
 }
 
 drive_state_t main_beacon_state(void)

@@ -13,6 +13,7 @@
 #include "drive/drive_cmd.h"
 #include "drive/drive_proto.h"
 #include "hal/clock.h"
+#include "hal/cpu.h"
 #include "hal/irq.h"
 #include "hal/signal.h"
 #include "hal/uart.h"
@@ -44,7 +45,11 @@ static main_pursuit_state_t mp;
 /* The UARTs' receive handler (interrupt context): @p arg is the line's receiver. */
 static void on_rx(void *arg, uint8_t byte, uint8_t flags)
 {
-    posrx_rx_byte(arg, byte, flags, hal_clock_ms());
+    posrx_t *r = arg;
+    uint32_t framed = r->st.framed;
+    posrx_rx_byte(r, byte, flags, hal_clock_ms());
+    if (r->st.framed != framed)
+        hal_cpu_wake(); /* a packet for the main loop */
 }
 
 /* Packet millimetres to metres Q16 (the receiver keeps them within +-2^25 mm). */
@@ -215,6 +220,12 @@ void main_pursuit_poll(void)
     pursuit_out_t out;
     pursuit_tick(&mp.law, now, &out);
     apply(&out);
+    /* The deadlines (hal_clock_wake_at()): the law's, and the nav board's answer's. */
+    uint32_t at;
+    if (pursuit_next_tick(&mp.law, now, &at))
+        hal_clock_wake_at(at);
+    if (mp.waiting)
+        hal_clock_wake_at(mp.wait_end);
 }
 
 bool main_pursuit_done(void)

@@ -3,6 +3,7 @@
  */
 #include "nav_board.h"
 
+#include "hal/clock.h"
 #include "hal/cpu.h"
 #include "hal/irq.h"
 
@@ -179,6 +180,8 @@ void nav_board_poll(void)
         if (link_send(&nav_link, &m) == 0) {
             stats.stop_sent |= bit;
             link_set_stopped(&nav_link, 1);
+        } else {
+            hal_clock_wake_at(hal_clock_ms()); /* try again on the next millisecond */
         }
     }
 }

@@ -242,6 +242,37 @@ void pursuit_tick(pursuit_t *p, uint32_t now_ms, pursuit_out_t *out)
     set_speed(p, now_ms, out);
 }
 
+bool pursuit_next_tick(const pursuit_t *p, uint32_t now_ms, uint32_t *at_ms)
+{
+    if (!p->started || p->done)
+        return false;
+    bool any = false;
+    uint32_t at = 0;
+    if (p->holding) {
+        at = p->hold_end;
+        any = true;
+    }
+    if (p->cfg.slow_after_ms == 0)
+        goto out;
+    uint32_t age = now_ms - p->last_update, next;
+    if (age >= 0x80000000ul || age <= p->cfg.slow_after_ms) /* (stamped after now: age 0) */
+        next = p->factor != FX_Q16_ONE ? now_ms             /* the resume is due */
+                                       : p->last_update + p->cfg.slow_after_ms + 1u;
+    else if (age < p->cfg.stop_after_ms)
+        next = now_ms + 1u; /* slowing down: the factor changes by the millisecond */
+    else if (p->factor != 0)
+        next = now_ms; /* the stop is due */
+    else
+        goto out; /* stopped: only a position moves it on */
+    if (!any || (int32_t)(next - at) < 0)
+        at = next;
+    any = true;
+out:
+    if (any)
+        *at_ms = at;
+    return any;
+}
+
 bool pursuit_pair(pursuit_t *p, fx_q16_t x1, fx_q16_t y1, fx_q16_t x2, fx_q16_t y2,
                   fx_angle_t *heading)
 {

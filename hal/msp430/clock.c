@@ -34,6 +34,11 @@ uint32_t hal_clock_ms(void)
     return v;
 }
 
+void hal_clock_wake_at(uint32_t at)
+{
+    (void)at; /* the tick below wakes the main loop every millisecond */
+}
+
 CY_ISR(HAL_VEC_TIMERB0, hal_isr_timerb0)
 {
     TBCCR0 = (uint16_t)(TBCCR0 + tick);

@@ -46,6 +46,7 @@ typedef struct {
 
 static board_t boards[POSIX_MAX_BOARDS];
 static int n_boards; /* boards[0 .. n_boards - 1] were created since the reset */
+static int n_woken;  /* boards whose woken flag is set */
 static int current = -1;
 static uint64_t now_ns;
 static uint64_t next_seq;
@@ -59,6 +60,9 @@ static event_t queue[POSIX_MAX_EVENTS];
 static size_t queue_n;
 static int watch_board = -1; /* posix_run_steps(): its interrupts end a run of instants */
 static bool run_stop;        /* posix_run_steps(): end after this instant */
+static bool in_steps;        /* posix_run_steps() is running: posix_advance() may move on */
+static uint64_t steps_end;   /* its end */
+static uint64_t advances;    /* instants posix_advance() moved on to */
 static posix_preempt_hook_fn preempt_hook;
 static void *preempt_ctx;
 volatile int hal_preempt_armed;
@@ -73,7 +77,8 @@ static void harness_die(const char *what, int value)
 
 static board_t *board_at(int b)
 {
-    if (b < 0 || b >= POSIX_MAX_BOARDS || !boards[b].used)
+    /* boards[0 .. n_boards - 1] are all in use: a board lives until posix_reset() */
+    if ((unsigned)b >= (unsigned)n_boards)
         harness_die("no such board", b);
     return &boards[b];
 }
@@ -82,12 +87,15 @@ void posix_reset(void)
 {
     memset(boards, 0, sizeof boards);
     n_boards = 0;
+    n_woken = 0;
     current = -1;
     now_ns = 0;
     next_seq = 0;
     queue_n = 0;
     watch_board = -1;
     run_stop = false;
+    in_steps = false;
+    advances = 0;
     preempt_hook = NULL;
     preempt_ctx = NULL;
     hal_preempt_armed = 0;
@@ -137,13 +145,16 @@ const char *posix_board_name(int board)
 
 void posix_board_wake(int board)
 {
-    board_at(board)->woken = true;
+    board_t *bd = board_at(board);
+    n_woken += !bd->woken;
+    bd->woken = true;
 }
 
 bool posix_board_take_wake(int board)
 {
     board_t *bd = board_at(board);
     bool w = bd->woken;
+    n_woken -= w;
     bd->woken = false;
     return w;
 }
@@ -329,9 +340,10 @@ static void dispatch(board_t *bd, int b)
 
 void posix_dispatch(void)
 {
-    for (int b = 0; b < n_boards; b++)
-        if (boards[b].pending & boards[b].enabled)
-            dispatch(&boards[b], b);
+    board_t *bd = boards;
+    for (int b = 0; b < n_boards; b++, bd++)
+        if (bd->pending & bd->enabled)
+            dispatch(bd, b);
 }
 
 void hal_preempt_point(void)
@@ -437,23 +449,40 @@ void posix_run_stop(void)
     run_stop = true;
 }
 
+static bool any_woken(void)
+{
+    return n_woken != 0;
+}
+
 uint64_t posix_run_steps(uint64_t end_ns, int board)
 {
-    uint64_t n = 0;
+    uint64_t n = 0, advanced = advances;
     watch_board = board;
     run_stop = false;
+    in_steps = true;
+    steps_end = end_ns;
     while (queue_n && queue[queue_n - 1].t <= end_ns) {
         uint64_t instant = queue[queue_n - 1].t;
         while (queue_n && queue[queue_n - 1].t == instant) {
             run_first();
             n++;
         }
-        bool woken = false;
-        for (int b = 0; b < n_boards; b++)
-            woken |= boards[b].woken;
-        if (woken || run_stop)
+        if (any_woken() || run_stop)
             break;
     }
+    in_steps = false;
     watch_board = -1;
-    return n;
+    return n + (advances - advanced);
+}
+
+bool posix_advance(uint64_t t_ns)
+{
+    if (!in_steps || t_ns <= now_ns || t_ns > steps_end)
+        return false;
+    posix_dispatch();
+    if (run_stop || any_woken() || (queue_n && queue[queue_n - 1].t <= t_ns))
+        return false;
+    now_ns = t_ns;
+    advances++;
+    return true;
 }

@@ -392,6 +392,103 @@ TEST_F(Harness, ClockTicksEveryMillisecondOnItsBoardAndWakesIt)
     EXPECT_EQ(hal_clock_ms(), 0u); // not started there
 }
 
+TEST_F(Harness, TicklessClockWakesOnlyAtTheDeadlinesAndCountsTheSame)
+{
+    posix_reset();
+    posix_clock_set_tickless(true);
+    board = posix_board_create("test");
+    posix_board_select(board);
+    hal_clock_init();
+    hal_irq_enable();
+    EXPECT_EQ(posix_next_event_ns(), UINT64_MAX) << "no tick queued without a deadline";
+    posix_run_until(7'300'000); // 7.3 ms
+    EXPECT_EQ(hal_clock_ms(), 7u) << "the count is the time";
+    EXPECT_EQ(posix_clock_ticks(board), 7u);
+    EXPECT_FALSE(posix_board_take_wake(board));
+    hal_clock_wake_at(20);
+    hal_clock_wake_at(12); // the earlier one wins
+    hal_clock_wake_at(30);
+    EXPECT_EQ(posix_next_event_ns(), 12'000'000u);
+    posix_run_until(11'999'999);
+    EXPECT_FALSE(posix_board_take_wake(board));
+    posix_run_until(12'000'000);
+    EXPECT_TRUE(posix_board_take_wake(board)) << "woken at the boundary of millisecond 12";
+    EXPECT_EQ(hal_clock_ms(), 12u);
+    hal_clock_wake_at(5); // past: the next millisecond
+    EXPECT_EQ(posix_next_event_ns(), 13'000'000u);
+    posix_run_until(13'000'000);
+    EXPECT_TRUE(posix_board_take_wake(board));
+    EXPECT_EQ(posix_next_event_ns(), UINT64_MAX) << "a deadline wakes once";
+}
+
+// A pulse train: from its handler, each next pulse comes by posix_advance() while no event
+// is queued before it and nothing ended the instant; otherwise it is scheduled. Either way
+// the handler sees the same instants, and an event between two pulses runs between them.
+struct Train {
+    int board, source;
+    uint64_t period, last;
+    std::vector<uint64_t> *seen;
+    int advanced;
+};
+
+void train_pulse(void *ctx, uint64_t t)
+{
+    auto *tr = static_cast<Train *>(ctx);
+    for (;;) {
+        tr->seen->push_back(t);
+        posix_source_raise(tr->board, tr->source);
+        uint64_t next = t + tr->period;
+        if (next > tr->last)
+            return;
+        if (!posix_advance(next)) {
+            posix_schedule(next, train_pulse, tr);
+            return;
+        }
+        EXPECT_EQ(posix_now_ns(), next);
+        tr->advanced++;
+        t = next;
+    }
+}
+
+TEST_F(Harness, PulseTrainAdvancesOnlyWhileNothingComesBetween)
+{
+    static std::vector<uint64_t> isr_at;
+    isr_at.clear();
+    int src = posix_source_register(
+        board, 2, 0, false, [](void *) { isr_at.push_back(posix_now_ns()); }, nullptr);
+    ASSERT_GE(src, 0);
+    posix_source_enable(board, src, true);
+    hal_irq_enable();
+    std::vector<uint64_t> seen;
+    Train tr{board, src, 100, 1000, &seen, 0};
+    std::vector<std::pair<int, uint64_t>> events;
+    Ev between{&events, 7};
+    posix_schedule(100, train_pulse, &tr);
+    posix_schedule(450, record_event, &between);
+    EXPECT_FALSE(posix_advance(200)) << "refused outside posix_run_steps()";
+    posix_run_steps(UINT64_MAX, -1);
+    std::vector<uint64_t> all = {100, 200, 300, 400, 500, 600, 700, 800, 900, 1000};
+    EXPECT_EQ(seen, all);
+    EXPECT_EQ(isr_at, all) << "each pulse's handler ran at its own instant";
+    EXPECT_EQ(events, (std::vector<std::pair<int, uint64_t>>{{7, 450}}));
+    EXPECT_EQ(tr.advanced, 8) << "every pulse but the first and the one after the event";
+    // A board woken ends the run of instants: the pulse after it is queued, not advanced.
+    posix_reset();
+    board = posix_board_create("test");
+    src = posix_source_register(
+        board, 2, 0, false, [](void *) { hal_cpu_wake(); }, nullptr);
+    posix_source_enable(board, src, true);
+    posix_board_select(board);
+    hal_irq_enable();
+    seen.clear();
+    tr = Train{board, src, 100, 300, &seen, 0};
+    posix_schedule(100, train_pulse, &tr);
+    posix_run_steps(UINT64_MAX, -1);
+    EXPECT_EQ(seen, (std::vector<uint64_t>{100})) << "the run stops after the woken instant";
+    EXPECT_EQ(posix_next_event_ns(), 200u);
+    EXPECT_EQ(tr.advanced, 0);
+}
+
 TEST_F(Harness, SignalPulseReachesTheWiredLineOfTheOtherBoard)
 {
     int nav = posix_board_create("nav");

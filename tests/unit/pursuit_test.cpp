@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -330,6 +331,76 @@ TEST(PursuitRecovery, SlowDownStopAndResume)
     EXPECT_EQ(r.p.st.slowdowns, 1);
     EXPECT_EQ(r.p.st.stops, 1);
     EXPECT_EQ(r.p.st.resumes, 1);
+}
+
+// pursuit_next_tick(): every tick before the millisecond it names does nothing (checked on a
+// copy, millisecond by millisecond), and the one it names acts when the law is due.
+static void expect_quiet_until(const pursuit_t &p, uint32_t now, uint32_t until)
+{
+    pursuit_t c = p;
+    for (uint32_t t = now + 1; t < until; t++) {
+        pursuit_out_t out;
+        pursuit_tick(&c, t, &out);
+        ASSERT_EQ(out.actions, 0) << "a tick at " << t << " ms acted, before " << until;
+        ASSERT_EQ(std::memcmp(&c, &p, sizeof c), 0) << "a tick at " << t << " ms changed state";
+    }
+}
+
+TEST(PursuitRecovery, NextTickIsTheFirstThatActs)
+{
+    std::vector<Pt> pts = {{0, 0}, {10, 0}};
+    pursuit_config_t c = seed_config();
+    c.speed = q(0.5);
+    c.slow_after_ms = 500;
+    c.stop_after_ms = 2500;
+    Drive r(pts, c);
+    uint32_t at = 0;
+    EXPECT_FALSE(pursuit_next_tick(&r.p, 0, &at)) << "not started";
+    pursuit_out_t out;
+    pursuit_start(&r.p, 0, 1000, &out);
+    // full speed until more than slow_after_ms without an update: the first slower ms is 1501
+    ASSERT_TRUE(pursuit_next_tick(&r.p, 1000, &at));
+    EXPECT_EQ(at, 1501u);
+    expect_quiet_until(r.p, 1000, at);
+    pursuit_tick(&r.p, at, &out);
+    EXPECT_EQ(out.actions, PURSUIT_ACT_SPEED);
+    // slowing down: the factor moves by the millisecond
+    ASSERT_TRUE(pursuit_next_tick(&r.p, 1501, &at));
+    EXPECT_EQ(at, 1502u);
+    // stopped (2.5 s without an update): nothing falls due until a position comes
+    pursuit_tick(&r.p, 3500, &out);
+    ASSERT_EQ(out.speed, 0);
+    EXPECT_FALSE(pursuit_next_tick(&r.p, 3500, &at));
+    expect_quiet_until(r.p, 3500, 6000);
+    pursuit_alive(&r.p, 6000);
+    ASSERT_TRUE(pursuit_next_tick(&r.p, 6000, &at));
+    EXPECT_LE(at, 6000u) << "the resume is due at once";
+    pursuit_tick(&r.p, 6000, &out);
+    ASSERT_EQ(out.actions, PURSUIT_ACT_SPEED);
+    ASSERT_TRUE(pursuit_next_tick(&r.p, 6000, &at));
+    EXPECT_EQ(at, 6501u);
+    expect_quiet_until(r.p, 6000, at);
+}
+
+TEST(Pursuit, NextTickEndsAHeldCorrection)
+{
+    std::vector<Pt> pts = {{0, 0}, {10, 0}};
+    pursuit_config_t c = seed_config();
+    c.k = q(2.0);
+    Drive r(pts, c);
+    pursuit_out_t out;
+    pursuit_start(&r.p, 0, 0, &out);
+    pursuit_record_t rec;
+    pursuit_position(&r.p, q(0.1), q(0.0), nullptr, 100, &rec, &out);
+    pursuit_position(&r.p, q(0.2), q(-0.05), nullptr, 200, &rec, &out);
+    ASSERT_TRUE(out.actions & PURSUIT_ACT_STEER) << "a correction, held for activation_ms";
+    uint32_t at = 0;
+    ASSERT_TRUE(pursuit_next_tick(&r.p, 200, &at));
+    EXPECT_EQ(at, 200u + c.activation_ms);
+    expect_quiet_until(r.p, 200, at);
+    pursuit_tick(&r.p, at, &out);
+    EXPECT_EQ(out.actions, PURSUIT_ACT_STEER) << "the hold ends: straight again";
+    EXPECT_FALSE(pursuit_next_tick(&r.p, at, &at)) << "no slow-down configured, nothing held";
 }
 
 // A drive board whose true speed per count is 1.3 times what max_speed says: regulation

@@ -17,6 +17,7 @@ typedef struct {
     int quiet;            /* --quiet */
     int trace;            /* --trace */
     int stats;            /* --stats */
+    int ticks;            /* --ticks: every board's clock interrupt every millisecond */
     double realtime;      /* --realtime[=FACTOR]: simulated s per wall s, 0 = not paced */
 } sim_cli_t;
 

@@ -35,6 +35,11 @@ sim_segment_t sim_segment(double t, sim_pose_t p, double front_rolled, double al
 /** Pose on the segment at time @p t (t >= seg->t0). */
 sim_pose_t sim_segment_pose(const sim_segment_t *seg, double t);
 
+/** sim_segment_pose() and the cosine and sine of its heading (the same numbers as cos() and
+ * sin() of it: most often left over from the pose's own arithmetic). */
+sim_pose_t sim_segment_pose_trig(const sim_segment_t *seg, double t, double *cos_th,
+                                 double *sin_th);
+
 /** Front-wheel distance rolled (total since the start of the run) at time @p t. */
 double sim_segment_front(const sim_segment_t *seg, double t);
 

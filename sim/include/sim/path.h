@@ -39,6 +39,20 @@ sim_pose_t sim_path_end(const sim_path_t *p);
 /** Shortest distance from (x, y) to the piece, m. */
 double sim_piece_distance(const sim_piece_t *pc, double x, double y);
 
+/** What sim_piece_distance() works out from the piece alone (its end, its line or arc). */
+typedef struct {
+    double ex, ey;            /* the end, m */
+    double ux, uy;            /* a straight piece: its direction of travel */
+    double cx, cy, r, a0, sw; /* an arc: centre, m; signed radius, m; start angle, signed sweep */
+} sim_piece_geom_t;
+
+/** Fill @p g for @p pc (once per piece: the trigonometry of sim_piece_distance()). */
+void sim_piece_geom(const sim_piece_t *pc, sim_piece_geom_t *g);
+
+/** sim_piece_distance() from @p pc's geometry @p g (sim_piece_geom()): the same number. */
+double sim_piece_geom_distance(const sim_piece_t *pc, const sim_piece_geom_t *g, double x,
+                               double y);
+
 /** The piece's bounding box {xmin, ymin, xmax, ymax}, m, with a micrometre of slack. */
 void sim_piece_bounds(const sim_piece_t *pc, double box[4]);
 

@@ -24,7 +24,8 @@ typedef struct {
     uint32_t *items;    /* piece numbers */
     uint32_t *distinct; /* the pieces that repeat no earlier one */
     size_t n_distinct;
-    uint32_t *seen; /* per piece: the last query that examined it */
+    sim_piece_geom_t *geom; /* per piece: its geometry (the distinct pieces' filled) */
+    uint32_t *seen;         /* per piece: the last query that examined it */
     uint32_t query;
     /* work counters (deterministic): queries answered, pieces examined */
     uint64_t queries, examined;

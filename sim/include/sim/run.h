@@ -24,6 +24,8 @@ typedef struct {
     const char *can;     /* carry the bus's frames through this SocketCAN interface, or NULL */
     const char *candump; /* the bus traffic in candump's log format there, or NULL */
     double realtime;     /* simulated s per wall s (sim/pace.h), 0: as fast as it goes */
+    int ticks;           /* the boards' clock interrupts every millisecond (else tickless:
+                          * posix_clock_set_tickless(); the run is the same, only faster) */
 } sim_run_options_t;
 
 /** Work counters of a run: deterministic (the same scenario and seed give the same), and the

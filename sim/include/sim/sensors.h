@@ -31,6 +31,7 @@
 typedef struct {
     const sim_segment_t *seg; /* the true motion (the drive board's) */
     int main_board, nav_board;
+    int dl_source;     /* the nav board's odometer interrupt source (-1: none registered) */
     double dl;         /* m of true front-wheel travel per odometer pulse */
     double gyro_step;  /* rad */
     double gyro_drift; /* rad/s */
@@ -63,6 +64,7 @@ typedef struct {
  * owner calls sim_sensors_motion() when it changes), pulses going to harness boards
  * @p main_board and @p nav_board. The mirror turns from t = 0, its first index pulse a
  * random part of a turn later (seeded from the scenario's seed). Nothing is scheduled yet.
+ * Call it after the boards' firmware registered its handlers (the odometer's is looked up).
  */
 void sim_sensors_init(sim_sensors_t *s, const sim_scenario_t *sc, const sim_segment_t *seg,
                       int main_board, int nav_board);

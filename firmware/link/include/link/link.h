@@ -108,7 +108,9 @@ uint8_t link_tx_room(const link_t *l);
 
 /**
  * Main-loop work: the heartbeat when it is due (retried on the next call when the queue is
- * full), and the watch on the other board. Returns what changed.
+ * full), and the watch on the other board. Returns what changed. States its deadlines (the
+ * next heartbeat, the moment the other board would fall silent) with hal_clock_wake_at(); a
+ * frame from a silent board wakes the main loop.
  */
 link_event_t link_poll(link_t *l);
 

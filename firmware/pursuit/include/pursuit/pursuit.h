@@ -163,6 +163,15 @@ void pursuit_alive(pursuit_t *p, uint32_t t_ms);
 void pursuit_tick(pursuit_t *p, uint32_t now_ms, pursuit_out_t *out);
 
 /**
+ * When pursuit_tick() next has something to do if no position comes first (ms; the slowing
+ * down acts every millisecond): true with that millisecond in @p at_ms (at or before
+ * @p now_ms: at once), false when nothing falls due (not started, done, or stopped for want
+ * of updates: only a position changes that). Calls of pursuit_tick() after @p now_ms and
+ * before @p at_ms do nothing. For a main loop that sleeps until its deadlines.
+ */
+bool pursuit_next_tick(const pursuit_t *p, uint32_t now_ms, uint32_t *at_ms);
+
+/**
  * Two receivers: the heading from receiver 2's position (x2, y2) to receiver 1's (x1, y1)
  * into @p heading, and true, when their distance is within cfg.pair_tol of cfg.pair_sep;
  * false (a refused pair, counted) otherwise.

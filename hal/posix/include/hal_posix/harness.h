@@ -137,6 +137,16 @@ uint64_t posix_run_steps(uint64_t end_ns, int watch_board);
 void posix_run_stop(void);
 
 /**
+ * From an event's handler under posix_run_steps(): deliver the interrupts it raised, then move
+ * the clock on to @p t_ns, the handler's next instant, without queueing an event for it (a
+ * pulse train: the odometer's). Refused (false: schedule @p t_ns as usual) unless @p t_ns is
+ * after now and not after posix_run_steps()'s end, no event is queued up to @p t_ns, and this
+ * instant ended nothing (no board woken, no posix_run_stop(), no interrupt of the watched
+ * board): then the run is exactly the one the queued event would give. Counted as an event.
+ */
+bool posix_advance(uint64_t t_ns);
+
+/**
  * Hook called at every HAL_PREEMPT_POINT() (with the number of points passed so far on the
  * current board) before pending interrupts are delivered there; NULL removes it. Points are
  * only counted while a hook is set.
@@ -176,8 +186,22 @@ void posix_console_redirect(posix_console_sink_fn sink, void *ctx);
 /** Wire output line @p s of @p from_board to edge line @p line of @p to_board. */
 void posix_signal_connect(int from_board, hal_signal_t s, int to_board, hal_edge_line_t line);
 
-/** Forget clocks and wiring (posix_reset() calls it). */
+/** Forget clocks and wiring, and go back to ticked clocks (posix_reset() calls it). */
 void posix_clock_signal_reset(void);
+
+/**
+ * Tickless clocks (@p on) or ticked ones (the default), for the boards that start their clock
+ * after this call. Ticked: every board's tick interrupt every simulated millisecond, as on the
+ * MSP430. Tickless: a board's tick interrupt only at the earliest deadline its main loop stated
+ * (hal_clock_wake_at()); hal_clock_ms() counts the same milliseconds either way.
+ */
+void posix_clock_set_tickless(bool on);
+
+/**
+ * The tick interrupts @p board's clock took (ticked), or would have taken (tickless): the
+ * milliseconds since it started.
+ */
+uint32_t posix_clock_ticks(int board);
 
 /* ---- CAN (hal/can.h): the bus model, hal_posix/can_bus.h ---- */
 
