@@ -154,6 +154,8 @@ static void poll_boards(void)
     }
 }
 
+/* In the table below: the ticks the board's timer took, as on the MSP430 (tickless, the
+ * harness raised only those a deadline asked for: posix_clock_ticks()). */
 #define CLOCK_TICKS (-2)
 
 /* The interrupt counts of the report: each handler of both boards, by name. */
@@ -163,8 +165,6 @@ static void count_isrs(sim_report_t *r)
         const char *name;
         int board, source;
     } isrs[] = {
-        /* CLOCK_TICKS: the ticks the board's timer took, as on the MSP430 (tickless, the
-         * harness raised only those a deadline asked for) */
         {"main.index_pulse", R.main_b,
          posix_source_find(R.main_b, (int)hal_capture_vector(HAL_CAPTURE_INDEX),
                            HAL_CAPTURE_INDEX)},
