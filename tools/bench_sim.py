@@ -4,11 +4,14 @@ of agv-sim on every shipped scenario and on routes of 100 m and 1 km made from t
 loop (its points driven again and again), with every ISR of both boards running. Also the
 simulated seconds per CPU second of the run (less moved by the machine's load than the wall
 clock) and the nominal path pieces examined per cross-track sample (the work that used to
-grow with the path's length); both from agv-sim --stats. Each figure is the median of --runs runs; progress goes to stderr.
+grow with the path's length); both from agv-sim --stats. Each figure is the median of --runs runs,
+or of more when they add up to less than --min-time seconds of the run loop (a scenario of a few
+simulated seconds runs for a few milliseconds, which the machine's load moves most); progress
+goes to stderr.
 A benchmark, not a test: the machine's load moves the wall-clock figures. Build the `host`
 preset (optimised) first.
 
-  tools/bench_sim.py [--agv build/host/bin/agv-sim] [--runs 5] [--json FILE]
+  tools/bench_sim.py [--agv build/host/bin/agv-sim] [--runs 5] [--min-time 0.5] [--json FILE]
                      [--routes 100,1000] [scenario.json ...]
 """
 import argparse
@@ -62,7 +65,9 @@ def main():
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--agv", default=os.path.join(ROOT, "build", "host", "bin", "agv-sim"),
                     help="the agv-sim to measure (default: the host preset's)")
-    ap.add_argument("--runs", type=int, default=5, help="runs per scenario (median)")
+    ap.add_argument("--runs", type=int, default=5, help="runs per scenario at least (median)")
+    ap.add_argument("--min-time", type=float, default=0.5, metavar="S",
+                    help="more runs (up to 100) until the run loops took S seconds in all")
     ap.add_argument("--routes", default="100,1000",
                     help="lengths (m) of the routes made from the factory loop; '' for none")
     ap.add_argument("--json", help="also write the figures here")
@@ -86,15 +91,18 @@ def main():
         for k, (sc, length) in enumerate(todo):
             name = os.path.splitext(os.path.basename(sc))[0]
             wall, cpu_f = [], []
-            for i in range(a.runs):
-                print(f"bench_sim: [{k + 1}/{len(todo)}] {name}: run {i + 1}/{a.runs}",
-                      file=sys.stderr, flush=True)
+            spent, i = 0.0, 0
+            while i < a.runs or (spent < a.min_time and i < 100):
+                i += 1
+                print(f"bench_sim: [{k + 1}/{len(todo)}] {name}: run {i}", file=sys.stderr,
+                      flush=True)
                 r, st, cpu = run_once(a.agv, sc, tmp)
+                spent += r["wall_time_s"]
                 wall.append(r["sim_time_s"] / max(r["wall_time_s"], 1e-9))
                 cpu_f.append(r["sim_time_s"] / max(cpu, 1e-9))
             isr_per_s = sum(r["isr"].values()) / r["sim_time_s"]
             per_sample = st["pieces_examined"] / max(st["samples"], 1)
-            row = {"scenario": name, "route_m": round(length) if length else None,
+            row = {"scenario": name, "route_m": round(length) if length else None, "runs": i,
                    "sim_time_s": r["sim_time_s"], "realtime_factor_median": round(
                        statistics.median(wall)), "realtime_factor_min": round(min(wall)),
                    "cpu_factor_median": round(statistics.median(cpu_f)),
@@ -110,7 +118,8 @@ def main():
                   f"{isr_per_s:5.0f} ISRs per simulated second"
                   f"{'' if row['realtime_factor_median'] >= FLOOR else '  (below 2,000x)'}",
                   flush=True)
-    print(f"{a.runs} runs each; floor {FLOOR:,}x real time (issue 13)")
+    print(f"at least {a.runs} runs each (more for the short ones, --min-time {a.min_time:g} s); "
+          f"floor {FLOOR:,}x real time (issue 13)")
     if a.json:
         with open(a.json, "w") as f:
             json.dump(results, f, indent=1)
