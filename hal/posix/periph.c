@@ -10,12 +10,6 @@
 #include "hal_posix/harness.h"
 #include "harness_internal.h"
 
-static void edge_trampoline(void *ctx)
-{
-    posix_edge_slot_t *slot = ctx;
-    slot->cb(slot->arg);
-}
-
 int hal_edge_init(hal_edge_line_t line, hal_edge_flank_t flank, hal_edge_cb_t cb, void *arg)
 {
     (void)flank; /* the harness raises the edge the firmware asked for */
@@ -25,8 +19,9 @@ int hal_edge_init(hal_edge_line_t line, hal_edge_flank_t flank, hal_edge_cb_t cb
     posix_edge_slot_t *slot = &posix_board_state(b)->edge[line];
     slot->cb = cb;
     slot->arg = arg;
+    /* the handler is the source's own (same signature): no trampoline on the hot path */
     slot->source = posix_source_register(b, (int)hal_edge_vector(line), (int)hal_edge_pin(line),
-                                         line == HAL_EDGE_COORD_REQUEST, edge_trampoline, slot);
+                                         line == HAL_EDGE_COORD_REQUEST, cb, arg);
     return slot->source < 0 ? -1 : 0;
 }
 
