@@ -299,14 +299,19 @@ TEST(Pursuit, OnCourseHoldAndSteeringLimit)
     EXPECT_EQ(r.p.st.corrections, 1);
 }
 
-TEST(PursuitRecovery, SlowDownStopAndResume)
+// Half of max speed, slower after 0.5 s without an update, stopped after 2.5 s.
+pursuit_config_t recovery_config()
 {
-    std::vector<Pt> pts = {{0, 0}, {10, 0}};
     pursuit_config_t c = seed_config();
     c.speed = q(0.5);
     c.slow_after_ms = 500;
     c.stop_after_ms = 2500;
-    Drive r(pts, c);
+    return c;
+}
+
+TEST(PursuitRecovery, SlowDownStopAndResume)
+{
+    Drive r({{0, 0}, {10, 0}}, recovery_config());
     pursuit_out_t out;
     pursuit_start(&r.p, 0, 1000, &out);
     EXPECT_EQ(out.speed, 64) << "0.5 of max: 63.5 counts, rounded away from zero";
@@ -348,12 +353,7 @@ static void expect_quiet_until(const pursuit_t &p, uint32_t now, uint32_t until)
 
 TEST(PursuitRecovery, NextTickIsTheFirstThatActs)
 {
-    std::vector<Pt> pts = {{0, 0}, {10, 0}};
-    pursuit_config_t c = seed_config();
-    c.speed = q(0.5);
-    c.slow_after_ms = 500;
-    c.stop_after_ms = 2500;
-    Drive r(pts, c);
+    Drive r({{0, 0}, {10, 0}}, recovery_config());
     uint32_t at = 0;
     EXPECT_FALSE(pursuit_next_tick(&r.p, 0, &at)) << "not started";
     pursuit_out_t out;
