@@ -101,23 +101,33 @@ static void schedule_dl(sim_sensors_t *s, double after)
         s->ev_dl = sim_clock_schedule(t, on_dl, s);
 }
 
-/* The pulses, one after the other while nothing else happens in between (posix_advance()). */
+/* A pulse at @p t_ns (s): lost, or raised, and then maybe a spurious one after it. */
+static void pulse(sim_sensors_t *s, uint64_t t_ns)
+{
+    /* Glitches: a pulse lost, or a spurious one with it (both raise the same handler). */
+    if (s->sc->odo_missed > 0 && sim_rng_uniform(&s->rng_odo) < s->sc->odo_missed) {
+        s->odo_missed++;
+        return;
+    }
+    if (s->dl_source >= 0)
+        posix_source_raise(s->nav_board, s->dl_source);
+    if (s->sc->odo_extra > 0 && sim_rng_uniform(&s->rng_odo) < s->sc->odo_extra) {
+        s->odo_extra++;
+        sim_clock_schedule(sim_clock_s(t_ns) + GLITCH_DELAY_S, on_glitch, s);
+    }
+}
+
+/*
+ * The pulses, one after the other while nothing else happens in between (posix_advance());
+ * without glitches, each next pulse's interrupt is raised and taken by posix_advance_raise().
+ */
 static void on_dl(void *ctx, uint64_t t_ns)
 {
     sim_sensors_t *s = ctx;
     s->ev_dl = 0;
+    bool plain = s->sc->odo_missed <= 0 && s->sc->odo_extra <= 0 && s->dl_source >= 0;
+    pulse(s, t_ns);
     for (;;) {
-        /* Glitches: a pulse lost, or a spurious one with it (both raise the same handler). */
-        if (s->sc->odo_missed > 0 && sim_rng_uniform(&s->rng_odo) < s->sc->odo_missed) {
-            s->odo_missed++;
-        } else {
-            if (s->dl_source >= 0)
-                posix_source_raise(s->nav_board, s->dl_source);
-            if (s->sc->odo_extra > 0 && sim_rng_uniform(&s->rng_odo) < s->sc->odo_extra) {
-                s->odo_extra++;
-                sim_clock_schedule(sim_clock_s(t_ns) + GLITCH_DELAY_S, on_glitch, s);
-            }
-        }
         s->front_next += s->dl;
         double t = sim_segment_time_at_front(s->seg, s->front_next, sim_clock_s(t_ns));
         if (!isfinite(t))
@@ -125,11 +135,13 @@ static void on_dl(void *ctx, uint64_t t_ns)
         uint64_t next = sim_clock_ns(t);
         if (next <= t_ns)
             next = t_ns + 1; /* as sim_clock_schedule() */
-        if (!posix_advance(next)) {
+        if (plain ? !posix_advance_raise(next, s->nav_board, s->dl_source) : !posix_advance(next)) {
             s->ev_dl = posix_schedule(next, on_dl, s);
             return;
         }
         t_ns = next;
+        if (!plain)
+            pulse(s, t_ns);
     }
 }
 

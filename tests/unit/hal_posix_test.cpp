@@ -489,6 +489,64 @@ TEST_F(Harness, PulseTrainAdvancesOnlyWhileNothingComesBetween)
     EXPECT_EQ(tr.advanced, 0);
 }
 
+// posix_advance_raise(): the train's next pulse raised and taken at its own instant, as an
+// event's would be; held pending while interrupts are off, delivered when they come back.
+struct RaisingTrain {
+    int board, source;
+    uint64_t period, last;
+    std::vector<uint64_t> *seen;
+};
+
+void raising_pulse(void *ctx, uint64_t t)
+{
+    auto *tr = static_cast<RaisingTrain *>(ctx);
+    tr->seen->push_back(t);
+    posix_source_raise(tr->board, tr->source);
+    for (uint64_t next = t + tr->period; next <= tr->last; next += tr->period) {
+        if (!posix_advance_raise(next, tr->board, tr->source)) {
+            posix_schedule(next, raising_pulse, tr);
+            return;
+        }
+        tr->seen->push_back(next);
+    }
+}
+
+TEST_F(Harness, AdvanceRaiseDeliversEachPulseAtItsInstant)
+{
+    static std::vector<uint64_t> isr_at;
+    isr_at.clear();
+    int src = posix_source_register(
+        board, 2, 0, false, [](void *) { isr_at.push_back(posix_now_ns()); }, nullptr);
+    ASSERT_GE(src, 0);
+    hal_irq_enable();
+    std::vector<uint64_t> seen;
+    RaisingTrain tr{board, src, 100, 600, &seen};
+    std::vector<std::pair<int, uint64_t>> events;
+    Ev between{&events, 7};
+    posix_schedule(100, raising_pulse, &tr);
+    posix_schedule(350, record_event, &between);
+    posix_run_steps(UINT64_MAX, -1);
+    std::vector<uint64_t> all = {100, 200, 300, 400, 500, 600};
+    EXPECT_EQ(seen, all);
+    EXPECT_EQ(isr_at, all);
+    EXPECT_EQ(posix_source_count(board, src), 6u);
+    EXPECT_EQ(events, (std::vector<std::pair<int, uint64_t>>{{7, 350}}));
+    // Interrupts off: the pulse stays pending (a second one merges into the same flag) and
+    // is taken when they come back on.
+    isr_at.clear();
+    hal_irq_disable();
+    seen.clear();
+    tr = RaisingTrain{board, src, 100, 900, &seen};
+    posix_schedule(700, raising_pulse, &tr);
+    posix_run_steps(UINT64_MAX, -1);
+    EXPECT_EQ(seen, (std::vector<uint64_t>{700, 800, 900}));
+    EXPECT_TRUE(isr_at.empty());
+    EXPECT_TRUE(posix_source_pending(board, src));
+    hal_irq_enable();
+    EXPECT_EQ(isr_at, (std::vector<uint64_t>{900}));
+    EXPECT_FALSE(posix_advance_raise(1000, board, src)) << "outside posix_run_steps()";
+}
+
 TEST_F(Harness, SignalPulseReachesTheWiredLineOfTheOtherBoard)
 {
     int nav = posix_board_create("nav");

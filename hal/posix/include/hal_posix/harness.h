@@ -147,6 +147,14 @@ void posix_run_stop(void);
 bool posix_advance(uint64_t t_ns);
 
 /**
+ * posix_advance(), then @p source of @p board raised at the new instant and delivered as an
+ * event's would be: at once when the board takes it (interrupts on, nothing of higher
+ * priority pending), else it waits, pending. The next pulse of a train whose every pulse
+ * raises the same source. False (nothing raised) when posix_advance() refuses.
+ */
+bool posix_advance_raise(uint64_t t_ns, int board, int source);
+
+/**
  * Hook called at every HAL_PREEMPT_POINT() (with the number of points passed so far on the
  * current board) before pending interrupts are delivered there; NULL removes it. Points are
  * only counted while a hook is set.
