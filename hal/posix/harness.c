@@ -303,6 +303,26 @@ static int pick(const board_t *bd, uint32_t m)
     return best;
 }
 
+/* Interrupt entry (GIE cleared by the CPU), source @p s's handler on board @p b, RETI (the
+ * status register, hence GIE, back from the stack). */
+static inline void take(board_t *bd, int b, source_t *s)
+{
+    s->count++;
+    bool saved_gie = bd->gie;
+    bool saved_nmi = bd->in_nmi;
+    int saved_current = current;
+    bd->gie = false;
+    if (s->nonmaskable)
+        bd->in_nmi = true;
+    bd->isr_depth++;
+    current = b;
+    s->fn(s->ctx);
+    current = saved_current;
+    bd->isr_depth--;
+    bd->in_nmi = saved_nmi;
+    bd->gie = saved_gie;
+}
+
 /* Deliver board @p b's pending interrupts (board valid). */
 static void dispatch(board_t *bd, int b)
 {
@@ -318,23 +338,8 @@ static void dispatch(board_t *bd, int b)
         source_t *s = &bd->src[i];
         if (b == watch_board)
             run_stop = true;
-        /* Interrupt entry: flag cleared by the shim, GIE cleared by the CPU. */
-        bd->pending &= ~(1u << i);
-        s->count++;
-        bool saved_gie = bd->gie;
-        bool saved_nmi = bd->in_nmi;
-        int saved_current = current;
-        bd->gie = false;
-        if (s->nonmaskable)
-            bd->in_nmi = true;
-        bd->isr_depth++;
-        current = b;
-        s->fn(s->ctx);
-        /* RETI: the status register (hence GIE) comes back from the stack. */
-        current = saved_current;
-        bd->isr_depth--;
-        bd->in_nmi = saved_nmi;
-        bd->gie = saved_gie;
+        bd->pending &= ~(1u << i); /* the flag, cleared by the shim */
+        take(bd, b, s);
     }
 }
 
@@ -503,16 +508,7 @@ bool posix_advance_raise(uint64_t t_ns, int board, int source)
         dispatch(bd, board);
         return true;
     }
-    /* The common case, as dispatch() takes it: the only deliverable source, GIE set. */
-    s->count++;
-    int saved_current = current;
-    bd->gie = false;
-    bd->isr_depth++;
-    current = board;
-    s->fn(s->ctx);
-    current = saved_current;
-    bd->isr_depth--;
-    bd->gie = true;
+    take(bd, board, s); /* the common case: the only deliverable source, GIE set */
     if (bd->pending & bd->enabled)
         dispatch(bd, board); /* what the handler raised on its own board */
     return true;
