@@ -421,6 +421,15 @@ TEST_F(Harness, TicklessClockWakesOnlyAtTheDeadlinesAndCountsTheSame)
     EXPECT_EQ(posix_next_event_ns(), UINT64_MAX) << "a deadline wakes once";
 }
 
+// A source on @p board (vector 2, bit 0) whose handler notes the instant it runs at.
+std::vector<uint64_t> g_isr_at;
+int instant_recorder(int board)
+{
+    g_isr_at.clear();
+    return posix_source_register(
+        board, 2, 0, false, [](void *) { g_isr_at.push_back(posix_now_ns()); }, nullptr);
+}
+
 // A pulse train: from its handler, each next pulse comes by posix_advance() while no event
 // is queued before it and nothing ended the instant; otherwise it is scheduled. Either way
 // the handler sees the same instants, and an event between two pulses runs between them.
@@ -452,10 +461,8 @@ void train_pulse(void *ctx, uint64_t t)
 
 TEST_F(Harness, PulseTrainAdvancesOnlyWhileNothingComesBetween)
 {
-    static std::vector<uint64_t> isr_at;
-    isr_at.clear();
-    int src = posix_source_register(
-        board, 2, 0, false, [](void *) { isr_at.push_back(posix_now_ns()); }, nullptr);
+    std::vector<uint64_t> &isr_at = g_isr_at;
+    int src = instant_recorder(board);
     ASSERT_GE(src, 0);
     posix_source_enable(board, src, true);
     hal_irq_enable();
@@ -513,10 +520,8 @@ void raising_pulse(void *ctx, uint64_t t)
 
 TEST_F(Harness, AdvanceRaiseDeliversEachPulseAtItsInstant)
 {
-    static std::vector<uint64_t> isr_at;
-    isr_at.clear();
-    int src = posix_source_register(
-        board, 2, 0, false, [](void *) { isr_at.push_back(posix_now_ns()); }, nullptr);
+    std::vector<uint64_t> &isr_at = g_isr_at;
+    int src = instant_recorder(board);
     ASSERT_GE(src, 0);
     hal_irq_enable();
     std::vector<uint64_t> seen;
