@@ -495,12 +495,10 @@ static inline bool advance(uint64_t t_ns)
 
 bool posix_advance_raise(uint64_t t_ns, int board, int source)
 {
-    board_t *bd = board_at(board);
-    if ((unsigned)source >= POSIX_MAX_SOURCES || !bd->src[source].used)
-        harness_die("no such interrupt source", source);
+    source_t *s = source_at(board, source);
+    board_t *bd = &boards[board];
     if (!advance(t_ns))
         return false;
-    source_t *s = &bd->src[source];
     uint32_t bit = 1u << source;
     if (!bd->gie || bd->in_nmi || s->nonmaskable || !(bd->enabled & bit) ||
         (bd->pending & bd->enabled) || board == watch_board) {
