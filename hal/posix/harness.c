@@ -47,6 +47,9 @@ typedef struct {
 static board_t boards[POSIX_MAX_BOARDS];
 static int n_boards; /* boards[0 .. n_boards - 1] were created since the reset */
 static int n_woken;  /* boards whose woken flag is set */
+/* Bit b is set whenever board b has a flag raised on an enabled source (pending & enabled);
+ * it may stay set after they are taken, until posix_dispatch() looks again. */
+static uint32_t live;
 static int current = -1;
 static uint64_t now_ns;
 static uint64_t next_seq;
@@ -88,6 +91,7 @@ void posix_reset(void)
     memset(boards, 0, sizeof boards);
     n_boards = 0;
     n_woken = 0;
+    live = 0;
     current = -1;
     now_ns = 0;
     next_seq = 0;
@@ -258,15 +262,18 @@ void posix_source_raise(int board, int source)
 {
     (void)source_at(board, source);
     boards[board].pending |= 1u << source;
+    live |= 1u << board;
 }
 
 void posix_source_enable(int board, int source, bool enable)
 {
     (void)source_at(board, source);
-    if (enable)
+    if (enable) {
         boards[board].enabled |= 1u << source;
-    else
+        live |= 1u << board;
+    } else {
         boards[board].enabled &= ~(1u << source);
+    }
 }
 
 bool posix_source_pending(int board, int source)
@@ -345,10 +352,18 @@ static void dispatch(board_t *bd, int b)
 
 void posix_dispatch(void)
 {
+    if (live == 0)
+        return; /* the common case: no flag raised on an enabled source since the last look */
     board_t *bd = boards;
     for (int b = 0; b < n_boards; b++, bd++)
         if (bd->pending & bd->enabled)
             dispatch(bd, b);
+    uint32_t still = 0; /* what stays (masked by GIE, or raised meanwhile) */
+    bd = boards;
+    for (int b = 0; b < n_boards; b++, bd++)
+        if (bd->pending & bd->enabled)
+            still |= 1u << b;
+    live = still;
 }
 
 void hal_preempt_point(void)
@@ -503,6 +518,7 @@ bool posix_advance_raise(uint64_t t_ns, int board, int source)
     if (!bd->gie || bd->in_nmi || s->nonmaskable || !(bd->enabled & bit) ||
         (bd->pending & bd->enabled) || board == watch_board) {
         bd->pending |= bit; /* the general way: priorities, masks, the NMI, the watch */
+        live |= 1u << board;
         dispatch(bd, board);
         return true;
     }

@@ -113,6 +113,40 @@ TEST_F(Harness, MaskedSourceKeepsItsFlag)
     EXPECT_FALSE(posix_source_pending(board, s));
 }
 
+// A handler on a later board raises a source on an earlier one: posix_dispatch() has passed
+// that board, so the flag waits for the next dispatch, which must still see it.
+struct CrossRaise {
+    int board, source;
+};
+
+static void cross_raise_isr(void *ctx)
+{
+    auto *c = static_cast<CrossRaise *>(ctx);
+    g_log.push_back("later");
+    posix_source_raise(c->board, c->source);
+}
+
+TEST_F(Harness, FlagRaisedOnAnEarlierBoardWaitsForTheNextDispatch)
+{
+    int later = posix_board_create("later");
+    ASSERT_GT(later, board);
+    int s = posix_source_register(board, 5, 0, false, log_isr, (void *)"earlier");
+    CrossRaise c = {board, s};
+    int t = posix_source_register(later, 5, 0, false, cross_raise_isr, &c);
+    hal_irq_enable();
+    posix_board_select(later);
+    hal_irq_enable();
+    posix_board_select(board);
+    posix_source_raise(later, t);
+    posix_dispatch();
+    ASSERT_EQ(g_log.size(), 1u);
+    EXPECT_TRUE(posix_source_pending(board, s));
+    posix_dispatch();
+    ASSERT_EQ(g_log.size(), 2u);
+    EXPECT_EQ(g_log[1], "earlier");
+    EXPECT_FALSE(posix_source_pending(board, s));
+}
+
 TEST_F(Harness, CriticalSectionsNestAndReleaseAtTheOutermostExit)
 {
     int s = posix_source_register(board, 5, 0, false, log_isr, (void *)"x");
