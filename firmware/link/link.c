@@ -110,6 +110,12 @@ uint8_t link_tx_room(const link_t *l)
     return hal_can_tx_room(LINK_CAN);
 }
 
+void link_wake_on_room(const link_t *l)
+{
+    (void)l;
+    hal_can_wake_on_room(LINK_CAN);
+}
+
 static uint8_t sat8(uint16_t v)
 {
     return v > 255u ? 255u : (uint8_t)v;

@@ -141,7 +141,7 @@ void nav_board_poll(void)
         send_left--;
     }
     if (send_left)
-        hal_cpu_wake(); /* come back when the link has drained */
+        link_wake_on_room(&nav_link); /* come back when the link has drained */
 
     if (have_fix) {
         gnav_pose_t pose = {fix.u.fix.pose.x, fix.u.fix.pose.y, fix.u.fix.pose.heading};

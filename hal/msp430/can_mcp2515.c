@@ -249,6 +249,11 @@ int hal_can_stats(hal_can_t can, hal_can_stats_t *out)
     return 0;
 }
 
+void hal_can_wake_on_room(hal_can_t can)
+{
+    (void)can; /* the main loop polls: hal/can.h */
+}
+
 int hal_can_recover(hal_can_t can)
 {
     if (can != 0u)

@@ -47,7 +47,8 @@ typedef struct {
     uint32_t runs;          /* occurrences counted towards recovery */
     uint64_t count_from_ns; /* recovery counting began */
     uint64_t recover_event;
-    bool tx_faulty; /* POSIX_CAN_FAULT_BUSOFF in force */
+    bool tx_faulty;    /* POSIX_CAN_FAULT_BUSOFF in force */
+    bool wake_on_room; /* hal_can_wake_on_room(): wake the board when room may have grown */
     hal_can_stats_t stats;
 } node_t;
 
@@ -213,6 +214,15 @@ static void schedule_recovery(node_t *n)
     n->recover_event = posix_schedule(t, recover_event, n);
 }
 
+/* Room in @p n's transmit queue may have grown: the main loop waiting for it runs. */
+static void room_grew(node_t *n)
+{
+    if (n->wake_on_room) {
+        n->wake_on_room = false;
+        posix_board_wake(n->index);
+    }
+}
+
 /* The 128th occurrence: error-active again with both counters 0. */
 static void recovered(node_t *n)
 {
@@ -222,6 +232,7 @@ static void recovered(node_t *n)
     n->runs = 0;
     sat16(&n->stats.recoveries);
     emit_state(n, true);
+    room_grew(n);
 }
 
 static void recover_event(void *ctx, uint64_t t)
@@ -584,6 +595,7 @@ static void end_event(void *ctx, uint64_t t)
                 n->tec--;
             n->tx_head = (uint8_t)((n->tx_head + 1u) % HAL_CAN_TX_QUEUE);
             n->tx_n--;
+            room_grew(n);
         }
     } else {
         b->stats.error_frames++;
@@ -749,6 +761,13 @@ uint8_t hal_can_tx_room(hal_can_t can)
     if (!n || !n->used || n->state == HAL_CAN_BUS_OFF)
         return 0;
     return (uint8_t)(HAL_CAN_TX_QUEUE - n->tx_n);
+}
+
+void hal_can_wake_on_room(hal_can_t can)
+{
+    node_t *n = my_node(can);
+    if (n && n->used)
+        n->wake_on_room = true;
 }
 
 static void status_of(const node_t *n, hal_can_status_t *out)

@@ -322,6 +322,58 @@ TEST_F(Bus, ABrokenTransmitterGoesBusOffAndRecoversAfter128ElevenBitRuns)
     EXPECT_EQ(rb.got[0].second.id, 0x13);
 }
 
+// hal_can_wake_on_room(): the board's main loop runs when room may have grown, once per wait
+// stated: at the end of each of its frames (55 + 10 s bits, the worst case), and at the end of
+// a bus-off (128 x 11 bit times of idle bus); never for another node's frames.
+TEST_F(Bus, AMainLoopWaitingForRoomRunsWhenItsFrameLeavesOrItsBusOffEnds)
+{
+    Rx ra, rb;
+    int a = node(&ra), b = node(&rb);
+    for (int i = 0; i < HAL_CAN_TX_QUEUE; i++)
+        ASSERT_EQ(send(a, (uint16_t)(0x100 + i), 8), 0);
+    posix_board_select(a);
+    ASSERT_EQ(hal_can_tx_room(0), 0);
+    hal_can_wake_on_room(0);
+    posix_board_select(b);
+    hal_can_wake_on_room(0); // b sends nothing: a's frames never wake it
+    posix_run_until(135 * BIT - 1);
+    EXPECT_FALSE(posix_board_take_wake(a));
+    posix_run_until(135 * BIT);
+    EXPECT_TRUE(posix_board_take_wake(a));
+    posix_board_select(a);
+    EXPECT_EQ(hal_can_tx_room(0), 1);
+    posix_run_until(2 * 135 * BIT);
+    EXPECT_FALSE(posix_board_take_wake(a)) << "one wake per wait stated";
+    hal_can_wake_on_room(0);
+    posix_run_until(3 * 135 * BIT - 1);
+    EXPECT_FALSE(posix_board_take_wake(a));
+    posix_run_until(3 * 135 * BIT);
+    EXPECT_TRUE(posix_board_take_wake(a));
+    EXPECT_FALSE(posix_board_take_wake(b));
+
+    // Bus-off (every attempt of a's fails), then 128 x 11 bit times of idle bus.
+    posix_run_until(HAL_CAN_TX_QUEUE * 135 * BIT);
+    posix_can_fault_t f{};
+    f.kind = POSIX_CAN_FAULT_BUSOFF;
+    f.from_ns = posix_now_ns();
+    f.until_ns = f.from_ns;
+    f.sender = a;
+    ASSERT_EQ(posix_can_add_fault(0, &f), 0);
+    ASSERT_EQ(send(a, 0x10, 8), 0);
+    uint64_t off = f.from_ns + (32 * 30 + 16 * 8) * BIT;
+    posix_run_until(off);
+    ASSERT_EQ(status(a).state, HAL_CAN_BUS_OFF);
+    posix_board_select(a);
+    EXPECT_EQ(hal_can_tx_room(0), 0);
+    hal_can_wake_on_room(0);
+    posix_run_until(off + 1408 * BIT - 1);
+    EXPECT_FALSE(posix_board_take_wake(a));
+    posix_run_until(off + 1408 * BIT);
+    EXPECT_EQ(status(a).state, HAL_CAN_ERROR_ACTIVE);
+    EXPECT_TRUE(posix_board_take_wake(a));
+    EXPECT_FALSE(posix_board_take_wake(b));
+}
+
 TEST_F(Bus, RecoveryCountsOneRunPerFrameWhileTheOthersTalk)
 {
     Rx ra, rb, rc;

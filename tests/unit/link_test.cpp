@@ -235,6 +235,30 @@ TEST_F(Link, LostHeartbeatsAreCountedAsGapsButAnyFrameKeepsThePeerHeard)
     EXPECT_EQ(m.got.size(), 5u);
 }
 
+// link_wake_on_room(): a main loop that found too little room runs again when a frame of its
+// board has left (a DIR message is one frame of 1 byte: 65 bit times at most).
+TEST_F(Link, AMainLoopWaitingForRoomRunsWhenAFrameLeaves)
+{
+    Board m, n;
+    up(m, LINKMSG_NODE_MAIN);
+    up(n, LINKMSG_NODE_NAV);
+    posix_board_select(m.id);
+    linkmsg_t dir{};
+    dir.type = LINKMSG_DIR;
+    for (int i = 0; i < HAL_CAN_TX_QUEUE; i++)
+        ASSERT_EQ(link_send(&m.link, &dir), 0);
+    ASSERT_EQ(link_tx_room(&m.link), 0);
+    link_wake_on_room(&m.link);
+    uint64_t t0 = posix_now_ns(), bit = 1000000000u / 250000u;
+    posix_run_until(t0 + 65 * bit - 1);
+    EXPECT_FALSE(posix_board_take_wake(m.id));
+    posix_run_until(t0 + 65 * bit);
+    EXPECT_TRUE(posix_board_take_wake(m.id));
+    posix_board_select(m.id);
+    EXPECT_EQ(link_tx_room(&m.link), 1);
+    EXPECT_FALSE(posix_board_take_wake(n.id));
+}
+
 TEST_F(Link, BusOffAndRecoveryAreCountedAndTheLinkGoesOn)
 {
     Board m, n;

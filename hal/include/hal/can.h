@@ -145,6 +145,15 @@ int hal_can_send(hal_can_t can, const hal_can_frame_t *f);
 /** Frames hal_can_send() would take now (0 when full, bus-off or not initialised). */
 uint8_t hal_can_tx_room(hal_can_t can);
 
+/**
+ * The main loop waits for room in @p can's transmit queue (hal_can_tx_room() too small now):
+ * like hal_clock_wake_at(), a wait stated on each pass that needs it, after its checks. MSP430:
+ * nothing (the main loop polls). POSIX: the harness runs this board's main loop once, the next
+ * time the room may have grown (a frame of this instance sent and acknowledged, or the end of
+ * its bus-off), instead of after every event. No such instance, or not initialised: nothing.
+ */
+void hal_can_wake_on_room(hal_can_t can);
+
 /** The state and error counters of @p can into @p out. Returns 0 or HAL_CAN_E_PARAM / _STATE. */
 int hal_can_status(hal_can_t can, hal_can_status_t *out);
 

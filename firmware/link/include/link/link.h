@@ -107,6 +107,12 @@ int link_send(link_t *l, const linkmsg_t *m);
 uint8_t link_tx_room(const link_t *l);
 
 /**
+ * The main loop waits for link_tx_room() to grow (hal_can_wake_on_room() on the link's bus):
+ * stated on each pass that finds too little room.
+ */
+void link_wake_on_room(const link_t *l);
+
+/**
  * Main-loop work: the heartbeat when it is due (retried on the next call when the queue is
  * full), and the watch on the other board. Returns what changed. States its deadlines (the
  * next heartbeat, the moment the other board would fall silent) with hal_clock_wake_at(); a
