@@ -82,7 +82,7 @@ void sim_piece_geom(const sim_piece_t *pc, sim_piece_geom_t *g)
 {
     sim_pose_t e = sim_piece_end(pc);
     double dir = pc->reverse ? -1.0 : 1.0;
-    *g = (sim_piece_geom_t){e.x, e.y, 0, 0, 0, 0, 0, 0, 0};
+    *g = (sim_piece_geom_t){e.x, e.y, 0, 0, 0, 0, 0, 0, 0, 0, 0};
     if (fabs(pc->kappa) < 1e-12) {
         g->ux = cos(pc->th0) * dir;
         g->uy = sin(pc->th0) * dir;
@@ -94,30 +94,110 @@ void sim_piece_geom(const sim_piece_t *pc, sim_piece_geom_t *g)
     g->r = arc.r;
     g->a0 = arc.a0;
     g->sw = arc.sweep;
+    g->ecos = cos(arc.a0 + arc.sweep);
+    g->esin = sin(arc.a0 + arc.sweep);
 }
 
-double sim_piece_geom_distance(const sim_piece_t *pc, const sim_piece_geom_t *g, double x, double y)
+/* Below this, m (or m^2 for squares), the rounding arguments of the shortcuts need care with
+ * subnormal numbers: the shortcuts stand aside. Above 1e60 products could overflow. */
+#define SMALL 1e-60
+#define LARGE 1e60
+
+/* Relative slack of the squared comparisons in ring_beyond(): far above double rounding. */
+#define SLACK 1e-12
+
+/* sin^2 of the angular margin of in_wedge(): 1e-9 rad, far above the rounding of atan2(). */
+#define SIDE2 1e-18
+
+/* min(best, d) for a candidate distance d (what fmin() gives when best is not NaN). */
+static double least(double best, double d)
 {
-    double to_end = hypot(x - g->ex, y - g->ey), to_start = hypot(x - pc->x0, y - pc->y0);
-    double best = fmin(to_start, to_end);
+    return d < best ? d : best;
+}
+
+int sim_path_ring_beyond(double v2, double r, double best)
+{
+    if (!(best >= SMALL))
+        return 0;
+    double out = r + best;
+    if (v2 > out * out * (1.0 + SLACK))
+        return 1;
+    double in = r - best;
+    return in >= SMALL && v2 < in * in * (1.0 - SLACK);
+}
+
+int sim_path_in_wedge(double px, double py, double qx, double qy, double vx, double vy)
+{
+    double p2 = px * px + py * py, q2 = qx * qx + qy * qy, v2 = vx * vx + vy * vy;
+    if (!(p2 >= SMALL && p2 <= LARGE && q2 >= SMALL && q2 <= LARGE && v2 >= SMALL && v2 <= LARGE))
+        return 0;
+    double a = px * vy - py * vx; /* |p| |v| sin(angle from p to v) */
+    double b = vx * qy - vy * qx; /* |v| |q| sin(angle from v to q) */
+    double ma = SIDE2 * p2 * v2, mb = SIDE2 * v2 * q2;
+    if (a > 0.0 && b > 0.0 && a * a > ma && b * b > mb)
+        return 1;
+    if ((a < 0.0 && a * a > ma) || (b < 0.0 && b * b > mb))
+        return -1;
+    return 0;
+}
+
+/*
+ * arc_covers(arc, atan2(vy, vx)) for the arc of @p g starting at radius vector (px, py) (its
+ * start minus its centre, m) and the point's radius vector (vx, vy), m, decided by cross
+ * products: 1 covered, -1 not, 0 too close to a boundary to tell (the caller asks
+ * arc_covers()). A sweep of at most half a turn is the covered wedge from the start to the
+ * end direction (clockwise sweeps: from the end to the start); a longer one leaves the
+ * uncovered wedge the other way round; a whole turn or more is left to arc_covers().
+ */
+static int arc_side(const sim_piece_geom_t *g, double px, double py, double vx, double vy)
+{
+    double sw = g->sw, ex = g->ecos, ey = g->esin;
+    if (sw >= 0.0 && sw <= M_PI)
+        return sim_path_in_wedge(px, py, ex, ey, vx, vy);
+    if (sw > M_PI && sw < 2.0 * M_PI)
+        return -sim_path_in_wedge(ex, ey, px, py, vx, vy);
+    if (sw < 0.0 && sw >= -M_PI)
+        return sim_path_in_wedge(ex, ey, px, py, vx, vy);
+    if (sw < -M_PI && sw > -2.0 * M_PI)
+        return -sim_path_in_wedge(px, py, ex, ey, vx, vy);
+    return 0;
+}
+
+/* min(best, the distance to the point (x, y) - (dx, dy)): hypot() only when it can win. */
+static double nearer_point(double best, double dx, double dy)
+{
+    if (sim_path_ring_beyond(dx * dx + dy * dy, 0.0, best))
+        return best;
+    return least(best, hypot(dx, dy));
+}
+
+double sim_piece_geom_nearer(const sim_piece_t *pc, const sim_piece_geom_t *g, double x, double y,
+                             double best)
+{
     if (fabs(pc->kappa) < 1e-12) {
         /* Segment from start to end. */
         double s = (x - pc->x0) * g->ux + (y - pc->y0) * g->uy;
         if (s > 0.0 && s < pc->length)
-            best = fmin(best, fabs(-(x - pc->x0) * g->uy + (y - pc->y0) * g->ux));
-        return best;
+            best = least(best, fabs(-(x - pc->x0) * g->uy + (y - pc->y0) * g->ux));
+    } else {
+        /* The arc's inside: the distance to its circle where the arc covers the direction. */
+        double vx = x - g->cx, vy = y - g->cy;
+        if (!sim_path_ring_beyond(vx * vx + vy * vy, fabs(g->r), best)) {
+            int side = arc_side(g, pc->x0 - g->cx, pc->y0 - g->cy, vx, vy);
+            arc_t arc = {g->cx, g->cy, g->r, g->a0, g->sw};
+            if (side > 0 || (side == 0 && arc_covers(&arc, atan2(vy, vx))))
+                best = least(best, fabs(hypot(vx, vy) - fabs(g->r)));
+        }
     }
-    arc_t arc = {g->cx, g->cy, g->r, g->a0, g->sw};
-    if (arc_covers(&arc, atan2(y - arc.cy, x - arc.cx)))
-        best = fmin(best, fabs(hypot(x - arc.cx, y - arc.cy) - fabs(arc.r)));
-    return best;
+    best = nearer_point(best, x - pc->x0, y - pc->y0);
+    return nearer_point(best, x - g->ex, y - g->ey);
 }
 
 double sim_piece_distance(const sim_piece_t *pc, double x, double y)
 {
     sim_piece_geom_t g;
     sim_piece_geom(pc, &g);
-    return sim_piece_geom_distance(pc, &g, x, y);
+    return sim_piece_geom_nearer(pc, &g, x, y, INFINITY);
 }
 
 void sim_piece_bounds(const sim_piece_t *pc, double box[4])

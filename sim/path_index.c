@@ -126,19 +126,27 @@ void sim_path_index_free(sim_path_index_t *ix)
     ix->n_distinct = 0;
 }
 
+/* min(a, b) of two numbers that are not NaN (fmin() without its call). */
+static double least(double a, double b)
+{
+    return b < a ? b : a;
+}
+
 static double examine(sim_path_index_t *ix, uint32_t i, double x, double y, double best)
 {
     if (ix->seen[i] == ix->query)
         return best;
     ix->seen[i] = ix->query;
     ix->examined++;
-    return fmin(best, sim_piece_geom_distance(&ix->path->piece[i], &ix->geom[i], x, y));
+    double d = sim_piece_geom_nearer(&ix->path->piece[i], &ix->geom[i], x, y, best);
+    if (d < best)
+        ix->nearest = i;
+    return d;
 }
 
 /* Every distinct piece: the answer for a point outside the grid. */
-static double scan_all(sim_path_index_t *ix, double x, double y)
+static double scan_all(sim_path_index_t *ix, double x, double y, double best)
 {
-    double best = INFINITY;
     for (size_t k = 0; k < ix->n_distinct; k++)
         best = examine(ix, ix->distinct[k], x, y, best);
     return best;
@@ -153,11 +161,13 @@ double sim_path_index_distance(sim_path_index_t *ix, double x, double y)
         memset(ix->seen, 0, ix->path->n * sizeof *ix->seen);
         ix->query = 1;
     }
+    /* The piece nearest last time first: usually the nearest again, its distance lets the
+     * other pieces be passed over cheaply (the minimum does not depend on the order). */
+    double best = examine(ix, ix->nearest, x, y, INFINITY);
     double fx = (x - ix->x0) / ix->cell, fy = (y - ix->y0) / ix->cell;
     if (!(fx >= 0 && fy >= 0 && fx < ix->nx && fy < ix->ny))
-        return scan_all(ix, x, y);
+        return scan_all(ix, x, y, best);
     int i0 = (int)fx, j0 = (int)fy;
-    double best = INFINITY;
     for (int k = 0;; k++) {
         /* Ring k: the cells at Chebyshev distance k from (i0, j0). */
         for (int j = j0 - k; j <= j0 + k; j++) {
@@ -177,13 +187,13 @@ double sim_path_index_distance(sim_path_index_t *ix, double x, double y)
          * for the rounding of the cell arithmetic). */
         double margin = INFINITY;
         if (i0 - k > 0)
-            margin = fmin(margin, x - (ix->x0 + (i0 - k) * ix->cell));
+            margin = least(margin, x - (ix->x0 + (i0 - k) * ix->cell));
         if (i0 + k + 1 < ix->nx)
-            margin = fmin(margin, ix->x0 + (i0 + k + 1) * ix->cell - x);
+            margin = least(margin, ix->x0 + (i0 + k + 1) * ix->cell - x);
         if (j0 - k > 0)
-            margin = fmin(margin, y - (ix->y0 + (j0 - k) * ix->cell));
+            margin = least(margin, y - (ix->y0 + (j0 - k) * ix->cell));
         if (j0 + k + 1 < ix->ny)
-            margin = fmin(margin, ix->y0 + (j0 + k + 1) * ix->cell - y);
+            margin = least(margin, ix->y0 + (j0 + k + 1) * ix->cell - y);
         if (margin == INFINITY || best + 1e-9 <= margin)
             return best;
     }

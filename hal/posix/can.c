@@ -80,6 +80,7 @@ struct bus {
     fault_t fault[POSIX_CAN_MAX_FAULTS];
     int n_faults;
     fault_t *babble; /* the babbling node's fault, when one is set */
+    uint32_t kinds;  /* bit k: a fault of posix_can_fault_kind_t k is set */
     uint8_t babble_count;
     posix_can_bus_stats_t stats;
 };
@@ -305,6 +306,8 @@ static void rec_success(node_t *n)
 static bool fault_hits(bus_t *b, posix_can_fault_kind_t kind, const node_t *n, uint16_t id,
                        uint64_t *delay)
 {
+    if (!(b->kinds & (1u << kind)))
+        return false; /* none of that kind: most frames of most runs */
     uint64_t now = posix_now_ns();
     for (int i = 0; i < b->n_faults; i++) {
         fault_t *f = &b->fault[i];
@@ -453,6 +456,7 @@ int posix_can_add_fault(hal_can_t can, const posix_can_fault_t *f)
             return -1;
     }
     b->n_faults++;
+    b->kinds |= 1u << f->kind;
     return 0;
 }
 
@@ -574,7 +578,7 @@ static void end_event(void *ctx, uint64_t t)
     b->busy = false;
     b->run_from_ns = t - b->cur.trailing * n->bit_ns;
     b->stats.busy_ns += t - b->cur.start;
-    for (int i = 0; i < POSIX_CAN_NODES; i++)
+    for (int i = 0; b->cur.bad_rate && i < POSIX_CAN_NODES; i++)
         if (b->cur.bad_rate & (1u << i))
             rec_error(&b->node[i]);
 
@@ -586,9 +590,7 @@ static void end_event(void *ctx, uint64_t t)
             got = b->cur.frame;
         ev.frame = got;
         deliver(b, &got, &ev.delivered, &ev.lost);
-        for (int i = 0; i < POSIX_CAN_NODES; i++)
-            if (ev.lost & (1u << i))
-                b->stats.lost++;
+        b->stats.lost += (uint64_t)__builtin_popcount(ev.lost);
         if (sender_here) {
             sat32(&n->stats.tx_frames);
             if (n->tec > 0)
@@ -612,8 +614,13 @@ static void end_event(void *ctx, uint64_t t)
                 n->tec = (uint16_t)(n->tec + 8u);
         }
     }
-    for (int i = 0; i < POSIX_CAN_NODES; i++)
-        if ((b->cur.rx_mask | b->cur.bad_rate) & (1u << i))
+    /* deliver() brought the receivers of a frame up to date already: their counters have
+     * not moved since. */
+    uint16_t changed = b->cur.bad_rate;
+    if (b->cur.error != POSIX_CAN_ERR_NONE)
+        changed |= b->cur.rx_mask;
+    for (int i = 0; changed && i < POSIX_CAN_NODES; i++)
+        if (changed & (1u << i))
             update_state(&b->node[i]);
     if (sender_here) {
         update_state(n);
@@ -632,7 +639,8 @@ static void end_event(void *ctx, uint64_t t)
     if (tap)
         tap(tap_ctx, &ev);
     for (int i = 0; i < POSIX_CAN_NODES; i++)
-        schedule_recovery(&b->node[i]);
+        if (b->node[i].recovering || b->node[i].recover_event) /* else nothing to schedule */
+            schedule_recovery(&b->node[i]);
     kick(b);
 }
 

@@ -36,7 +36,7 @@ sim_pose_t sim_piece_end(const sim_piece_t *pc);
 /** The pose at the end of the whole path (the start pose of an empty path is undefined). */
 sim_pose_t sim_path_end(const sim_path_t *p);
 
-/** Shortest distance from (x, y) to the piece, m. */
+/** Shortest distance from (x, y) to the piece, m (INFINITY for a NaN point). */
 double sim_piece_distance(const sim_piece_t *pc, double x, double y);
 
 /** What sim_piece_distance() works out from the piece alone (its end, its line or arc). */
@@ -44,14 +44,37 @@ typedef struct {
     double ex, ey;            /* the end, m */
     double ux, uy;            /* a straight piece: its direction of travel */
     double cx, cy, r, a0, sw; /* an arc: centre, m; signed radius, m; start angle, signed sweep */
+    double ecos, esin;        /* an arc: cos and sin of a0 + sw (the end's direction) */
 } sim_piece_geom_t;
 
 /** Fill @p g for @p pc (once per piece: the trigonometry of sim_piece_distance()). */
 void sim_piece_geom(const sim_piece_t *pc, sim_piece_geom_t *g);
 
-/** sim_piece_distance() from @p pc's geometry @p g (sim_piece_geom()): the same number. */
-double sim_piece_geom_distance(const sim_piece_t *pc, const sim_piece_geom_t *g, double x,
-                               double y);
+/**
+ * min(@p best, sim_piece_distance(@p pc, @p x, @p y)), m, from @p pc's geometry @p g
+ * (sim_piece_geom()): bit for bit the same number, with less work when @p best is small (a
+ * part of the piece that cannot come closer than @p best is not measured exactly). @p best:
+ * m, >= 0 or INFINITY. A NaN point leaves @p best.
+ */
+double sim_piece_geom_nearer(const sim_piece_t *pc, const sim_piece_geom_t *g, double x, double y,
+                             double best);
+
+/**
+ * Is |hypot(vx, vy) - @p r|, as double arithmetic rounds it, certainly >= @p best, m, for a
+ * point at squared distance @p v2 = vx^2 + vy^2 (m^2) from a centre? @p r >= 0 is the radius
+ * of a circle about the centre, m (0: the distance to the centre itself). 1 when the
+ * squares decide it with a relative margin of 1e-12, else 0 (also for @p best below 1e-60 m,
+ * where subnormal squares could mislead).
+ */
+int sim_path_ring_beyond(double v2, double r, double best);
+
+/**
+ * Where the vector v = (@p vx, @p vy) points relative to the wedge swept counter-clockwise
+ * from p = (@p px, @p py) to q = (@p qx, @p qy) (a wedge of at most half a turn, give or take
+ * rounding): 1 inside, -1 outside, each by more than 1e-9 rad of angle; 0 when nearer a side
+ * than that, or when a squared length is outside [1e-60, 1e60] (any unit, the same for all).
+ */
+int sim_path_in_wedge(double px, double py, double qx, double qy, double vx, double vy);
 
 /** The piece's bounding box {xmin, ymin, xmax, ymax}, m, with a micrometre of slack. */
 void sim_piece_bounds(const sim_piece_t *pc, double box[4]);

@@ -27,6 +27,7 @@ typedef struct {
     sim_piece_geom_t *geom; /* per piece: its geometry (the distinct pieces' filled) */
     uint32_t *seen;         /* per piece: the last query that examined it */
     uint32_t query;
+    uint32_t nearest; /* the distinct piece nearest at the last query (piece 0 at first) */
     /* work counters (deterministic): queries answered, pieces examined */
     uint64_t queries, examined;
 } sim_path_index_t;
