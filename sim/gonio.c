@@ -54,28 +54,46 @@ typedef struct {
     double base_rate, half_rate; /* dF/dt = base_rate - side half_rate (when asked for) */
 } f_parts_t;
 
+/* The vehicle at one instant: its pose, the cosine and sine of its heading and its speed. */
+typedef struct {
+    double t;
+    sim_pose_t p;
+    double cth, sth, v;
+} vehicle_t;
+
+/* The vehicle on @p seg at @p t; with @p rates the heading's trig and the speed too (else 0). */
+static vehicle_t vehicle_at(const sim_segment_t *seg, double t, bool rates)
+{
+    vehicle_t m = {t, {0.0, 0.0, 0.0}, 0.0, 0.0, 0.0};
+    if (!rates) {
+        m.p = sim_segment_pose(seg, t);
+        return m;
+    }
+    m.p = sim_segment_pose_trig(seg, t, &m.cth, &m.sth);
+    m.v = sim_segment_speed(seg, t);
+    return m;
+}
+
 /*
- * The parts of F at @p t (the crossing's side aside): heading, mirror and bearing, and the
- * apparent half width; with @p rates their rates too, in closed form from the pose and the
- * speed at t: the heading's, the mirror's, less the bearing's and the half width's as the
- * vehicle moves.
+ * The parts of F with the vehicle at @p m (the crossing's side aside): heading, mirror and
+ * bearing, and the apparent half width; with @p rates (m from vehicle_at() with rates) their
+ * rates too, in closed form from the pose and the speed: the heading's, the mirror's, less the
+ * bearing's and the half width's as the vehicle moves.
  */
-static f_parts_t F_parts(const crossing_t *c, double t, bool rates)
+static f_parts_t F_parts(const crossing_t *c, const vehicle_t *m, bool rates)
 {
     f_parts_t f;
-    double cth = 0.0, sth = 0.0;
-    sim_pose_t p =
-        rates ? sim_segment_pose_trig(c->seg, t, &cth, &sth) : sim_segment_pose(c->seg, t);
+    sim_pose_t p = m->p;
     double dx = c->tx - p.x, dy = c->ty - p.y;
     double bearing = atan2(dy, dx);
     f.bearing = bearing;
     f.half = target_half(c, p.x, p.y);
-    f.base = p.th + mirror_at(c->cfg, c->t_index, t) - bearing;
+    f.base = p.th + mirror_at(c->cfg, c->t_index, m->t) - bearing;
     f.base_rate = f.half_rate = 0.0;
     if (!rates)
         return f;
-    double v = sim_segment_speed(c->seg, t);
-    double vx = v * cth, vy = v * sth, r2 = dx * dx + dy * dy;
+    double v = m->v;
+    double vx = v * m->cth, vy = v * m->sth, r2 = dx * dx + dy * dy;
     double bearing_rate = r2 > 0.0 ? (dy * vx - dx * vy) / r2 : 0.0;
     if (c->half >= 0.0 && r2 > 0.0) {
         double d = sqrt(r2), d_rate = -(dx * vx + dy * vy) / d, r = c->half;
@@ -105,7 +123,8 @@ static double solve(const crossing_t *c, double t_from, double t_to, const f_par
     double t = t_from + (target - f0) / (df > 0.0 ? df : w);
     /* Newton with F's rate in closed form. */
     for (int i = 0; i < 8; i++) {
-        f_parts_t f = F_parts(c, t, true);
+        vehicle_t m = vehicle_at(c->seg, t, true);
+        f_parts_t f = F_parts(c, &m, true);
         df = f.base_rate - c->side * f.half_rate;
         if (df <= 0.0)
             df = w;
@@ -137,14 +156,15 @@ static int by_time(const void *a, const void *b)
  * the noise never puts a falling edge before its rising edge.
  */
 static size_t add_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const sim_segment_t *seg,
-                        double t_index, double t_from, double t_to, sim_rng_t *rng, double tx,
-                        double ty, double half, int flat, int16_t target, sim_gonio_event_t *out,
-                        size_t n, size_t max)
+                        double t_index, const vehicle_t *at_from, const vehicle_t *at_to,
+                        sim_rng_t *rng, double tx, double ty, double half, int flat, int16_t target,
+                        sim_gonio_event_t *out, size_t n, size_t max)
 {
     double wrate = 2.0 * M_PI * cfg->rev_per_s;
+    double t_from = at_from->t, t_to = at_to->t;
     double te[2];
     crossing_t c0 = {cfg, seg, t_index, tx, ty, half, flat, 0.0};
-    f_parts_t from = F_parts(&c0, t_from, true), to = F_parts(&c0, t_to, false);
+    f_parts_t from = F_parts(&c0, at_from, true), to = F_parts(&c0, at_to, false);
     /* F unwrapped across the window: the bearing moves by less than half a turn in it */
     to.base += 2.0 * M_PI * round((to.bearing - from.bearing) / (2.0 * M_PI));
     for (int e = 0; e < 2; e++) {
@@ -184,13 +204,16 @@ size_t sim_gonio_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const s
                        sim_gonio_event_t *out, size_t max)
 {
     size_t n = 0;
+    /* The window's ends are the same for every target. */
+    vehicle_t at_from = vehicle_at(seg, t_from, true), at_to = vehicle_at(seg, t_to, false);
     for (size_t i = 0; i < w->n_beacons; i++)
-        n = add_edges(cfg, w, seg, t_index, t_from, t_to, rng, w->beacon[i].x, w->beacon[i].y,
+        n = add_edges(cfg, w, seg, t_index, &at_from, &at_to, rng, w->beacon[i].x, w->beacon[i].y,
                       0.5 * w->beacon[i].diameter, w->beacon[i].kind == SIM_BEACON_KIND_FLAT,
                       (int16_t)i, out, n, max);
     for (size_t i = 0; i < w->n_spurious; i++)
-        n = add_edges(cfg, w, seg, t_index, t_from, t_to, rng, w->spurious[i].x, w->spurious[i].y,
-                      -0.5 * w->spurious[i].width, 0, (int16_t)(-1 - (int)i), out, n, max);
+        n = add_edges(cfg, w, seg, t_index, &at_from, &at_to, rng, w->spurious[i].x,
+                      w->spurious[i].y, -0.5 * w->spurious[i].width, 0, (int16_t)(-1 - (int)i), out,
+                      n, max);
     qsort(out, n, sizeof out[0], by_time);
     return n;
 }
