@@ -151,15 +151,55 @@ static int by_time(const void *a, const void *b)
 }
 
 /*
+ * A disk that holds the vehicle at every centre crossing of a pulse with an edge in the window:
+ * centred on its position at t_from, with as radius the longest travel from there to an
+ * instant up to a half width (pi/2 at most, or a glint's) of mirror turn outside the window.
+ * The rear axle's chord is never longer than its travel, which is monotonic in time; the slack
+ * covers the rounding of the poses (the arc's formula loses up to about 1e-7 of the travel when
+ * nearly straight). Returns the radius, m.
+ */
+static double window_reach(const sim_gonio_cfg_t *cfg, const sim_world_t *w,
+                           const sim_segment_t *seg, double t_from, double t_to)
+{
+    double half = 0.5 * M_PI;
+    for (size_t i = 0; i < w->n_spurious; i++)
+        half = fmax(half, 0.5 * w->spurious[i].width);
+    double h = half / (2.0 * M_PI * cfg->rev_per_s);
+    double d0 = sim_segment_travel(seg, t_from);
+    double da = sim_segment_travel(seg, t_from - h), db = sim_segment_travel(seg, t_to + h);
+    return fmax(fabs(da - d0), fabs(db - d0)) + 1e-3 + 1e-6 * (fabs(da) + fabs(db));
+}
+
+/*
+ * How a target at (tx, ty) fares from every point within @p r of (px, py): CLEAR when in
+ * range and in sight from all, BLOCKED when from none, else UNSURE. The range's margin covers
+ * the rounding of the distances (hypot() in add_edges(), sqrt here).
+ */
+static sim_sight_t window_sight(const sim_gonio_cfg_t *cfg, const sim_world_t *w, double px,
+                                double py, double r, double tx, double ty)
+{
+    double dx = tx - px, dy = ty - py, d = sqrt(dx * dx + dy * dy), slack = 1e-9 * cfg->max_range;
+    if (d - r > cfg->max_range + slack)
+        return SIM_SIGHT_BLOCKED;
+    sim_sight_t s = sim_world_sight(w, px, py, r, tx, ty);
+    if (s == SIM_SIGHT_CLEAR && !(d + r < cfg->max_range - slack))
+        return SIM_SIGHT_UNSURE;
+    return s;
+}
+
+/*
  * Both edges of one target's pulse. Range and line of sight are judged once per pulse, at the
  * beam's crossing of the target's centre (so a pulse is either seen whole or not at all), and
- * the noise never puts a falling edge before its rising edge.
+ * the noise never puts a falling edge before its rising edge. @p sight is window_sight()'s for
+ * the window: CLEAR or BLOCKED give the judgement without finding the centre crossing.
  */
 static size_t add_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const sim_segment_t *seg,
                         double t_index, const vehicle_t *at_from, const vehicle_t *at_to,
-                        sim_rng_t *rng, double tx, double ty, double half, int flat, int16_t target,
-                        sim_gonio_event_t *out, size_t n, size_t max)
+                        sim_sight_t sight, sim_rng_t *rng, double tx, double ty, double half,
+                        int flat, int16_t target, sim_gonio_event_t *out, size_t n, size_t max)
 {
+    if (sight == SIM_SIGHT_BLOCKED)
+        return n;
     double wrate = 2.0 * M_PI * cfg->rev_per_s;
     double t_from = at_from->t, t_to = at_to->t;
     double te[2];
@@ -172,6 +212,11 @@ static size_t add_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const 
         te[e] = solve(&c, t_from, t_to, &from, &to);
         if (isnan(te[e]))
             continue;
+        if (sight == SIM_SIGHT_CLEAR) {
+            if (cfg->noise_rad > 0.0)
+                te[e] += cfg->noise_rad * sim_rng_normal(rng) / wrate;
+            continue;
+        }
         /* The centre crossing: half the apparent width after a rising edge, before a falling. */
         sim_pose_t p = sim_segment_pose(seg, te[e]);
         double tc = te[e] - c.side * target_half(&c, p.x, p.y) / wrate;
@@ -206,14 +251,19 @@ size_t sim_gonio_edges(const sim_gonio_cfg_t *cfg, const sim_world_t *w, const s
     size_t n = 0;
     /* The window's ends are the same for every target. */
     vehicle_t at_from = vehicle_at(seg, t_from, true), at_to = vehicle_at(seg, t_to, false);
-    for (size_t i = 0; i < w->n_beacons; i++)
-        n = add_edges(cfg, w, seg, t_index, &at_from, &at_to, rng, w->beacon[i].x, w->beacon[i].y,
-                      0.5 * w->beacon[i].diameter, w->beacon[i].kind == SIM_BEACON_KIND_FLAT,
-                      (int16_t)i, out, n, max);
-    for (size_t i = 0; i < w->n_spurious; i++)
-        n = add_edges(cfg, w, seg, t_index, &at_from, &at_to, rng, w->spurious[i].x,
-                      w->spurious[i].y, -0.5 * w->spurious[i].width, 0, (int16_t)(-1 - (int)i), out,
-                      n, max);
+    double r = window_reach(cfg, w, seg, t_from, t_to), px = at_from.p.x, py = at_from.p.y;
+    for (size_t i = 0; i < w->n_beacons; i++) {
+        const sim_beacon_t *b = &w->beacon[i];
+        n = add_edges(cfg, w, seg, t_index, &at_from, &at_to,
+                      window_sight(cfg, w, px, py, r, b->x, b->y), rng, b->x, b->y,
+                      0.5 * b->diameter, b->kind == SIM_BEACON_KIND_FLAT, (int16_t)i, out, n, max);
+    }
+    for (size_t i = 0; i < w->n_spurious; i++) {
+        const sim_spurious_t *g = &w->spurious[i];
+        n = add_edges(cfg, w, seg, t_index, &at_from, &at_to,
+                      window_sight(cfg, w, px, py, r, g->x, g->y), rng, g->x, g->y, -0.5 * g->width,
+                      0, (int16_t)(-1 - (int)i), out, n, max);
+    }
     qsort(out, n, sizeof out[0], by_time);
     return n;
 }
