@@ -55,4 +55,21 @@ bool sim_world_coincident(const sim_world_t *w, size_t *i, size_t *j);
  * pillar nearer than its radius. */
 bool sim_world_visible(const sim_world_t *w, double ax, double ay, double bx, double by);
 
+/** What sim_world_sight() can say for a whole disk of viewpoints. */
+typedef enum {
+    SIM_SIGHT_UNSURE =
+        0,            /* it may differ from one viewpoint to another (or be too close to call) */
+    SIM_SIGHT_CLEAR,  /* sim_world_visible() is true from every viewpoint */
+    SIM_SIGHT_BLOCKED /* sim_world_visible() is false from every viewpoint */
+} sim_sight_t;
+
+/**
+ * The line of sight to (bx, by) from every point within @p r (m, >= 0) of (cx, cy), judged as
+ * sim_world_visible() judges it (its rounding included, with a margin of about 1e-9 of the
+ * distances squared): CLEAR or BLOCKED only when that holds for each point of the disk;
+ * UNSURE otherwise. BLOCKED is claimed from a single occluder only (never from pillars).
+ */
+sim_sight_t sim_world_sight(const sim_world_t *w, double cx, double cy, double r, double bx,
+                            double by);
+
 #endif
