@@ -23,7 +23,10 @@ static uint8_t peer_of(uint8_t node)
 static void on_frame(void *arg, const hal_can_frame_t *f)
 {
     link_t *l = arg;
-    if (linkmsg_sender(f->id) == (int8_t)peer_of(l->cfg.node)) {
+    int8_t sender = linkmsg_sender(f->id);
+    if (sender < 0)
+        return; /* not in the table: others' traffic on a shared bus (a babbler's too) */
+    if (sender == (int8_t)peer_of(l->cfg.node)) {
         l->last_heard = hal_clock_ms();
         if (l->silent)
             hal_cpu_wake(); /* the peer is back: link_poll() says so at once */

@@ -207,6 +207,36 @@ TEST_F(Link, ABoardThatHearsNothingForTheSilenceTimeSaysSoOnceThenHearsAgain)
     EXPECT_EQ(stats(m).peer_missed, 0);
 }
 
+// A babbling node with an id outside the table (0x000, inside the link's acceptance filter)
+// wins every arbitration from 200 ms: both boards receive its frames, which neither hand on
+// nor keep the other board heard, so each falls silent 250 ms after the last heartbeat it
+// heard (queued at 150 ms: the 200 ms ones never win the bus).
+TEST_F(Link, ABabblersFramesAreIgnoredAndDoNotKeepThePeerHeard)
+{
+    Board m, n;
+    up(m, LINKMSG_NODE_MAIN);
+    up(n, LINKMSG_NODE_NAV);
+    posix_can_fault_t f{};
+    f.kind = POSIX_CAN_FAULT_BABBLE;
+    f.from_ns = 200000000u;
+    f.until_ns = 2000000000u;
+    f.id = 0x000;
+    f.len = 8;
+    ASSERT_EQ(posix_can_add_fault(0, &f), 0);
+    run_to(500, {&m, &n});
+    EXPECT_TRUE(m.got.empty());
+    EXPECT_TRUE(n.got.empty());
+    ASSERT_EQ(m.events.size(), 1u);
+    ASSERT_EQ(n.events.size(), 1u);
+    EXPECT_EQ(m.events[0], LINK_EV_SILENT);
+    EXPECT_EQ(n.events[0], LINK_EV_SILENT);
+    EXPECT_EQ(m.event_ms[0], 400u);
+    EXPECT_EQ(n.event_ms[0], 400u);
+    EXPECT_EQ(stats(m).rx_errors, 0);
+    EXPECT_EQ(stats(n).rx_errors, 0);
+    EXPECT_GT(stats(n).can.rx_frames, 100u); // the babbler's frames did arrive
+}
+
 TEST_F(Link, LostHeartbeatsAreCountedAsGapsButAnyFrameKeepsThePeerHeard)
 {
     Board m, n;
