@@ -92,6 +92,16 @@ class Link : public ::testing::Test
         return out;
     }
 
+    // Queue @p n DIR messages (one frame each) on @p b's link.
+    void queue_dirs(Board &b, int n)
+    {
+        posix_board_select(b.id);
+        linkmsg_t dir{};
+        dir.type = LINKMSG_DIR;
+        for (int i = 0; i < n; i++)
+            ASSERT_EQ(link_send(&b.link, &dir), 0);
+    }
+
     link_stats_t stats(Board &b)
     {
         posix_board_select(b.id);
@@ -131,17 +141,13 @@ TEST_F(Link, BothFramesOfAPairOrNeither)
     Board m, n;
     up(m, LINKMSG_NODE_MAIN);
     up(n, LINKMSG_NODE_NAV);
-    posix_board_select(m.id);
-    linkmsg_t dir{};
-    dir.type = LINKMSG_DIR;
-    for (int i = 0; i < HAL_CAN_TX_QUEUE - 1; i++)
-        ASSERT_EQ(link_send(&m.link, &dir), 0);
+    queue_dirs(m, HAL_CAN_TX_QUEUE - 1);
     EXPECT_EQ(link_tx_room(&m.link), 1);
     linkmsg_t fix{};
     fix.type = LINKMSG_FIX;
     EXPECT_EQ(link_send(&m.link, &fix), LINK_E_FULL);
     EXPECT_EQ(link_tx_room(&m.link), 1); // nothing queued
-    EXPECT_EQ(link_send(&m.link, &dir), 0);
+    queue_dirs(m, 1);
     EXPECT_EQ(stats(m).send_refused, 1);
 }
 
@@ -272,11 +278,7 @@ TEST_F(Link, AMainLoopWaitingForRoomRunsWhenAFrameLeaves)
     Board m, n;
     up(m, LINKMSG_NODE_MAIN);
     up(n, LINKMSG_NODE_NAV);
-    posix_board_select(m.id);
-    linkmsg_t dir{};
-    dir.type = LINKMSG_DIR;
-    for (int i = 0; i < HAL_CAN_TX_QUEUE; i++)
-        ASSERT_EQ(link_send(&m.link, &dir), 0);
+    queue_dirs(m, HAL_CAN_TX_QUEUE);
     ASSERT_EQ(link_tx_room(&m.link), 0);
     link_wake_on_room(&m.link);
     uint64_t t0 = posix_now_ns(), bit = 1000000000u / 250000u;
