@@ -109,12 +109,6 @@ void sim_piece_geom(const sim_piece_t *pc, sim_piece_geom_t *g)
 /* sin^2 of the angular margin of in_wedge(): 1e-9 rad, far above the rounding of atan2(). */
 #define SIDE2 1e-18
 
-/* min(best, d) for a candidate distance d (what fmin() gives when best is not NaN). */
-static double least(double best, double d)
-{
-    return d < best ? d : best;
-}
-
 int sim_path_ring_beyond(double v2, double r, double best)
 {
     if (!(best >= SMALL))
@@ -168,7 +162,7 @@ static double nearer_point(double best, double dx, double dy)
 {
     if (sim_path_ring_beyond(dx * dx + dy * dy, 0.0, best))
         return best;
-    return least(best, hypot(dx, dy));
+    return sim_path_least(best, hypot(dx, dy));
 }
 
 double sim_piece_geom_nearer(const sim_piece_t *pc, const sim_piece_geom_t *g, double x, double y,
@@ -178,7 +172,7 @@ double sim_piece_geom_nearer(const sim_piece_t *pc, const sim_piece_geom_t *g, d
         /* Segment from start to end. */
         double s = (x - pc->x0) * g->ux + (y - pc->y0) * g->uy;
         if (s > 0.0 && s < pc->length)
-            best = least(best, fabs(-(x - pc->x0) * g->uy + (y - pc->y0) * g->ux));
+            best = sim_path_least(best, fabs(-(x - pc->x0) * g->uy + (y - pc->y0) * g->ux));
     } else {
         /* The arc's inside: the distance to its circle where the arc covers the direction. */
         double vx = x - g->cx, vy = y - g->cy;
@@ -186,7 +180,7 @@ double sim_piece_geom_nearer(const sim_piece_t *pc, const sim_piece_geom_t *g, d
             int side = arc_side(g, pc->x0 - g->cx, pc->y0 - g->cy, vx, vy);
             arc_t arc = {g->cx, g->cy, g->r, g->a0, g->sw};
             if (side > 0 || (side == 0 && arc_covers(&arc, atan2(vy, vx))))
-                best = least(best, fabs(hypot(vx, vy) - fabs(g->r)));
+                best = sim_path_least(best, fabs(hypot(vx, vy) - fabs(g->r)));
         }
     }
     best = nearer_point(best, x - pc->x0, y - pc->y0);

@@ -126,12 +126,6 @@ void sim_path_index_free(sim_path_index_t *ix)
     ix->n_distinct = 0;
 }
 
-/* min(a, b) of two numbers that are not NaN (fmin() without its call). */
-static double least(double a, double b)
-{
-    return b < a ? b : a;
-}
-
 static double examine(sim_path_index_t *ix, uint32_t i, double x, double y, double best)
 {
     if (ix->seen[i] == ix->query)
@@ -187,13 +181,13 @@ double sim_path_index_distance(sim_path_index_t *ix, double x, double y)
          * for the rounding of the cell arithmetic). */
         double margin = INFINITY;
         if (i0 - k > 0)
-            margin = least(margin, x - (ix->x0 + (i0 - k) * ix->cell));
+            margin = sim_path_least(margin, x - (ix->x0 + (i0 - k) * ix->cell));
         if (i0 + k + 1 < ix->nx)
-            margin = least(margin, ix->x0 + (i0 + k + 1) * ix->cell - x);
+            margin = sim_path_least(margin, ix->x0 + (i0 + k + 1) * ix->cell - x);
         if (j0 - k > 0)
-            margin = least(margin, y - (ix->y0 + (j0 - k) * ix->cell));
+            margin = sim_path_least(margin, y - (ix->y0 + (j0 - k) * ix->cell));
         if (j0 + k + 1 < ix->ny)
-            margin = least(margin, ix->y0 + (j0 + k + 1) * ix->cell - y);
+            margin = sim_path_least(margin, ix->y0 + (j0 + k + 1) * ix->cell - y);
         if (margin == INFINITY || best + 1e-9 <= margin)
             return best;
     }

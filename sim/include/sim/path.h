@@ -36,6 +36,13 @@ sim_pose_t sim_piece_end(const sim_piece_t *pc);
 /** The pose at the end of the whole path (the start pose of an empty path is undefined). */
 sim_pose_t sim_path_end(const sim_path_t *p);
 
+/** min(@p best, @p d) for numbers that are not NaN: @p d only when smaller (fmin() without
+ * its call). */
+static inline double sim_path_least(double best, double d)
+{
+    return d < best ? d : best;
+}
+
 /** Shortest distance from (x, y) to the piece, m (INFINITY for a NaN point). */
 double sim_piece_distance(const sim_piece_t *pc, double x, double y);
 
